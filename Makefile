@@ -1,0 +1,121 @@
+# rastty: a software rasterizer for the terminal.  `make help` lists the targets.
+CC      ?= cc
+PREFIX  ?= /usr/local
+BUILD   ?= build
+PKGS    := ncursesw stb
+WARN    := -std=c11 -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototypes
+DEFS    := -D_DEFAULT_SOURCE -D_POSIX_C_SOURCE=200809L -fno-math-errno
+OPT     ?= -O2 -g
+CFLAGS  += $(WARN) $(DEFS) $(OPT) -Iinclude -DRASTTY_DATADIR='"$(PREFIX)/share/rastty"'  $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
+LDLIBS  += $(shell pkg-config --libs $(PKGS) 2>/dev/null || echo -lncursesw -lstb) -lpthread -lm
+
+# `make V=1` shows full command lines
+Q       := $(if $(V),,@)
+SRCS    := $(wildcard src/*.c)
+LIBOBJS := $(patsubst src/%.c,$(BUILD)/obj/%.o,$(filter-out src/main.c,$(SRCS)))
+MAINOBJ := $(BUILD)/obj/main.o
+UNITSRC := $(wildcard tests/unit/*.c)
+UNITOBJ := $(patsubst tests/unit/%.c,$(BUILD)/tests/%.o,$(UNITSRC))
+
+DEBIAN_PKGS := build-essential pkg-config libncurses-dev libstb-dev libosmesa6-dev tmux \
+               ncurses-term
+
+.PHONY: all test unit check-asan asan-build bench deps install uninstall clean help fuzz
+
+all: rastty assets
+
+include assets/assets.mk
+include tests/oracle/oracle.mk
+
+help:
+	@echo "make            build ./rastty"
+	@echo "make test       unit + oracle (Mesa) + end-to-end tests, then the same under ASan+UBSan"
+	@echo "make check-asan unit + end-to-end tests built with -fsanitize=address,undefined"
+	@echo "make bench      speed and bytes/frame benchmarks (not a test)"
+	@echo "make fuzz       libFuzzer on the OBJ, MTL and ANSI parsers (FUZZ_SECONDS=60 each)"
+	@echo "make deps       install Debian build/test packages (root) or print the apt-get line"
+	@echo "make install    PREFIX=/usr/local: binary, man page, built-in assets"
+
+rastty: $(MAINOBJ) $(BUILD)/librastty.a
+	@echo "  LD      $@"
+	$(Q)$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS)
+
+$(BUILD)/librastty.a: $(LIBOBJS)
+	@rm -f $@
+	$(Q)$(AR) rcs $@ $^
+
+$(BUILD)/obj/%.o: src/%.c | $(BUILD)/obj
+	@echo "  CC      $<"
+	$(Q)$(CC) $(CFLAGS) -MMD -MP -c -o $@ $<
+
+$(BUILD)/tests/%.o: tests/unit/%.c | $(BUILD)/tests
+	@echo "  CC      $<"
+	$(Q)$(CC) $(CFLAGS) -Itests/unit -MMD -MP -c -o $@ $<
+
+$(BUILD)/unit-tests: $(UNITOBJ) $(BUILD)/librastty.a
+	@echo "  LD      $@"
+	$(Q)$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS)
+
+$(BUILD)/obj $(BUILD)/tests:
+	@mkdir -p $@
+
+-include $(wildcard $(BUILD)/obj/*.d $(BUILD)/tests/*.d)
+
+# The whole suite, plain and under ASan+UBSan; tests/run.sh prints one summary line at the end.
+test: rastty assets $(BUILD)/unit-tests asan-build oracle-build
+	@tests/run.sh --all
+
+unit: $(BUILD)/unit-tests
+	$(BUILD)/unit-tests
+
+# Same sources, separate build tree, sanitizers on; tests/run.sh --asan runs what applies.
+SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+asan-build:
+	@$(MAKE) --no-print-directory BUILD=build/asan OPT="-O1 -g $(SAN)" LDFLAGS="$(SAN)" \
+	    build/asan/unit-tests build/asan/rastty
+
+check-asan: asan-build
+	@tests/run.sh --asan
+
+build/asan/rastty: $(BUILD)/librastty.a $(MAINOBJ)
+	@echo "  LD      $@"
+	$(Q)$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $(MAINOBJ) $(BUILD)/librastty.a $(LDLIBS)
+
+bench: rastty assets
+	@tests/bench.sh
+
+# libFuzzer targets for every parser (clang); FUZZ_SECONDS each. See tests/fuzz/README.
+FUZZ_SECONDS ?= 60
+FUZZ_TARGETS := obj mtl decode
+FUZZ_CFLAGS  := -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
+                -std=c11 $(DEFS) -Iinclude $(shell pkg-config --cflags stb)
+build/fuzz_%: tests/fuzz/fuzz_%.c $(SRCS)
+	@mkdir -p build/fuzz-work/$*
+	clang $(FUZZ_CFLAGS) $< $(filter-out src/main.c,$(SRCS)) -o $@ $(LDLIBS)
+fuzz: $(addprefix build/fuzz_,$(FUZZ_TARGETS))
+	@for t in $(FUZZ_TARGETS); do \
+	    echo "== fuzz_$$t ($(FUZZ_SECONDS) s)"; \
+	    build/fuzz_$$t build/fuzz-work/$$t tests/fuzz/corpus/$$t -max_total_time=$(FUZZ_SECONDS) \
+	        -max_len=4096 -print_final_stats=1 2>&1 | grep -E "stat::number_of_executed_units|ERROR|SUMMARY" || exit 1; \
+	done
+
+deps:
+	@if [ "$$(id -u)" = 0 ]; then \
+	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $(DEBIAN_PKGS); \
+	else \
+	    echo "run as root:  apt-get install -y $(DEBIAN_PKGS)"; \
+	fi
+
+install: rastty assets
+	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/share/man/man1 \
+	    $(DESTDIR)$(PREFIX)/share/rastty
+	install -m 755 rastty $(DESTDIR)$(PREFIX)/bin/rastty
+	install -m 644 man/rastty.1 $(DESTDIR)$(PREFIX)/share/man/man1/rastty.1
+	install -m 644 $(ASSET_FILES) assets/demo.rsc $(DESTDIR)$(PREFIX)/share/rastty/
+
+uninstall:
+	rm -f $(DESTDIR)$(PREFIX)/bin/rastty $(DESTDIR)$(PREFIX)/share/man/man1/rastty.1
+	rm -rf $(DESTDIR)$(PREFIX)/share/rastty
+
+clean:
+	rm -rf $(BUILD) rastty
