@@ -1,0 +1,82 @@
+/* render.h: everything that chooses HOW a frame is drawn, in one value.
+ *
+ * The same struct render_opts reaches the pipeline from `rastty render`, `dump`, the viewer
+ * and the benchmarks, so every method is selectable everywhere. struct frame_stats is what a
+ * frame reports back (HUD, --stats, benchmarks).
+ *
+ * Lighting model (conventions): directional lights (direction TOWARD the light, colour),
+ * default one white light toward (1,1,1). With V toward the eye and H = normalize(L+V):
+ *   c = albedo * (0.1 + 0.9 * sum_l max(0,N.L)*col_l) + ks * sum_l max(0,N.H)^ns * col_l
+ * clamped to [0,1]; albedo = material kd * texture texel (texel = 1 without texture);
+ * ks = 0.5 and ns = 32 unless the MTL says otherwise.
+ *   unlit   : c = albedo
+ *   flat    : N = face normal (file winding, world space); diffuse and specular evaluated once
+ *             per triangle with V from the triangle's centroid; albedo still per pixel.
+ *   gouraud : diffuse and specular sums evaluated per vertex (V per vertex), interpolated
+ *             (perspective-correct), combined per pixel with the per-pixel albedo.
+ *   phong   : N (interpolated, renormalised) and V (from interpolated world position) per
+ *             pixel.
+ *   wire    : triangle edges as Bresenham lines (line.h), in the wire colour.
+ * Orthographic cameras use a constant V = camera_back(). Normals are not flipped for back
+ * faces. */
+#ifndef RASTTY_RENDER_H
+#define RASTTY_RENDER_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "texture.h"
+#include "vecmath.h"
+
+#define RENDER_MAX_LIGHTS 4
+
+enum shade_mode { SHADE_UNLIT, SHADE_FLAT, SHADE_GOURAUD, SHADE_PHONG, SHADE_WIRE, SHADE_COUNT };
+enum cull_mode { CULL_NONE, CULL_BACK, CULL_FRONT, CULL_COUNT };
+/* What the framebuffer's colour shows after the frame (the viewer's `v` key). */
+enum debug_view { VIEW_COLOR, VIEW_DEPTH, VIEW_NORMALS, VIEW_OVERDRAW, VIEW_WIRE_OVERLAY,
+                  VIEW_COUNT };
+
+struct light {
+    vec3 dir;   /* toward the light, world space, need not be unit length */
+    vec3 color; /* linear, 1 = white */
+};
+
+struct render_opts {
+    enum shade_mode shade;
+    enum tex_filter filter;
+    enum cull_mode cull;
+    enum debug_view view;
+    bool textures;       /* sample material / override textures (else albedo = kd) */
+    bool hidden_lines;   /* wire: hide edges behind the model's surfaces (depth pre-pass) */
+    uint8_t background[3];
+    uint8_t wire_color[3];
+    int n_lights;
+    struct light lights[RENDER_MAX_LIGHTS];
+};
+
+struct frame_stats {
+    uint64_t tris_in;       /* triangles submitted */
+    uint64_t tris_culled;   /* back/front-face culled, zero-area, or mesh outside frustum */
+    uint64_t tris_rejected; /* trivially outside one frustum plane */
+    uint64_t tris_clipped;  /* needed polygon clipping */
+    uint64_t tris_drawn;    /* reached the rasterizer (after clipping, fan pieces counted) */
+    uint64_t pixels_tested; /* fragments inside a triangle */
+    uint64_t pixels_shaded; /* fragments that passed the depth test */
+    uint64_t meshes_culled; /* whole meshes outside the frustum (bounding sphere) */
+    double render_ms;
+};
+
+/* Defaults from the conventions: phong, nearest, no culling, textures on, black
+ * background, white wire colour, one white light toward (1,1,1). */
+void render_opts_default(struct render_opts *o);
+
+const char *render_shade_name(enum shade_mode m);
+const char *render_cull_name(enum cull_mode m);
+const char *render_filter_name(enum tex_filter f);
+const char *render_view_name(enum debug_view v);
+/* Parse a name back; -1 if unknown. */
+int render_shade_parse(const char *s);
+int render_cull_parse(const char *s);
+int render_filter_parse(const char *s);
+
+#endif

@@ -1,0 +1,107 @@
+/* vertex.h: the vertex stage — each unique mesh vertex transformed once per frame.
+ *
+ * In:  a mesh, the frame's uniforms (matrices, eye, lights, shading mode).
+ * Out: one struct vertex_out per mesh vertex: clip-space position (double), world position,
+ *      frustum/guard-band outcode, and the varyings the shading mode needs:
+ *        unlit, flat, wire : u v
+ *        gouraud           : u v, diffuse rgb, specular rgb (per-vertex lighting sums)
+ *        phong, normals    : u v, world position xyz, world normal xyz
+ * Varyings are interpolated perspective-correctly downstream; clip.c interpolates all of them
+ * linearly in clip space, which is exact for perspective-correct attributes.
+ *
+ * Outcodes: bits VERTEX_OUT_* say which real frustum plane (-w <= x,y,z <= w) a vertex is
+ * outside (used for trivial rejection); VERTEX_GUARD_* say it is outside the x/y guard band
+ * (used to decide whether clipping is needed: triangles inside the guard band are rasterised
+ * directly and their bounding box is clipped to the framebuffer instead, which is cheaper and
+ * creates no new vertices). */
+#ifndef RASTTY_VERTEX_H
+#define RASTTY_VERTEX_H
+
+#include <stdint.h>
+
+#include "mesh.h"
+#include "render.h"
+#include "vecmath.h"
+
+#define VARY_MAX 8
+
+enum {
+    VERTEX_OUT_LEFT = 1 << 0,
+    VERTEX_OUT_RIGHT = 1 << 1,
+    VERTEX_OUT_BOTTOM = 1 << 2,
+    VERTEX_OUT_TOP = 1 << 3,
+    VERTEX_OUT_NEAR = 1 << 4,
+    VERTEX_OUT_FAR = 1 << 5,
+    VERTEX_GUARD_LEFT = 1 << 6,
+    VERTEX_GUARD_RIGHT = 1 << 7,
+    VERTEX_GUARD_BOTTOM = 1 << 8,
+    VERTEX_GUARD_TOP = 1 << 9,
+    VERTEX_OUT_FRUSTUM = 0x3f,
+    VERTEX_NEEDS_CLIP = VERTEX_OUT_NEAR | VERTEX_OUT_FAR | 0x3c0,
+};
+
+/* The guard band: how far beyond the viewport (in pixels) a triangle may reach and still be
+ * rasterised without clipping. 2^14 px at 1/256 px is 2^22 fixed-point units, so edge
+ * functions (products of two coordinates) stay below 2^46: int64 with room to spare. */
+#define VERTEX_GUARD_PX 16384.0
+
+struct vertex_out {
+    double clip[4];  /* x, y, z, w in clip space */
+    double win[3];   /* window x, y (pixels, y down) and depth; valid when `projected` */
+    int64_t fx, fy;  /* win x, y snapped to 1/256 pixel; valid when `projected` */
+    int projected;   /* set by vertex_project (the vertex stage does it for every w > 0) */
+    uint32_t outcode;
+    float wpos[3];   /* world position (flat shading, centroid and face normal) */
+    float var[VARY_MAX];
+};
+
+struct vertex_uniforms {
+    int fb_w, fb_h;
+    mat4 model, normal_matrix, mvp;
+    vec3 eye;          /* world space */
+    int ortho;         /* V = view_back everywhere */
+    vec3 view_back;    /* unit vector toward the viewer (orthographic) */
+    double guard_x, guard_y; /* guard band as multiples of w (>= 1) */
+    enum shade_mode shade;
+    enum debug_view view;
+    int n_lights;
+    struct light lights[RENDER_MAX_LIGHTS]; /* dir normalised */
+};
+
+/* Number of varyings written for a shading mode / debug view. */
+int vertex_varying_count(enum shade_mode shade, enum debug_view view);
+/* Transform every vertex of m into out[0 .. m->n_verts). */
+void vertex_run(const struct mesh *m, const struct vertex_uniforms *u, struct vertex_out *out);
+/* Outcode of a clip-space position (also used by clip.c for new vertices). */
+static inline uint32_t vertex_outcode(const double c[4], double gx, double gy)
+{
+    double x = c[0], y = c[1], z = c[2], w = c[3];
+    uint32_t oc = 0;
+    oc |= (x < -w) ? VERTEX_OUT_LEFT : 0;
+    oc |= (x > w) ? VERTEX_OUT_RIGHT : 0;
+    oc |= (y < -w) ? VERTEX_OUT_BOTTOM : 0;
+    oc |= (y > w) ? VERTEX_OUT_TOP : 0;
+    oc |= (z < -w) ? VERTEX_OUT_NEAR : 0;
+    oc |= (z > w) ? VERTEX_OUT_FAR : 0;
+    oc |= (x < -gx * w) ? VERTEX_GUARD_LEFT : 0;
+    oc |= (x > gx * w) ? VERTEX_GUARD_RIGHT : 0;
+    oc |= (y < -gy * w) ? VERTEX_GUARD_BOTTOM : 0;
+    oc |= (y > gy * w) ? VERTEX_GUARD_TOP : 0;
+    /* NaN coordinates (from degenerate input) compare false everywhere: treat as outside
+     * every plane so the triangle is rejected instead of reaching the rasterizer */
+    if (!(x == x && y == y && z == z && w == w))
+        oc = VERTEX_OUT_FRUSTUM | VERTEX_NEEDS_CLIP;
+    return oc;
+}
+/* Perspective divide and viewport: window x = (x/w + 1) W/2, y = (1 - y/w) H/2 (row 0 at the
+ * top), depth = z/(2w) + 1/2. w must be > 0. (Used here and by line.c.) */
+void vertex_window(const double clip[4], int fb_w, int fb_h, double win_out[3]);
+/* vertex_window plus the 1/256-pixel snap (setup.h); the vertex must be inside the guard
+ * band. Sets win, fx, fy, projected. */
+void vertex_project(struct vertex_out *v, int fb_w, int fb_h);
+/* Blinn-Phong light sums at one point: diffuse_out = sum col*max(0,N.L),
+ * specular_out = sum col*max(0,N.H)^ns. n and v unit length. Shared by vertex and flat. */
+void vertex_light(const struct vertex_uniforms *u, vec3 n, vec3 v, float ns, float diffuse_out[3],
+                  float specular_out[3]);
+
+#endif

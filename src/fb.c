@@ -1,0 +1,79 @@
+/* fb.c: framebuffer storage and debug views (see fb.h). */
+#include "fb.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+int fb_init(struct fb *fb, int w, int h, bool count_overdraw, struct err *e)
+{
+    memset(fb, 0, sizeof *fb);
+    if (w < 1 || h < 1 || w > FB_MAX_DIM || h > FB_MAX_DIM)
+        return err_set(e, "framebuffer size %dx%d out of range (1..%d per side)", w, h,
+                       FB_MAX_DIM);
+    size_t n = (size_t)w * (size_t)h;
+    fb->w = w;
+    fb->h = h;
+    fb->rgb = malloc(n * 3);
+    fb->depth = malloc(n * sizeof *fb->depth);
+    fb->overdraw = count_overdraw ? calloc(n, sizeof *fb->overdraw) : NULL;
+    if (!fb->rgb || !fb->depth || (count_overdraw && !fb->overdraw)) {
+        fb_free(fb);
+        return err_set(e, "out of memory for a %dx%d framebuffer", w, h);
+    }
+    return 0;
+}
+
+void fb_free(struct fb *fb)
+{
+    free(fb->rgb);
+    free(fb->depth);
+    free(fb->overdraw);
+    memset(fb, 0, sizeof *fb);
+}
+
+void fb_clear(struct fb *fb, const uint8_t bg[3])
+{
+    size_t n = (size_t)fb->w * (size_t)fb->h;
+    for (size_t i = 0; i < n; i++) {
+        fb->rgb[3 * i + 0] = bg[0];
+        fb->rgb[3 * i + 1] = bg[1];
+        fb->rgb[3 * i + 2] = bg[2];
+        fb->depth[i] = 1.0f;
+    }
+    if (fb->overdraw)
+        memset(fb->overdraw, 0, n * sizeof *fb->overdraw);
+}
+
+void fb_show_depth(struct fb *fb)
+{
+    size_t n = (size_t)fb->w * (size_t)fb->h;
+    float lo = 1, hi = 0;
+    for (size_t i = 0; i < n; i++)
+        if (fb->depth[i] < 1) {
+            lo = fb->depth[i] < lo ? fb->depth[i] : lo;
+            hi = fb->depth[i] > hi ? fb->depth[i] : hi;
+        }
+    /* stretch the used range: perspective depth crowds near 1, so a fixed map is all white */
+    float scale = hi > lo ? 1.0f / (hi - lo) : 0;
+    for (size_t i = 0; i < n; i++) {
+        uint8_t g = 0;
+        if (fb->depth[i] < 1)
+            g = fb_quantize(0.15f + 0.85f * (1.0f - (fb->depth[i] - lo) * scale));
+        fb->rgb[3 * i] = fb->rgb[3 * i + 1] = fb->rgb[3 * i + 2] = g;
+    }
+}
+
+void fb_show_overdraw(struct fb *fb)
+{
+    static const uint8_t ramp[][3] = {
+        {0, 0, 0}, {40, 60, 200}, {40, 180, 60}, {230, 210, 40}, {230, 60, 40}, {255, 255, 255},
+    };
+    enum { RAMP_LAST = sizeof ramp / sizeof ramp[0] - 1 };
+    if (!fb->overdraw)
+        return;
+    size_t n = (size_t)fb->w * (size_t)fb->h;
+    for (size_t i = 0; i < n; i++) {
+        uint32_t k = fb->overdraw[i] > RAMP_LAST ? RAMP_LAST : fb->overdraw[i];
+        memcpy(fb->rgb + 3 * i, ramp[k], 3);
+    }
+}

@@ -1,0 +1,84 @@
+/* vertex.c: per-vertex transform and lighting (see vertex.h). */
+#include "vertex.h"
+
+#include "setup.h"
+#include "shade.h"
+
+int vertex_varying_count(enum shade_mode shade, enum debug_view view)
+{
+    if (view == VIEW_NORMALS || shade == SHADE_PHONG)
+        return 8;
+    if (shade == SHADE_GOURAUD)
+        return 8;
+    return 2;
+}
+
+void vertex_window(const double c[4], int fb_w, int fb_h, double win[3])
+{
+    double rw = 1.0 / c[3];
+    win[0] = (c[0] * rw + 1.0) * 0.5 * fb_w;
+    win[1] = (1.0 - c[1] * rw) * 0.5 * fb_h;
+    win[2] = 0.5 * c[2] * rw + 0.5;
+}
+
+void vertex_project(struct vertex_out *v, int fb_w, int fb_h)
+{
+    vertex_window(v->clip, fb_w, fb_h, v->win);
+    /* round to nearest, ties to even (the default rounding mode), like llvmpipe's lrintf */
+    v->fx = (int64_t)nearbyint(v->win[0] * SETUP_SUBPIX_ONE);
+    v->fy = (int64_t)nearbyint(v->win[1] * SETUP_SUBPIX_ONE);
+    v->projected = 1;
+}
+
+void vertex_light(const struct vertex_uniforms *u, vec3 n, vec3 v, float ns, float d_out[3],
+                  float s_out[3])
+{
+    d_out[0] = d_out[1] = d_out[2] = 0;
+    s_out[0] = s_out[1] = s_out[2] = 0;
+    for (int i = 0; i < u->n_lights; i++) {
+        const struct light *l = &u->lights[i];
+        float nl = (float)v3_dot(n, l->dir);
+        vec3 h = v3_norm(v3_add(l->dir, v));
+        float nh = (float)v3_dot(n, h);
+        float d = nl > 0 ? nl : 0;
+        float s = shade_pow(nh > 0 ? nh : 0, ns);
+        d_out[0] += d * (float)l->color.x;
+        d_out[1] += d * (float)l->color.y;
+        d_out[2] += d * (float)l->color.z;
+        s_out[0] += s * (float)l->color.x;
+        s_out[1] += s * (float)l->color.y;
+        s_out[2] += s * (float)l->color.z;
+    }
+}
+
+void vertex_run(const struct mesh *m, const struct vertex_uniforms *u, struct vertex_out *out)
+{
+    int want_normals = u->view == VIEW_NORMALS || u->shade == SHADE_PHONG;
+    int want_gouraud = !want_normals && u->shade == SHADE_GOURAUD;
+    for (uint32_t i = 0; i < m->n_verts; i++) {
+        const struct mesh_vertex *mv = &m->verts[i];
+        struct vertex_out *o = &out[i];
+        vec4 p = {mv->pos[0], mv->pos[1], mv->pos[2], 1};
+        vec4 c = m4_mul_v4(u->mvp, p);
+        o->clip[0] = c.x, o->clip[1] = c.y, o->clip[2] = c.z, o->clip[3] = c.w;
+        o->outcode = vertex_outcode(o->clip, u->guard_x, u->guard_y);
+        o->projected = 0;
+        if (!(o->outcode & VERTEX_NEEDS_CLIP))
+            vertex_project(o, u->fb_w, u->fb_h);
+        vec3 wp = m4_mul_point(u->model, (vec3){p.x, p.y, p.z});
+        o->wpos[0] = (float)wp.x, o->wpos[1] = (float)wp.y, o->wpos[2] = (float)wp.z;
+        o->var[0] = mv->uv[0];
+        o->var[1] = mv->uv[1];
+        if (!want_normals && !want_gouraud)
+            continue;
+        vec3 n = v3_norm(m4_mul_dir(u->normal_matrix, v3(mv->nrm[0], mv->nrm[1], mv->nrm[2])));
+        if (want_normals) {
+            o->var[2] = o->wpos[0], o->var[3] = o->wpos[1], o->var[4] = o->wpos[2];
+            o->var[5] = (float)n.x, o->var[6] = (float)n.y, o->var[7] = (float)n.z;
+        } else {
+            vec3 v = u->ortho ? u->view_back : v3_norm(v3_sub(u->eye, wp));
+            float ns = m->materials[m->vert_material ? m->vert_material[i] : 0].ns;
+            vertex_light(u, n, v, ns, &o->var[2], &o->var[5]);
+        }
+    }
+}
