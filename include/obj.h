@@ -1,0 +1,38 @@
+/* obj.h: Wavefront OBJ -> struct mesh.
+ *
+ * Reads v (x y z [w] [r g b], extra values ignored), vt (u [v [w]]), vn, f in all four corner
+ * forms (v, v/vt, v//vn, v/vt/vn; negative = relative indices), polygons fanned as
+ * (0,i,i+1), o/g/s (accepted, ignored), usemtl, mtllib (via mtl.h; textures named by map_Kd
+ * are loaded relative to the MTL file), comments, CRLF, tabs, blank lines.
+ * Errors: "path:line: message" in e, return -1 (a missing mtllib or texture is an error).
+ *
+ * Details a caller may rely on:
+ *   - The whole file is read at once and lines may be any length. Unknown statements are
+ *     ignored (l, p, vp, curves, binary junk, ...).
+ *   - '#' starts a comment anywhere on a line of numbers or indices; on a line holding a
+ *     name (usemtl, mtllib) only at the start or after whitespace, as in mtl.h.
+ *   - mtllib takes several whitespace-separated names, resolved against the OBJ's directory
+ *     (absolute names as they are); it may come after the usemtl that needs it.
+ *   - A face corner may lack vt or vn while others in the same face have them: missing uv is
+ *     (0,0), a missing normal is generated (mesh.h). Indices must name elements defined on
+ *     earlier lines; 0 and |index| > 2^31-1 are errors.
+ *   - Materials: mesh.materials[0] is always the default material "default" (mtl_default),
+ *     used by faces before any usemtl, after an empty usemtl, and for names no loaded MTL
+ *     defines (common in real files, not an error). Then every material faces actually use,
+ *     in order of first use (the first definition wins if libraries repeat a name). Only
+ *     those materials' map_Kd files are decoded, each distinct path once.
+ *   - A file without faces is an error ("path: no faces"), as is a mesh beyond the uint32 /
+ *     uint16 limits of mesh.h (65535 materials).
+ *   - On failure *out is zeroed, so mesh_free(out) is harmless either way. */
+#ifndef RASTTY_OBJ_H
+#define RASTTY_OBJ_H
+
+#include "err.h"
+#include "mesh.h"
+
+int obj_load(const char *path, struct mesh *out, struct err *e);
+/* Parse from memory (path is used for messages and to resolve mtllib; NULL: mtllib ignored
+ * and messages say "<memory>"). text need not be NUL-terminated. */
+int obj_parse(const char *text, size_t len, const char *path, struct mesh *out, struct err *e);
+
+#endif

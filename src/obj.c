@@ -1,0 +1,702 @@
+/* obj.c: Wavefront OBJ text -> struct mesh (see obj.h).
+ *
+ * One pass over the text collects positions, uvs, normals and fanned triangles of corner
+ * indices, with a material "slot" per distinct usemtl name. After the pass the slots are
+ * resolved against the loaded MTL libraries (so mtllib may come late), the used textures are
+ * decoded, and mesh_build (mesh.c) turns the corners into unique vertices. */
+#include "obj.h"
+
+#include <stdbool.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "mtl.h"
+
+#define OBJ_QUOTE_PATH 100
+#define OBJ_QUOTE_TEXT 40
+#define OBJ_MAX_INDEX 0x7fffffffLL     /* counts and |indices| stay within int32 */
+#define OBJ_MAX_TRIS (UINT32_MAX / 3)   /* mesh_build's limit */
+#define OBJ_MAX_MATERIALS 65535         /* tri_material is uint16_t; slot 0 is the default */
+#define OBJ_MEMORY_NAME "<memory>"
+
+/* ---- a small string -> id map (usemtl names, MTL names, texture paths) ----------------- */
+
+struct strkey {
+    const char *s;
+    size_t n;
+};
+
+struct strmap {
+    struct strmap_entry {
+        uint64_t hash;
+        uint32_t id1; /* id + 1; 0 = empty */
+    } *e;
+    size_t mask, count;
+};
+
+static uint64_t str_hash(const char *s, size_t n)
+{
+    uint64_t h = 0xcbf29ce484222325ULL; /* FNV-1a */
+    for (size_t i = 0; i < n; i++)
+        h = (h ^ (unsigned char)s[i]) * 0x100000001b3ULL;
+    return h;
+}
+
+/* id of the key equal to (s, n), or -1 */
+static long strmap_find(const struct strmap *m, const struct strkey *keys, const char *s,
+                        size_t n, uint64_t h)
+{
+    if (!m->e)
+        return -1;
+    for (size_t i = (size_t)h & m->mask; m->e[i].id1; i = (i + 1) & m->mask) {
+        const struct strkey *k = &keys[m->e[i].id1 - 1];
+        if (m->e[i].hash == h && k->n == n && memcmp(k->s, s, n) == 0)
+            return (long)m->e[i].id1 - 1;
+    }
+    return -1;
+}
+
+static void strmap_put(struct strmap *m, uint64_t h, uint32_t id)
+{
+    size_t i = (size_t)h & m->mask;
+    while (m->e[i].id1)
+        i = (i + 1) & m->mask;
+    m->e[i].hash = h;
+    m->e[i].id1 = id + 1;
+    m->count++;
+}
+
+/* Add id (the caller checked it is absent); keeps the load at most 1/2. */
+static int strmap_add(struct strmap *m, uint64_t h, uint32_t id)
+{
+    if (!m->e || (m->count + 1) * 2 > m->mask + 1) {
+        size_t cap = m->e ? (m->mask + 1) * 2 : 16;
+        struct strmap g = {calloc(cap, sizeof *g.e), cap - 1, 0};
+        if (!g.e)
+            return -1;
+        for (size_t i = 0; m->e && i <= m->mask; i++)
+            if (m->e[i].id1)
+                strmap_put(&g, m->e[i].hash, m->e[i].id1 - 1);
+        free(m->e);
+        *m = g;
+    }
+    strmap_put(m, h, id);
+    return 0;
+}
+
+static void strmap_free(struct strmap *m)
+{
+    free(m->e);
+    memset(m, 0, sizeof *m);
+}
+
+/* ---- lexing --------------------------------------------------------------------------- */
+
+static bool is_ws(char c)
+{
+    return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
+}
+
+static const char *skip_ws(const char *p, const char *end)
+{
+    while (p < end && is_ws(*p))
+        p++;
+    return p;
+}
+
+static const char *tok_end(const char *p, const char *end)
+{
+    while (p < end && !is_ws(*p))
+        p++;
+    return p;
+}
+
+/* Numbers and indices: a token also ends at '#', which ends the line. */
+static const char *num_end(const char *p, const char *end)
+{
+    while (p < end && !is_ws(*p) && *p != '#')
+        p++;
+    return p;
+}
+
+static const char *num_next(const char *p, const char *end)
+{
+    p = skip_ws(p, end);
+    return p < end && *p == '#' ? end : p;
+}
+
+static bool tok_is(const char *t, const char *te, const char *word, size_t n)
+{
+    return (size_t)(te - t) == n && memcmp(t, word, n) == 0;
+}
+
+/* For names: a comment starts at a '#' that begins the text or follows whitespace. */
+static const char *name_comment(const char *p, const char *end)
+{
+    for (const char *q = p; q < end; q++) {
+        q = memchr(q, '#', (size_t)(end - q));
+        if (!q)
+            break;
+        if (q == p || is_ws(q[-1]))
+            return q;
+    }
+    return end;
+}
+
+static const char *rtrim(const char *p, const char *end)
+{
+    while (end > p && is_ws(end[-1]))
+        end--;
+    return end;
+}
+
+/* Grow an array to hold `need` elements; returns the (maybe moved) array, or NULL with the
+ * old one intact. */
+static void *grow(void *p, size_t *cap, size_t need, size_t elem)
+{
+    if (need <= *cap)
+        return p;
+    size_t c = *cap ? *cap : 256;
+    while (c < need) {
+        if (c > SIZE_MAX / 2 / elem)
+            return NULL;
+        c *= 2;
+    }
+    void *np = realloc(p, c * elem);
+    if (np)
+        *cap = c;
+    return np;
+}
+
+/* ---- the parser ----------------------------------------------------------------------- */
+
+struct oparse {
+    struct err *e;
+    const char *path; /* as given; NULL for in-memory text */
+    char where[OBJ_QUOTE_PATH + 8];
+    unsigned long line;
+
+    float *pos, *uv, *nrm; /* 3, 2, 3 floats each */
+    size_t n_pos, n_uv, n_nrm, cap_pos, cap_uv, cap_nrm;
+
+    struct mesh_corner *corners; /* 3 per triangle */
+    uint16_t *tri_slot;          /* per triangle: slot, later material */
+    size_t n_tris, cap_corners, cap_tri_slot;
+
+    /* slot 0 = default material; slot i > 0 = the i-th distinct usemtl name */
+    struct strkey *slot_names; /* point into the text */
+    bool *slot_used;
+    size_t n_slots, cap_slot_names, cap_slot_used;
+    struct strmap slot_map;
+    uint16_t cur_slot;
+
+    struct mtl_lib *libs;
+    size_t n_libs, cap_libs;
+};
+
+static int fail(struct oparse *P, const char *msg)
+{
+    return err_set(P->e, "%s:%lu: %s", P->where, P->line, msg);
+}
+
+static int fail_text(struct oparse *P, const char *what, const char *t, const char *te)
+{
+    char q[OBJ_QUOTE_TEXT + 8];
+    err_quote(t, (size_t)(te - t), OBJ_QUOTE_TEXT, q, sizeof q);
+    return err_set(P->e, "%s:%lu: %s '%s'", P->where, P->line, what, q);
+}
+
+static int oom(struct oparse *P)
+{
+    return fail(P, "out of memory");
+}
+
+/* Up to `want` numbers after the keyword; fewer than `need` is an error; the rest of the
+ * line (w, vertex colours, ...) is ignored. Returns how many were read, or -1. */
+static int parse_floats(struct oparse *P, const char *kw, const char *p, const char *end,
+                        float *out, int want, int need)
+{
+    int n = 0;
+    while (n < want && (p = num_next(p, end)) < end) {
+        const char *t = p;
+        p = num_end(p, end);
+        int rc = mtl_lex_float(t, (size_t)(p - t), &out[n]);
+        if (rc == MTL_NUM_RANGE)
+            return fail_text(P, "number out of range", t, p);
+        if (rc)
+            return fail_text(P, "bad number", t, p);
+        n++;
+    }
+    if (n < need)
+        return err_set(P->e, "%s:%lu: '%s' needs %d number%s, got %d", P->where, P->line, kw,
+                       need, need > 1 ? "s" : "", n);
+    return n;
+}
+
+static int add_position(struct oparse *P, const char *p, const char *end)
+{
+    float v[3];
+    if (parse_floats(P, "v", p, end, v, 3, 3) < 0)
+        return -1;
+    if ((long long)P->n_pos >= OBJ_MAX_INDEX)
+        return fail(P, "too many positions (limit 2^31-1)");
+    float *np = grow(P->pos, &P->cap_pos, P->n_pos + 1, 3 * sizeof *np);
+    if (!np)
+        return oom(P);
+    P->pos = np;
+    memcpy(&np[P->n_pos++ * 3], v, sizeof v);
+    return 0;
+}
+
+static int add_uv(struct oparse *P, const char *p, const char *end)
+{
+    float v[2] = {0, 0};
+    if (parse_floats(P, "vt", p, end, v, 2, 1) < 0)
+        return -1;
+    if ((long long)P->n_uv >= OBJ_MAX_INDEX)
+        return fail(P, "too many uvs (limit 2^31-1)");
+    float *np = grow(P->uv, &P->cap_uv, P->n_uv + 1, 2 * sizeof *np);
+    if (!np)
+        return oom(P);
+    P->uv = np;
+    memcpy(&np[P->n_uv++ * 2], v, sizeof v);
+    return 0;
+}
+
+static int add_normal(struct oparse *P, const char *p, const char *end)
+{
+    float v[3];
+    if (parse_floats(P, "vn", p, end, v, 3, 3) < 0)
+        return -1;
+    if ((long long)P->n_nrm >= OBJ_MAX_INDEX)
+        return fail(P, "too many normals (limit 2^31-1)");
+    float *np = grow(P->nrm, &P->cap_nrm, P->n_nrm + 1, 3 * sizeof *np);
+    if (!np)
+        return oom(P);
+    P->nrm = np;
+    memcpy(&np[P->n_nrm++ * 3], v, sizeof v);
+    return 0;
+}
+
+enum { IDX_OK, IDX_SYNTAX, IDX_ZERO, IDX_RANGE };
+
+/* One index field; resolves relative indices against count. */
+static int parse_index(const char *p, const char *end, size_t count, uint32_t *out)
+{
+    bool neg = false;
+    if (p < end && (*p == '-' || *p == '+'))
+        neg = *p++ == '-';
+    if (p == end)
+        return IDX_SYNTAX;
+    long long v = 0;
+    for (; p < end; p++) {
+        if (*p < '0' || *p > '9')
+            return IDX_SYNTAX;
+        if (v <= OBJ_MAX_INDEX) /* saturate just past the limit */
+            v = v * 10 + (*p - '0');
+    }
+    if (v == 0)
+        return IDX_ZERO;
+    if (v > OBJ_MAX_INDEX)
+        return IDX_RANGE;
+    if (neg) {
+        if ((size_t)v > count)
+            return IDX_RANGE;
+        *out = (uint32_t)(count - (size_t)v);
+    } else {
+        if ((size_t)v > count)
+            return IDX_RANGE;
+        *out = (uint32_t)(v - 1);
+    }
+    return IDX_OK;
+}
+
+static int parse_corner(struct oparse *P, const char *t, const char *te, struct mesh_corner *c)
+{
+    static const char *const kind[3] = {"v", "vt", "vn"};
+    const size_t count[3] = {P->n_pos, P->n_uv, P->n_nrm};
+    uint32_t idx[3] = {MESH_NONE, MESH_NONE, MESH_NONE};
+    int slashes = 0;
+    for (const char *q = t; q < te; q++)
+        slashes += *q == '/';
+    if (slashes > 2)
+        return fail_text(P, "bad face corner", t, te);
+    const char *q = t;
+    for (int field = 0;; field++) {
+        const char *fe = q;
+        while (fe < te && *fe != '/')
+            fe++;
+        if (fe > q || field == 0) {
+            int rc = parse_index(q, fe, count[field], &idx[field]);
+            if (rc == IDX_SYNTAX)
+                return fail_text(P, "bad face corner", t, te);
+            if (rc != IDX_OK) {
+                char qt[OBJ_QUOTE_TEXT + 8];
+                err_quote(t, (size_t)(te - t), OBJ_QUOTE_TEXT, qt, sizeof qt);
+                if (rc == IDX_ZERO)
+                    return err_set(P->e,
+                                   "%s:%lu: face corner '%s': index 0 is invalid (OBJ counts "
+                                   "from 1)",
+                                   P->where, P->line, qt);
+                return err_set(P->e, "%s:%lu: face corner '%s': %s index out of range (%zu "
+                               "defined so far)",
+                               P->where, P->line, qt, kind[field], count[field]);
+            }
+        }
+        if (fe == te)
+            break;
+        q = fe + 1;
+    }
+    c->pos = idx[0];
+    c->uv = idx[1];
+    c->nrm = idx[2];
+    return 0;
+}
+
+static int add_triangle(struct oparse *P, const struct mesh_corner *a,
+                        const struct mesh_corner *b, const struct mesh_corner *c)
+{
+    if (P->n_tris >= OBJ_MAX_TRIS)
+        return fail(P, "too many triangles");
+    struct mesh_corner *nc = grow(P->corners, &P->cap_corners, (P->n_tris + 1) * 3, sizeof *nc);
+    if (!nc)
+        return oom(P);
+    P->corners = nc;
+    uint16_t *ns = grow(P->tri_slot, &P->cap_tri_slot, P->n_tris + 1, sizeof *ns);
+    if (!ns)
+        return oom(P);
+    P->tri_slot = ns;
+    nc += P->n_tris * 3;
+    nc[0] = *a;
+    nc[1] = *b;
+    nc[2] = *c;
+    ns[P->n_tris++] = P->cur_slot;
+    P->slot_used[P->cur_slot] = true;
+    return 0;
+}
+
+/* f c0 c1 c2 ...: fanned as (0, i, i+1) while reading, so no per-face buffer. */
+static int parse_face(struct oparse *P, const char *p, const char *end)
+{
+    struct mesh_corner first = {0}, prev = {0}, cur;
+    size_t n = 0;
+    while ((p = num_next(p, end)) < end) {
+        const char *t = p;
+        p = num_end(p, end);
+        if (parse_corner(P, t, p, &cur))
+            return -1;
+        if (n == 0)
+            first = cur;
+        else if (n >= 2 && add_triangle(P, &first, &prev, &cur))
+            return -1;
+        prev = cur;
+        n++;
+    }
+    if (n < 3)
+        return err_set(P->e, "%s:%lu: face needs at least 3 corners, got %zu", P->where,
+                       P->line, n);
+    return 0;
+}
+
+static int use_material(struct oparse *P, const char *p, const char *end)
+{
+    if (p == end) {
+        P->cur_slot = 0;
+        return 0;
+    }
+    size_t n = (size_t)(end - p);
+    uint64_t h = str_hash(p, n);
+    long id = strmap_find(&P->slot_map, P->slot_names, p, n, h);
+    if (id < 0) {
+        if (P->n_slots >= OBJ_MAX_MATERIALS)
+            return fail(P, "too many materials (limit 65535)");
+        struct strkey *nk = grow(P->slot_names, &P->cap_slot_names, P->n_slots + 1, sizeof *nk);
+        if (!nk)
+            return oom(P);
+        P->slot_names = nk;
+        bool *nu = grow(P->slot_used, &P->cap_slot_used, P->n_slots + 1, sizeof *nu);
+        if (!nu)
+            return oom(P);
+        P->slot_used = nu;
+        id = (long)P->n_slots;
+        if (strmap_add(&P->slot_map, h, (uint32_t)id))
+            return oom(P);
+        nk[id] = (struct strkey){p, n};
+        nu[id] = false;
+        P->n_slots++;
+    }
+    P->cur_slot = (uint16_t)id;
+    return 0;
+}
+
+static int load_library(struct oparse *P, const char *name, size_t n)
+{
+    if (memchr(name, '\0', n))
+        return fail(P, "mtllib file name contains a NUL byte");
+    size_t dir = 0;
+    if (*name != '/') {
+        const char *slash = strrchr(P->path, '/');
+        dir = slash ? (size_t)(slash - P->path) + 1 : 0;
+    }
+    char *full = malloc(dir + n + 1);
+    if (!full)
+        return oom(P);
+    memcpy(full, P->path, dir);
+    memcpy(full + dir, name, n);
+    full[dir + n] = '\0';
+    for (size_t i = 0; i < P->n_libs; i++)
+        if (strcmp(P->libs[i].path, full) == 0) {
+            free(full); /* listed twice: once is enough */
+            return 0;
+        }
+    struct mtl_lib *nl = grow(P->libs, &P->cap_libs, P->n_libs + 1, sizeof *nl);
+    if (!nl) {
+        free(full);
+        return oom(P);
+    }
+    P->libs = nl;
+    char *text;
+    size_t len;
+    int rc = mtl_read_file(full, &text, &len);
+    if (rc) {
+        char q[OBJ_QUOTE_PATH + 8];
+        err_quote(full, strlen(full), OBJ_QUOTE_PATH, q, sizeof q);
+        free(full);
+        return err_set(P->e, "%s:%lu: cannot open material library '%s': %s", P->where,
+                       P->line, q, strerror(rc));
+    }
+    rc = mtl_parse(text, len, full, &P->libs[P->n_libs], P->e);
+    free(text);
+    free(full);
+    if (rc)
+        return -1;
+    P->n_libs++;
+    return 0;
+}
+
+static int parse_libraries(struct oparse *P, const char *p, const char *end)
+{
+    if (!P->path)
+        return 0; /* in-memory text has no directory to look in */
+    while ((p = skip_ws(p, end)) < end) {
+        const char *t = p;
+        p = tok_end(p, end);
+        if (load_library(P, t, (size_t)(p - t)))
+            return -1;
+    }
+    return 0;
+}
+
+static int parse_line(struct oparse *P, const char *p, const char *end)
+{
+    p = skip_ws(p, end);
+    if (p == end || *p == '#')
+        return 0;
+    const char *kw = p;
+    while (p < end && !is_ws(*p) && *p != '#')
+        p++;
+    const char *kwe = p;
+    size_t kn = (size_t)(kwe - kw);
+    if (kn <= 2) {
+        /* numbers and indices: '#' anywhere ends the line (see num_end) */
+        if (tok_is(kw, kwe, "v", 1))
+            return add_position(P, p, end);
+        if (tok_is(kw, kwe, "vt", 2))
+            return add_uv(P, p, end);
+        if (tok_is(kw, kwe, "vn", 2))
+            return add_normal(P, p, end);
+        if (tok_is(kw, kwe, "f", 1))
+            return parse_face(P, p, end);
+        return 0; /* o, g, s, l, p, vp, ... */
+    }
+    end = rtrim(p, name_comment(p, end));
+    p = skip_ws(p, end);
+    if (tok_is(kw, kwe, "usemtl", 6))
+        return use_material(P, p, end);
+    if (tok_is(kw, kwe, "mtllib", 6))
+        return parse_libraries(P, p, end);
+    return 0;
+}
+
+/* ---- after the pass: materials, textures, the mesh ------------------------------------ */
+
+struct libref {
+    uint32_t lib, idx;
+};
+
+/* Slots -> mesh materials; decodes the textures they use. */
+static int resolve_materials(struct oparse *P, struct mesh *out, uint16_t *slot_mat)
+{
+    struct err *e = P->e;
+    size_t n_lib_mats = 0;
+    for (size_t i = 0; i < P->n_libs; i++)
+        n_lib_mats += P->libs[i].n;
+    struct strkey *keys = malloc((n_lib_mats + 1) * sizeof *keys);
+    struct libref *refs = malloc((n_lib_mats + 1) * sizeof *refs);
+    struct libref *chosen = malloc(P->n_slots * sizeof *chosen);
+    struct strkey *tex_keys = malloc(P->n_slots * sizeof *tex_keys);
+    out->materials = malloc(P->n_slots * sizeof *out->materials);
+    out->textures = calloc(P->n_slots, sizeof *out->textures);
+    struct strmap names = {0}, tex_map = {0};
+    int rc = -1;
+    if (!keys || !refs || !chosen || !tex_keys || !out->materials || !out->textures) {
+        err_set(e, "%s: out of memory", P->where);
+        goto done;
+    }
+
+    /* every library name, first definition wins */
+    size_t nk = 0;
+    for (uint32_t l = 0; l < P->n_libs; l++)
+        for (uint32_t i = 0; i < P->libs[l].n; i++) {
+            const char *s = P->libs[l].names[i];
+            size_t n = strlen(s);
+            uint64_t h = str_hash(s, n);
+            if (strmap_find(&names, keys, s, n, h) >= 0)
+                continue;
+            keys[nk] = (struct strkey){s, n};
+            refs[nk] = (struct libref){l, i};
+            if (strmap_add(&names, h, (uint32_t)nk++)) {
+                err_set(e, "%s: out of memory", P->where);
+                goto done;
+            }
+        }
+
+    mtl_default(&out->materials[0], "default");
+    out->n_materials = 1;
+    slot_mat[0] = 0;
+    for (size_t s = 1; s < P->n_slots; s++) {
+        const struct strkey *k = &P->slot_names[s];
+        long id = P->slot_used[s] ? strmap_find(&names, keys, k->s, k->n, str_hash(k->s, k->n))
+                                  : -1;
+        if (id < 0) {
+            slot_mat[s] = 0; /* unknown or unused name: the default material */
+            continue;
+        }
+        chosen[out->n_materials] = refs[id];
+        out->materials[out->n_materials] = P->libs[refs[id].lib].materials[refs[id].idx];
+        slot_mat[s] = (uint16_t)out->n_materials++;
+    }
+
+    for (uint32_t m = 1; m < out->n_materials; m++) {
+        const struct mtl_lib *L = &P->libs[chosen[m].lib];
+        const char *tp = L->texture_paths[chosen[m].idx];
+        if (!tp)
+            continue;
+        size_t n = strlen(tp);
+        uint64_t h = str_hash(tp, n);
+        long id = strmap_find(&tex_map, tex_keys, tp, n, h);
+        if (id < 0) {
+            if (mtl_load_texture(L, chosen[m].idx, &out->textures[out->n_textures], e))
+                goto done;
+            id = (long)out->n_textures++;
+            tex_keys[id] = (struct strkey){tp, n};
+            if (strmap_add(&tex_map, h, (uint32_t)id)) {
+                err_set(e, "%s: out of memory", P->where);
+                goto done;
+            }
+        }
+        out->materials[m].texture = (int)id;
+    }
+    rc = 0;
+done:
+    free(keys);
+    free(refs);
+    free(chosen);
+    free(tex_keys);
+    strmap_free(&names);
+    strmap_free(&tex_map);
+    return rc;
+}
+
+static int finish(struct oparse *P, struct mesh *out)
+{
+    if (P->n_tris == 0)
+        return err_set(P->e, "%s: no faces", P->where);
+    uint16_t *slot_mat = malloc(P->n_slots * sizeof *slot_mat);
+    if (!slot_mat)
+        return err_set(P->e, "%s: out of memory", P->where);
+    if (resolve_materials(P, out, slot_mat)) {
+        free(slot_mat);
+        return -1;
+    }
+    for (size_t t = 0; t < P->n_tris; t++)
+        P->tri_slot[t] = slot_mat[P->tri_slot[t]];
+    free(slot_mat);
+
+    struct mesh_source src = {
+        .pos = P->pos, .uv = P->uv, .nrm = P->nrm,
+        .n_pos = (uint32_t)P->n_pos, .n_uv = (uint32_t)P->n_uv, .n_nrm = (uint32_t)P->n_nrm,
+        .corners = P->corners, .tri_material = P->tri_slot, .n_tris = (uint32_t)P->n_tris,
+    };
+    struct err be;
+    if (mesh_build(&src, out, &be))
+        return err_set(P->e, "%s: %s", P->where, be.msg);
+    return 0;
+}
+
+static void parser_free(struct oparse *P)
+{
+    free(P->pos);
+    free(P->uv);
+    free(P->nrm);
+    free(P->corners);
+    free(P->tri_slot);
+    free(P->slot_names);
+    free(P->slot_used);
+    strmap_free(&P->slot_map);
+    for (size_t i = 0; i < P->n_libs; i++)
+        mtl_free(&P->libs[i]);
+    free(P->libs);
+}
+
+int obj_parse(const char *text, size_t len, const char *path, struct mesh *out, struct err *e)
+{
+    memset(out, 0, sizeof *out);
+    struct oparse P = {.e = e, .path = path};
+    const char *shown = path ? path : OBJ_MEMORY_NAME;
+    err_quote(shown, strlen(shown), OBJ_QUOTE_PATH, P.where, sizeof P.where);
+    int rc = -1;
+    /* slot 0, the default material, exists before any usemtl */
+    P.slot_names = grow(NULL, &P.cap_slot_names, 1, sizeof *P.slot_names);
+    P.slot_used = grow(NULL, &P.cap_slot_used, 1, sizeof *P.slot_used);
+    if (!P.slot_names || !P.slot_used) {
+        err_set(e, "%s: out of memory", P.where);
+        goto done;
+    }
+    P.slot_names[0] = (struct strkey){"", 0};
+    P.slot_used[0] = false;
+    P.n_slots = 1;
+
+    const char *p = text, *end = text + len;
+    while (p < end) {
+        const char *eol = memchr(p, '\n', (size_t)(end - p));
+        if (!eol)
+            eol = end;
+        P.line++;
+        if (parse_line(&P, p, eol))
+            goto done;
+        p = eol + 1;
+    }
+    rc = finish(&P, out);
+done:
+    parser_free(&P);
+    if (rc)
+        mesh_free(out);
+    return rc;
+}
+
+int obj_load(const char *path, struct mesh *out, struct err *e)
+{
+    char *text;
+    size_t len;
+    memset(out, 0, sizeof *out);
+    int rc = mtl_read_file(path, &text, &len);
+    if (rc) {
+        char q[OBJ_QUOTE_PATH + 8];
+        err_quote(path, strlen(path), OBJ_QUOTE_PATH, q, sizeof q);
+        return err_set(e, "%s: cannot read: %s", q, strerror(rc));
+    }
+    rc = obj_parse(text, len, path, out, e);
+    free(text);
+    return rc;
+}

@@ -1,0 +1,358 @@
+/* test_mtl.c: MTL parsing, map_Kd options, and the number lexer OBJ and MTL share. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "mtl.h"
+#include "test.h"
+
+static int parse(const char *text, const char *path, struct mtl_lib *lib, struct err *e)
+{
+    return mtl_parse(text, strlen(text), path, lib, e);
+}
+
+static void check_rgb(struct test *t, const float *got, double r, double g, double b, int line)
+{
+    if (!(fabs(got[0] - r) <= 1e-6 && fabs(got[1] - g) <= 1e-6 && fabs(got[2] - b) <= 1e-6))
+        test_fail(t, __FILE__, line, "(%.9g, %.9g, %.9g) != (%.9g, %.9g, %.9g)", got[0], got[1],
+                  got[2], r, g, b);
+}
+#define CHECK_RGB(got, r, g, b) check_rgb(t, (got), (r), (g), (b), __LINE__)
+
+static void check_str(struct test *t, const char *got, const char *want, int line)
+{
+    if (!got || strcmp(got, want) != 0)
+        test_fail(t, __FILE__, line, "\"%s\" != \"%s\"", got ? got : "(null)", want);
+}
+#define CHECK_STR(got, want) check_str(t, (got), (want), __LINE__)
+
+TEST(mtl_values_and_defaults)
+{
+    struct mtl_lib L;
+    struct err e;
+    REQUIRE(parse("newmtl plain\n"
+                  "newmtl shiny\nKd 0.25 0.5 0.75\nKs 1 0.5 0\nNs 64\n"
+                  "newmtl grey\nKd 0.5\n",
+                  NULL, &L, &e) == 0);
+    REQUIRE(L.n == 3);
+    CHECK_STR(L.materials[0].name, "plain");
+    CHECK_RGB(L.materials[0].kd, 1, 1, 1);
+    CHECK_RGB(L.materials[0].ks, 0.5, 0.5, 0.5);
+    CHECK_NEAR(L.materials[0].ns, 32, 0);
+    CHECK_EQ_INT(L.materials[0].texture, -1);
+    CHECK(L.texture_paths[0] == NULL);
+    CHECK_RGB(L.materials[1].kd, 0.25, 0.5, 0.75);
+    CHECK_RGB(L.materials[1].ks, 1, 0.5, 0);
+    CHECK_NEAR(L.materials[1].ns, 64, 0);
+    CHECK_RGB(L.materials[2].kd, 0.5, 0.5, 0.5); /* "Kd r" means r r r */
+    mtl_free(&L);
+}
+
+TEST(trailing_comments_crlf_and_indentation)
+{
+    struct mtl_lib L;
+    struct err e;
+    /* as in cornell_box/CornellBox-Original.mtl */
+    REQUIRE(parse("# header\r\n\r\nnewmtl leftWall\r\n  Ns 10.0000\r\n  Ni 1.5000\r\n"
+                  "  Ka 0.63 0.065 0.05 # Red\r\n  Kd 0.63 0.065 0.05# glued\r\n"
+                  "\tKs 0 0 0 \r\n  \r\n",
+                  NULL, &L, &e) == 0);
+    REQUIRE(L.n == 1);
+    CHECK_STR(L.names[0], "leftWall");
+    CHECK_RGB(L.materials[0].kd, 0.63, 0.065, 0.05);
+    CHECK_RGB(L.materials[0].ks, 0, 0, 0);
+    CHECK_NEAR(L.materials[0].ns, 10, 0);
+    mtl_free(&L);
+}
+
+TEST(unused_statements_ignored_even_when_malformed)
+{
+    struct mtl_lib L;
+    struct err e;
+    /* sportsCar.mtl:336 really says "Ka 0.0000 0.0000 0.0000c" */
+    REQUIRE(parse("Wavefront OBJ material file\nKd junk before any newmtl\n"
+                  "newmtl a\nKa 0.0000 0.0000 0.0000c\nillum 2\nd 1\nTr 0\nNi 1.5\nKe 5 5 5\n"
+                  "Tf 1 1 1\nmap_Ks spec.png\nmap_Bump -bm 1 n.png\nmap_d a.png\n",
+                  NULL, &L, &e) == 0);
+    CHECK_EQ_INT(L.n, 1);
+    CHECK(L.texture_paths[0] == NULL);
+    mtl_free(&L);
+}
+
+TEST(names_trimmed_sanitised_and_kept_whole)
+{
+    struct mtl_lib L;
+    struct err e;
+    char text[300];
+    char longname[101];
+    memset(longname, 'n', 100);
+    longname[100] = '\0';
+    snprintf(text, sizeof text, "newmtl  RearLights \r\nnewmtl caf\xc3\xa9 au lait\nnewmtl %s\n",
+             longname);
+    REQUIRE(parse(text, NULL, &L, &e) == 0);
+    REQUIRE(L.n == 3);
+    CHECK_STR(L.names[0], "RearLights");
+    CHECK_STR(L.materials[0].name, "RearLights");
+    CHECK_STR(L.names[1], "caf\xc3\xa9 au lait"); /* usemtl matches the bytes */
+    CHECK_STR(L.materials[1].name, "caf?? au lait"); /* shown as printable ASCII */
+    CHECK_STR(L.names[2], longname);
+    CHECK_EQ_INT(strlen(L.materials[2].name), MESH_NAME_MAX - 2); /* 59 + "..." */
+    CHECK(strcmp(L.materials[2].name + MESH_NAME_MAX - 5, "...") == 0);
+    mtl_free(&L);
+}
+
+TEST(map_kd_options_skipped)
+{
+    static const struct {
+        const char *line, *want;
+    } cases[] = {
+        {"map_Kd tex.png", "tex.png"},
+        {"map_Kd -mm 0 1 tex.png", "tex.png"},
+        {"map_Kd -o 0.5 tex.png", "tex.png"},
+        {"map_Kd -o 0.5 0.5 tex.png", "tex.png"},
+        {"map_Kd -s 1 2 3 -t 0 0 0 tex.png", "tex.png"},
+        {"map_Kd -blendu on -blendv off -cc on -clamp on tex.png", "tex.png"},
+        {"map_Kd -bm 0.5 -boost 2 -texres 512 -imfchan r -type sphere tex.png", "tex.png"},
+        {"map_Kd\t-clamp\ton\tmy texture file.png  \r", "my texture file.png"},
+        {"map_Kd -s 2 2 tex#1.png", "tex#1.png"},
+        {"map_Kd tex.png # a comment", "tex.png"},
+        {"map_Kd 1.png", "1.png"},
+        {"map_Kd -o 1 2 3 4.png", "4.png"},
+        {"map_Kd -unknown x.png", "-unknown x.png"}, /* not an option: part of the name */
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char text[200];
+        struct mtl_lib L;
+        struct err e;
+        snprintf(text, sizeof text, "newmtl m\n%s\n", cases[i].line);
+        if (parse(text, NULL, &L, &e)) {
+            test_fail(t, __FILE__, __LINE__, "case %zu: %s", i, e.msg);
+            continue;
+        }
+        CHECK_STR(L.texture_paths[0], cases[i].want);
+        CHECK_EQ_INT(L.texture_lines[0], 2);
+        mtl_free(&L);
+    }
+}
+
+TEST(map_kd_relative_to_the_mtl_directory)
+{
+    struct mtl_lib L;
+    struct err e;
+    REQUIRE(parse("newmtl a\nmap_Kd sub/a.png\nnewmtl b\nmap_Kd /abs/b.png\n"
+                  "newmtl c\nmap_Kd first.png\nmap_Kd second.png\n",
+                  "models/car/car.mtl", &L, &e) == 0);
+    REQUIRE(L.n == 3);
+    CHECK_STR(L.texture_paths[0], "models/car/sub/a.png");
+    CHECK_STR(L.texture_paths[1], "/abs/b.png");
+    CHECK_STR(L.texture_paths[2], "models/car/second.png"); /* the last map_Kd counts */
+    CHECK_EQ_INT(L.texture_lines[2], 7);
+    CHECK_STR(L.path, "models/car/car.mtl");
+    mtl_free(&L);
+    REQUIRE(parse("newmtl a\nmap_Kd a.png\n", "lib.mtl", &L, &e) == 0);
+    CHECK_STR(L.texture_paths[0], "a.png");
+    mtl_free(&L);
+}
+
+TEST(negative_ns_clamped_to_zero)
+{
+    struct mtl_lib L;
+    struct err e;
+    REQUIRE(parse("newmtl a\nNs -5\n", NULL, &L, &e) == 0);
+    CHECK_NEAR(L.materials[0].ns, 0, 0);
+    mtl_free(&L);
+}
+
+TEST(mtl_error_names_file_and_line)
+{
+    static const struct {
+        const char *text, *msg;
+    } cases[] = {
+        {"newmtl a\nKd 1 x 0\n", "lib.mtl:2: bad number 'x'"},
+        {"newmtl a\r\nKs 1 1\r\n", "lib.mtl:2: 'Ks' needs 3 numbers, got 2"},
+        {"newmtl a\nKd\n", "lib.mtl:2: 'Kd' needs 3 numbers, got 0"},
+        {"newmtl a\n\nNs\n", "lib.mtl:3: 'Ns' needs a number"},
+        {"newmtl a\nNs 1e99\n", "lib.mtl:2: number out of range '1e99'"},
+        {"newmtl a\nmap_Kd\n", "lib.mtl:2: map_Kd needs a file name"},
+        {"newmtl a\nmap_Kd -clamp on  \n", "lib.mtl:2: map_Kd needs a file name"},
+        {"newmtl a\nmap_Kd -mm 1\n", "lib.mtl:2: map_Kd option '-mm' needs a value"},
+        {"newmtl\n", "lib.mtl:1: newmtl needs a name"},
+        {"newmtl # only a comment\n", "lib.mtl:1: newmtl needs a name"},
+        {"newmtl a\nKd 1 \x1b[2J 1\n", "lib.mtl:2: bad number '?[2J'"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        struct mtl_lib L;
+        struct err e = {{0}};
+        CHECK_EQ_INT(parse(cases[i].text, "lib.mtl", &L, &e), -1);
+        if (strcmp(e.msg, cases[i].msg) != 0)
+            test_fail(t, __FILE__, __LINE__, "case %zu: got \"%s\", want \"%s\"", i, e.msg,
+                      cases[i].msg);
+        CHECK(L.n == 0 && L.materials == NULL); /* left empty */
+    }
+    struct mtl_lib L;
+    struct err e;
+    CHECK_EQ_INT(mtl_load("tests/data/obj/no_such.mtl", &L, &e), -1);
+    CHECK_STR(e.msg, "tests/data/obj/no_such.mtl: cannot open material library: No such file "
+                     "or directory");
+}
+
+TEST(texture_errors_name_the_mtl_line)
+{
+    struct mtl_lib L;
+    struct err e;
+    struct texture tex;
+    REQUIRE(parse("newmtl a\n\nmap_Kd -s 1 1 1 missing.png\n", "tests/data/obj/x.mtl", &L,
+                  &e) == 0);
+    CHECK_EQ_INT(mtl_load_texture(&L, 0, &tex, &e), -1);
+    CHECK_STR(e.msg, "tests/data/obj/x.mtl:3: cannot open texture 'tests/data/obj/missing.png': "
+                     "No such file or directory");
+    mtl_free(&L);
+    REQUIRE(parse("newmtl a\nmap_Kd checker2x2.png\n", "tests/data/obj/x.mtl", &L, &e) == 0);
+    if (mtl_load_texture(&L, 0, &tex, &e) == 0) {
+        CHECK_EQ_INT(tex.w, 2);
+        texture_free(&tex);
+    } else {
+        test_fail(t, __FILE__, __LINE__, "%s (run from the repository root)", e.msg);
+    }
+    mtl_free(&L);
+}
+
+TEST(sports_car_mtl_loads)
+{
+    const char *dir = test_models_dir();
+    if (!dir) {
+        test_skip(t, "no shared models");
+        return;
+    }
+    char path[4200];
+    struct mtl_lib L;
+    struct err e;
+    snprintf(path, sizeof path, "%s/sports_car/sportsCar.mtl", dir);
+    if (mtl_load(path, &L, &e)) {
+        test_fail(t, __FILE__, __LINE__, "%s", e.msg);
+        return;
+    }
+    CHECK_EQ_INT(L.n, 38);
+    CHECK_STR(L.names[0], "SmallHeadLights");
+    CHECK_RGB(L.materials[0].ks, 0.9, 0.9, 0.9);
+    CHECK_STR(L.names[1], "RearLights");
+    mtl_free(&L);
+}
+
+/* ---- numbers ---- */
+
+TEST(number_edge_cases)
+{
+    static const struct {
+        const char *s;
+        int rc;
+        float want;
+    } cases[] = {
+        {"0", MTL_NUM_OK, 0},          {"-0", MTL_NUM_OK, -0.0f},
+        {"+1", MTL_NUM_OK, 1},          {".5", MTL_NUM_OK, 0.5f},
+        {"5.", MTL_NUM_OK, 5},          {"-1.25e+2", MTL_NUM_OK, -125},
+        {"1E-2", MTL_NUM_OK, 0.01f},    {"1e-50", MTL_NUM_OK, 0},
+        {"1e-45", MTL_NUM_OK, 1e-45f},  {"3.4028235e38", MTL_NUM_OK, 3.4028235e38f},
+        {"16777217", MTL_NUM_OK, 16777216.0f}, /* a tie: round to even */
+        {"16777219", MTL_NUM_OK, 16777220.0f},
+        {"16777217.0000000000000000000000001", MTL_NUM_OK, 16777218.0f}, /* just above */
+        {"16777217.0000000000000000000000000", MTL_NUM_OK, 16777216.0f},
+        {"0.70710678118654757", MTL_NUM_OK, 0.70710678f},
+        {"1e39", MTL_NUM_RANGE, 0},     {"-1e99999999999", MTL_NUM_RANGE, 0},
+        {"3.5e38", MTL_NUM_RANGE, 0},   {"", MTL_NUM_SYNTAX, 0},
+        {"-", MTL_NUM_SYNTAX, 0},       {".", MTL_NUM_SYNTAX, 0},
+        {"e5", MTL_NUM_SYNTAX, 0},      {"1e", MTL_NUM_SYNTAX, 0},
+        {"1e+", MTL_NUM_SYNTAX, 0},     {"1.2.3", MTL_NUM_SYNTAX, 0},
+        {"0x10", MTL_NUM_SYNTAX, 0},    {"inf", MTL_NUM_SYNTAX, 0},
+        {"nan", MTL_NUM_SYNTAX, 0},     {"1,5", MTL_NUM_SYNTAX, 0},
+        {"--1", MTL_NUM_SYNTAX, 0},     {" 1", MTL_NUM_SYNTAX, 0},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        float f = 12345;
+        int rc = mtl_lex_float(cases[i].s, strlen(cases[i].s), &f);
+        if (rc != cases[i].rc || (rc == MTL_NUM_OK && (f != cases[i].want ||
+                                                       signbit(f) != signbit(cases[i].want))))
+            test_fail(t, __FILE__, __LINE__, "\"%s\": rc %d value %.9g, want rc %d value %.9g",
+                      cases[i].s, rc, f, cases[i].rc, cases[i].want);
+    }
+    /* the token is bounded by n, not by a NUL */
+    float f;
+    CHECK_EQ_INT(mtl_lex_float("12x", 2, &f), MTL_NUM_OK);
+    CHECK_NEAR(f, 12, 0);
+}
+
+static char random_digit(uint64_t *state)
+{
+    *state = *state * 6364136223846793005ULL + 1442695040888963407ULL; /* Knuth's MMIX LCG */
+    return (char)('0' + (*state >> 60) % 10);
+}
+
+TEST(number_parser_matches_strtof)
+{
+    /* Random decimal strings of every shape exporters write (and some they do not): the
+     * result must be bit-identical to glibc's correctly rounded strtof (C locale). */
+    uint64_t x = 0x9e3779b97f4a7c15ULL;
+    int mismatches = 0;
+    for (int i = 0; i < 300000; i++) {
+        char s[64];
+        size_t n = 0;
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        uint64_t r = x;
+        if (r & 1)
+            s[n++] = '-';
+        int int_digits = (int)((r >> 1) % 12), frac_digits = (int)((r >> 5) % 22);
+        if (int_digits + frac_digits == 0)
+            int_digits = 1;
+        uint64_t d = x * 0x2545f4914f6cdd1dULL;
+        for (int k = 0; k < int_digits; k++)
+            s[n++] = random_digit(&d);
+        if (frac_digits || (r >> 10) & 1) {
+            s[n++] = '.';
+            for (int k = 0; k < frac_digits; k++)
+                s[n++] = random_digit(&d);
+        }
+        if ((r >> 11) % 3 == 0)
+            n += (size_t)snprintf(s + n, sizeof s - n, "e%d", (int)((r >> 16) % 90) - 50);
+        s[n] = '\0';
+        float got, want = strtof(s, NULL);
+        int rc = mtl_lex_float(s, n, &got);
+        bool same = isinf(want) ? rc == MTL_NUM_RANGE
+                                : rc == MTL_NUM_OK && memcmp(&got, &want, sizeof got) == 0;
+        if (!same && mismatches++ < 10)
+            test_fail(t, __FILE__, __LINE__, "\"%s\": got %.9g (rc %d), strtof %.9g", s, got, rc,
+                      want);
+    }
+    CHECK_EQ_INT(mismatches, 0);
+}
+
+TEST(number_ties_and_neighbours_match_strtof)
+{
+    /* exact float midpoints and their 1e-25 neighbours: the double-rounding trap */
+    int mismatches = 0;
+    /* in [2^24, 2^25) the floats are the even integers, so odd ones are exact ties */
+    for (uint32_t k = 0; k < 2000; k++) {
+        for (int shift = -30; shift <= 30; shift += 3) {
+            double mid = ldexp((double)((1u << 24) + 2 * k + 1), shift);
+            for (int v = 0; v < 3; v++) {
+                char s[160];
+                snprintf(s, sizeof s, "%.40g", mid); /* exact: no exponent at these scales */
+                if (v > 0) {
+                    if (!strchr(s, '.'))
+                        strcat(s, ".");
+                    strcat(s, v == 1 ? "0000000000000000000000001" /* a hair above */
+                                     : "0000000000000000000000000");
+                }
+                float got, want = strtof(s, NULL);
+                if (mtl_lex_float(s, strlen(s), &got) != MTL_NUM_OK ||
+                    memcmp(&got, &want, sizeof got) != 0) {
+                    if (mismatches++ < 10)
+                        test_fail(t, __FILE__, __LINE__, "\"%s\": got %.9g, strtof %.9g", s,
+                                  got, want);
+                }
+            }
+        }
+    }
+    CHECK_EQ_INT(mismatches, 0);
+}
