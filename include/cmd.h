@@ -1,0 +1,22 @@
+/* cmd.h: the subcommands main() hands over to. Each returns the process exit status
+ * (0 ok, 1 runtime failure, 2 bad usage or bad input) and fills e when non-zero. */
+#ifndef RASTTY_CMD_H
+#define RASTTY_CMD_H
+
+#include "err.h"
+#include "options.h"
+#include "scene.h"
+
+int cmd_render(const struct options *o, struct err *e);
+int cmd_dump(const struct options *o, struct err *e);
+int cmd_ansi2ppm(const struct options *o, struct err *e);
+int cmd_bench(const struct options *o, struct err *e);
+
+/* Shared by the subcommands: the camera and render options for a scene. The command line
+ * wins over the scene file (camera, lights, background); `frame` fits the camera to the
+ * scene's bounding sphere when neither gives a camera. */
+void cmd_view_setup(const struct options *o, const struct scene *s, double aspect, bool frame,
+                    struct camera *cam_out, struct render_opts *ro_out);
+void cmd_print_stats(const struct frame_stats *st);
+
+#endif

@@ -1,0 +1,58 @@
+/* options.h: the command line, parsed once into one struct for every subcommand.
+ *
+ * rastty [view] [MODEL.obj|SCENE.rsc ...]  interactive viewer (default)
+ * rastty render MODEL.obj --out FILE        one frame to PPM/PNG (+ PFM depth)
+ * rastty dump MODEL.obj                     frames as ANSI text
+ * rastty ansi2ppm FILE.ans --out FILE.ppm   decode our ANSI output back to pixels
+ * rastty bench                              benchmarks
+ * Flags are defined in one table (options.c) that also prints --help, so the two cannot
+ * drift apart. Bad flags or values: err "rastty: --flag: problem", exit status 2. */
+#ifndef RASTTY_OPTIONS_H
+#define RASTTY_OPTIONS_H
+
+#include <stdbool.h>
+#include <stdio.h>
+
+#include "camera.h"
+#include "err.h"
+#include "render.h"
+
+#define OPTIONS_MAX_INPUTS 64
+
+enum options_cmd { CMD_VIEW, CMD_RENDER, CMD_DUMP, CMD_ANSI2PPM, CMD_BENCH, CMD_HELP,
+                   CMD_VERSION, CMD_COUNT };
+
+struct options {
+    enum options_cmd cmd;
+    const char *inputs[OPTIONS_MAX_INPUTS];
+    int n_inputs;
+    int width, height;        /* --size; 0 = subcommand default */
+    struct camera camera;
+    bool camera_set;          /* any of --eye/--target/--up/--fov given */
+    bool light_set, background_set;
+    bool frame;               /* --frame: fit the camera to the model's bounding sphere */
+    struct render_opts render;
+    const char *texture;      /* --texture */
+    const char *out;          /* --out */
+    const char *depth_out;    /* --depth-out */
+    bool stats;               /* --stats: print frame statistics to stderr */
+    /* dump / view */
+    int cols, rows;           /* 0 = terminal size or 80x24 */
+    int frames;
+    double orbit_deg;
+    const char *camera_path;
+    const char *colors;       /* NULL = auto */
+    int tolerance;            /* -1 = not given */
+    bool diff;
+    const char *ppm_dir;
+    int frame_index;          /* ansi2ppm --frame */
+    double fps;
+    bool no_hud;
+};
+
+/* Fill defaults, then parse argv. Returns 0, or -1 with e set (a usage error). */
+int options_parse(int argc, char **argv, struct options *out, struct err *e);
+/* The --help text, generated from the flag table. */
+void options_usage(FILE *f);
+
+#endif

@@ -1,0 +1,61 @@
+/* scene.h: what is drawn — meshes placed in the world, plus lights, camera start, sky and
+ * background. Holds only what a scene uses; owns its meshes, textures and sky; the pipeline
+ * borrows meshes through the draw items.
+ *
+ * Sources: one model (scene_load_model: the OBJ as given, identity transform) or a scene file
+ * (scene_load_file, format below; every error is "file:line: message").
+ *
+ * Scene file (.rsc), one statement per line, '#' starts a comment, paths relative to the
+ * scene file, a path with spaces in double quotes:
+ *   model PATH [at X Y Z] [rotate X Y Z] [scale S | scale X Y Z] [texture PATH] [kd R G B]
+ *         rotate = degrees about X, then Y, then Z; model matrix = translate * rotate * scale;
+ *         texture replaces the OBJ's map_Kd, kd (0..1) replaces its diffuse colour
+ *   light X Y Z [R G B]           direction toward the light, colour 0..1 (default white);
+ *                                 up to 4; no light line = one white light toward (1,1,1)
+ *   camera X Y Z [target X Y Z] [fov DEG]
+ *   sky procedural | sky POSX NEGX POSY NEGY POSZ NEGZ
+ *   background R G B              0..255, shown where there is no sky
+ */
+#ifndef RASTTY_SCENE_H
+#define RASTTY_SCENE_H
+
+#include <stdbool.h>
+
+#include "camera.h"
+#include "err.h"
+#include "mesh.h"
+#include "pipeline.h"
+#include "render.h"
+#include "skybox.h"
+
+#define SCENE_MAX_ITEMS 64
+
+struct scene {
+    char name[64];                      /* for the HUD: file name, printable ASCII only */
+    struct mesh meshes[SCENE_MAX_ITEMS]; /* distinct OBJ files, n_meshes of them */
+    int n_meshes;
+    struct texture overrides[SCENE_MAX_ITEMS]; /* per item, for `texture` */
+    float kd_override[SCENE_MAX_ITEMS][3];     /* per item, for `kd` */
+    struct draw_item items[SCENE_MAX_ITEMS];
+    int n_items;
+    int n_lights;                       /* 0 = use the caller's default light */
+    struct light lights[RENDER_MAX_LIGHTS];
+    bool has_camera;
+    struct camera camera;               /* valid when has_camera */
+    bool has_background;
+    uint8_t background[3];
+    bool has_sky;
+    struct skybox sky;
+    vec3 bound_lo, bound_hi;            /* world-space box around every item */
+};
+
+/* One OBJ drawn as given (identity model matrix); texture (may be NULL) overrides map_Kd. */
+int scene_load_model(const char *obj_path, const char *texture, struct scene *out,
+                     struct err *e);
+/* A scene file (format above). */
+int scene_load_file(const char *path, struct scene *out, struct err *e);
+/* By extension: .rsc -> scene file, anything else -> model. */
+int scene_load(const char *path, struct scene *out, struct err *e);
+void scene_free(struct scene *s);
+
+#endif

@@ -1,0 +1,75 @@
+/* cmd_render.c: `rastty render` — one frame of one model or scene to an image file. */
+#include "cmd.h"
+
+#include <stdio.h>
+
+#include "image.h"
+#include "pipeline.h"
+#include "scene.h"
+
+void cmd_view_setup(const struct options *o, const struct scene *s, double aspect, bool frame,
+                    struct camera *cam, struct render_opts *ro)
+{
+    *cam = o->camera;
+    *ro = o->render;
+    if (s->has_camera && !o->camera_set) {
+        struct camera keep = *cam;
+        *cam = s->camera;
+        cam->ortho_height = keep.ortho_height;
+        if (keep.near != 0.1 || keep.far != 100) /* --near/--far still apply */
+            cam->near = keep.near, cam->far = keep.far;
+    } else if (frame) {
+        camera_frame_box(cam, s->bound_lo, s->bound_hi, aspect);
+    }
+    if (s->n_lights && !o->light_set) {
+        ro->n_lights = s->n_lights;
+        for (int i = 0; i < s->n_lights; i++)
+            ro->lights[i] = s->lights[i];
+    }
+    if (s->has_background && !o->background_set)
+        for (int k = 0; k < 3; k++)
+            ro->background[k] = s->background[k];
+}
+
+void cmd_print_stats(const struct frame_stats *st)
+{
+    fprintf(stderr,
+            "tris in %llu, rejected %llu, culled %llu, clipped %llu, drawn %llu; "
+            "pixels tested %llu, shaded %llu; %.3f ms\n",
+            (unsigned long long)st->tris_in, (unsigned long long)st->tris_rejected,
+            (unsigned long long)st->tris_culled, (unsigned long long)st->tris_clipped,
+            (unsigned long long)st->tris_drawn, (unsigned long long)st->pixels_tested,
+            (unsigned long long)st->pixels_shaded, st->render_ms);
+}
+
+int cmd_render(const struct options *o, struct err *e)
+{
+    if (!image_color_ext_ok(o->out))
+        return err_set(e, "rastty render: --out %s: use a .ppm or .png file name", o->out), 2;
+    struct scene scene;
+    if (o->texture ? scene_load_model(o->inputs[0], o->texture, &scene, e)
+                   : scene_load(o->inputs[0], &scene, e))
+        return 2;
+    struct camera cam;
+    struct render_opts ro;
+    cmd_view_setup(o, &scene, (double)o->width / o->height, o->frame, &cam, &ro);
+    struct fb fb;
+    struct pipeline *p = pipeline_new();
+    struct frame_stats st;
+    int rc = 1;
+    if (!p)
+        err_set(e, "out of memory");
+    else if (fb_init(&fb, o->width, o->height, ro.view == VIEW_OVERDRAW, e) == 0) {
+        if (pipeline_draw(p, scene.items, scene.n_items, scene.has_sky ? &scene.sky : NULL, &cam,
+                          &ro, &fb, &st, e) == 0 &&
+            image_write_color(o->out, &fb, e) == 0 &&
+            (!o->depth_out || image_write_pfm(o->depth_out, &fb, e) == 0))
+            rc = 0;
+        if (o->stats)
+            cmd_print_stats(&st);
+        fb_free(&fb);
+    }
+    pipeline_destroy(p);
+    scene_free(&scene);
+    return rc;
+}

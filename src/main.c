@@ -1,0 +1,50 @@
+/* main.c: rastty's entry point — parse the command line, hand over to a subcommand, print
+ * the one error line if it failed. Follow a frame from here: cmd_render() (cmd_render.c)
+ * loads a scene (scene.c -> obj.c), draws it (pipeline.c) and writes the image (image.c). */
+#include <stdio.h>
+
+#include "cmd.h"
+#include "options.h"
+#include "view.h"
+
+#define RASTTY_VERSION "0.1.0"
+
+int main(int argc, char **argv)
+{
+    struct options o;
+    struct err e = {""};
+    if (options_parse(argc, argv, &o, &e)) {
+        fprintf(stderr, "%s\n", e.msg);
+        return 2;
+    }
+    int rc;
+    switch (o.cmd) {
+    case CMD_HELP:
+        options_usage(stdout);
+        return 0;
+    case CMD_VERSION:
+        printf("rastty %s\n", RASTTY_VERSION);
+        return 0;
+    case CMD_RENDER:
+        rc = cmd_render(&o, &e);
+        break;
+    case CMD_DUMP:
+        rc = cmd_dump(&o, &e);
+        break;
+    case CMD_ANSI2PPM:
+        rc = cmd_ansi2ppm(&o, &e);
+        break;
+    case CMD_BENCH:
+        rc = cmd_bench(&o, &e);
+        break;
+    case CMD_VIEW:
+        rc = view_run(&o, &e);
+        break;
+    default:
+        fprintf(stderr, "rastty: this subcommand is not built yet\n");
+        return 2;
+    }
+    if (rc != 0)
+        fprintf(stderr, "%s\n", e.msg[0] ? e.msg : "rastty: failed");
+    return rc;
+}

@@ -1,0 +1,394 @@
+/* options.c: the flag table, parsing and --help (see options.h). */
+#include "options.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fb.h"
+
+enum arg { ARG_NONE, ARG_VALUE };
+
+/* which subcommands accept a flag */
+#define C_VIEW (1u << CMD_VIEW)
+#define C_RENDER (1u << CMD_RENDER)
+#define C_DUMP (1u << CMD_DUMP)
+#define C_A2P (1u << CMD_ANSI2PPM)
+#define C_BENCH (1u << CMD_BENCH)
+#define C_DRAW (C_VIEW | C_RENDER | C_DUMP) /* everything that renders a scene */
+
+enum flag_id {
+    F_SIZE, F_EYE, F_TARGET, F_UP, F_FOV, F_NEAR, F_FAR, F_ORTHO, F_FRAME, F_LIGHT, F_SHADE,
+    F_TEXTURE, F_NO_TEXTURE, F_FILTER, F_BACKGROUND, F_CULL, F_HIDDEN_LINES, F_VIEW, F_OUT,
+    F_DEPTH_OUT, F_STATS, F_COLS, F_ROWS, F_FRAMES, F_ORBIT, F_CAMERA_PATH, F_COLORS,
+    F_TOLERANCE, F_DIFF, F_PPM_DIR, F_FRAME_INDEX, F_FPS, F_NO_HUD, F_HELP, F_VERSION,
+};
+
+struct flag {
+    const char *name;
+    enum flag_id id;
+    enum arg arg;
+    unsigned cmds;
+    const char *metavar, *help;
+};
+
+static const struct flag flags[] = {
+    {"--size", F_SIZE, ARG_VALUE, C_RENDER | C_BENCH, "WxH", "framebuffer size in pixels (render: 160x96)"},
+    {"--eye", F_EYE, ARG_VALUE, C_DRAW, "X,Y,Z", "camera position (default 0,0,3)"},
+    {"--target", F_TARGET, ARG_VALUE, C_DRAW, "X,Y,Z", "point looked at (default 0,0,0)"},
+    {"--up", F_UP, ARG_VALUE, C_DRAW, "X,Y,Z", "up direction (default 0,1,0)"},
+    {"--fov", F_FOV, ARG_VALUE, C_DRAW, "DEG", "vertical field of view, 0<DEG<180 (default 50)"},
+    {"--near", F_NEAR, ARG_VALUE, C_DRAW, "N", "near plane distance > 0 (default 0.1)"},
+    {"--far", F_FAR, ARG_VALUE, C_DRAW, "F", "far plane distance > near (default 100)"},
+    {"--ortho", F_ORTHO, ARG_VALUE, C_DRAW, "H", "orthographic projection, view height H"},
+    {"--frame", F_FRAME, ARG_NONE, C_RENDER | C_DUMP, NULL, "move the camera to fit the model (keeps the view direction)"},
+    {"--light", F_LIGHT, ARG_VALUE, C_DRAW, "X,Y,Z", "direction toward the light (default 1,1,1)"},
+    {"--shade", F_SHADE, ARG_VALUE, C_DRAW | C_BENCH, "MODE", "unlit|flat|gouraud|phong|wire (default phong)"},
+    {"--texture", F_TEXTURE, ARG_VALUE, C_DRAW, "FILE", "diffuse texture replacing the MTL's map_Kd"},
+    {"--no-texture", F_NO_TEXTURE, ARG_NONE, C_DRAW, NULL, "ignore all textures (albedo = Kd)"},
+    {"--filter", F_FILTER, ARG_VALUE, C_DRAW | C_BENCH, "F", "texture filter nearest|bilinear (default nearest)"},
+    {"--background", F_BACKGROUND, ARG_VALUE, C_DRAW, "R,G,B", "background colour, 0..255 each (default 0,0,0)"},
+    {"--cull", F_CULL, ARG_VALUE, C_DRAW | C_BENCH, "MODE", "face culling none|back|front (default none)"},
+    {"--hidden-lines", F_HIDDEN_LINES, ARG_NONE, C_DRAW, NULL, "wire: hide edges behind the model's surfaces"},
+    {"--view", F_VIEW, ARG_VALUE, C_DRAW, "V", "color|depth|normals|overdraw|wire-overlay (default color)"},
+    {"--out", F_OUT, ARG_VALUE, C_RENDER | C_DUMP | C_A2P, "FILE", "output file (.ppm/.png; dump: .ans)"},
+    {"--depth-out", F_DEPTH_OUT, ARG_VALUE, C_RENDER, "FILE.pfm", "also write the depth buffer as PFM"},
+    {"--stats", F_STATS, ARG_NONE, C_RENDER | C_DUMP, NULL, "print triangle/pixel counts and timings to stderr"},
+    {"--cols", F_COLS, ARG_VALUE, C_DUMP | C_BENCH, "C", "terminal columns (dump: 80, or the terminal's)"},
+    {"--rows", F_ROWS, ARG_VALUE, C_DUMP | C_BENCH, "R", "terminal rows (dump: 24, or the terminal's)"},
+    {"--frames", F_FRAMES, ARG_VALUE, C_DUMP | C_BENCH, "N", "number of frames (default 1)"},
+    {"--orbit", F_ORBIT, ARG_VALUE, C_DUMP | C_BENCH, "DEG", "orbit the camera around the target DEG per frame"},
+    {"--camera-path", F_CAMERA_PATH, ARG_VALUE, C_DUMP, "FILE", "camera per frame: lines 'ex ey ez tx ty tz'"},
+    {"--colors", F_COLORS, ARG_VALUE, C_VIEW | C_DUMP, "MODE", "truecolor|256|16|none (default: detect)"},
+    {"--tolerance", F_TOLERANCE, ARG_VALUE, C_VIEW | C_DUMP, "N", "treat colour changes <= N per channel as unchanged"},
+    {"--diff", F_DIFF, ARG_NONE, C_DUMP, NULL, "frames after the first are diffs"},
+    {"--ppm-dir", F_PPM_DIR, ARG_VALUE, C_DUMP, "DIR", "also write each framebuffer as DIR/frame-NNNN.ppm"},
+    {"--frame-index", F_FRAME_INDEX, ARG_VALUE, C_A2P, "K", "which frame to decode (default: last)"},
+    {"--fps", F_FPS, ARG_VALUE, C_VIEW, "N", "cap the frame rate (default 60)"},
+    {"--no-hud", F_NO_HUD, ARG_NONE, C_VIEW, NULL, "hide the status line"},
+    {"--help", F_HELP, ARG_NONE, ~0u, NULL, "show this help"},
+    {"--version", F_VERSION, ARG_NONE, ~0u, NULL, "show the version"},
+};
+
+static const char *const cmd_names[CMD_COUNT] = {"view", "render", "dump", "ansi2ppm", "bench",
+                                                 "help", "version"};
+
+static int bad(struct err *e, const char *flag, const char *why, const char *val)
+{
+    char q[80];
+    if (!val)
+        return err_set(e, "rastty: %s: %s", flag, why);
+    return err_set(e, "rastty: %s: %s, got '%s'", flag, why,
+                   err_quote(val, strlen(val), 60, q, sizeof q));
+}
+
+static int parse_double(const char *s, double *out)
+{
+    char *end;
+    double v = strtod(s, &end);
+    if (end == s || *end || !isfinite(v))
+        return -1;
+    *out = v;
+    return 0;
+}
+
+static int parse_int(const char *s, long lo, long hi, int *out)
+{
+    char *end;
+    long v = strtol(s, &end, 10);
+    if (end == s || *end || v < lo || v > hi)
+        return -1;
+    *out = (int)v;
+    return 0;
+}
+
+/* "x,y,z" -> n doubles */
+static int parse_list(const char *s, double *v, int n)
+{
+    char buf[256];
+    if (strlen(s) >= sizeof buf)
+        return -1;
+    strcpy(buf, s);
+    char *p = buf;
+    for (int i = 0; i < n; i++) {
+        char *comma = strchr(p, ',');
+        if ((comma == NULL) != (i == n - 1))
+            return -1;
+        if (comma)
+            *comma = '\0';
+        if (parse_double(p, &v[i]))
+            return -1;
+        p = comma ? comma + 1 : p;
+    }
+    return 0;
+}
+
+static int parse_vec3(const char *s, vec3 *out)
+{
+    double v[3];
+    if (parse_list(s, v, 3))
+        return -1;
+    *out = v3(v[0], v[1], v[2]);
+    return 0;
+}
+
+static int parse_size(const char *s, int *w, int *h)
+{
+    char buf[64], *x;
+    if (strlen(s) >= sizeof buf)
+        return -1;
+    strcpy(buf, s);
+    if (!(x = strchr(buf, 'x')))
+        return -1;
+    *x = '\0';
+    return parse_int(buf, 1, FB_MAX_DIM, w) || parse_int(x + 1, 1, FB_MAX_DIM, h) ? -1 : 0;
+}
+
+static void defaults(struct options *o)
+{
+    memset(o, 0, sizeof *o);
+    camera_default(&o->camera);
+    render_opts_default(&o->render);
+    o->frames = 1;
+    o->frame_index = -1;
+    o->tolerance = -1; /* not given: each subcommand picks its default */
+    o->fps = 60;
+}
+
+static int apply(struct options *o, const struct flag *f, const char *v, struct err *e)
+{
+    double d;
+    double rgb[3];
+    int k;
+    switch (f->id) {
+    case F_SIZE:
+        if (parse_size(v, &o->width, &o->height))
+            return bad(e, f->name, "expected WxH, each 1..8192", v);
+        return 0;
+    case F_EYE:
+    case F_TARGET:
+    case F_UP: {
+        vec3 *dst = f->id == F_EYE ? &o->camera.eye : f->id == F_TARGET ? &o->camera.target
+                                                                         : &o->camera.up;
+        if (parse_vec3(v, dst))
+            return bad(e, f->name, "expected three numbers X,Y,Z", v);
+        o->camera_set = true;
+        return 0;
+    }
+    case F_FOV:
+        if (parse_double(v, &d) || !(d > 0 && d < 180))
+            return bad(e, f->name, "expected degrees between 0 and 180", v);
+        o->camera.fov_deg = d;
+        o->camera_set = true;
+        return 0;
+    case F_NEAR:
+    case F_FAR:
+        if (parse_double(v, &d) || !(d > 0))
+            return bad(e, f->name, "expected a positive distance", v);
+        *(f->id == F_NEAR ? &o->camera.near : &o->camera.far) = d;
+        return 0;
+    case F_ORTHO:
+        if (parse_double(v, &d) || !(d > 0))
+            return bad(e, f->name, "expected a positive view height", v);
+        o->camera.ortho_height = d;
+        return 0;
+    case F_FRAME: o->frame = true; return 0;
+    case F_LIGHT:
+        if (parse_vec3(v, &o->render.lights[0].dir) || v3_len(o->render.lights[0].dir) == 0)
+            return bad(e, f->name, "expected a non-zero direction X,Y,Z", v);
+        o->light_set = true;
+        return 0;
+    case F_SHADE:
+        if ((k = render_shade_parse(v)) < 0)
+            return bad(e, f->name, "expected unlit, flat, gouraud, phong or wire", v);
+        o->render.shade = (enum shade_mode)k;
+        return 0;
+    case F_TEXTURE: o->texture = v; return 0;
+    case F_NO_TEXTURE: o->render.textures = false; return 0;
+    case F_FILTER:
+        if ((k = render_filter_parse(v)) < 0)
+            return bad(e, f->name, "expected nearest or bilinear", v);
+        o->render.filter = (enum tex_filter)k;
+        return 0;
+    case F_BACKGROUND:
+        if (parse_list(v, rgb, 3))
+            return bad(e, f->name, "expected R,G,B in 0..255", v);
+        for (int i = 0; i < 3; i++) {
+            if (!(rgb[i] >= 0 && rgb[i] <= 255) || rgb[i] != floor(rgb[i]))
+                return bad(e, f->name, "expected R,G,B in 0..255", v);
+            o->render.background[i] = (uint8_t)rgb[i];
+        }
+        o->background_set = true;
+        return 0;
+    case F_CULL:
+        if ((k = render_cull_parse(v)) < 0)
+            return bad(e, f->name, "expected none, back or front", v);
+        o->render.cull = (enum cull_mode)k;
+        return 0;
+    case F_HIDDEN_LINES: o->render.hidden_lines = true; return 0;
+    case F_VIEW:
+        for (k = 0; k < VIEW_COUNT; k++)
+            if (strcmp(v, render_view_name((enum debug_view)k)) == 0)
+                break;
+        if (k == VIEW_COUNT)
+            return bad(e, f->name, "expected color, depth, normals, overdraw or wire-overlay", v);
+        o->render.view = (enum debug_view)k;
+        return 0;
+    case F_OUT: o->out = v; return 0;
+    case F_DEPTH_OUT: o->depth_out = v; return 0;
+    case F_STATS: o->stats = true; return 0;
+    case F_COLS:
+    case F_ROWS:
+        if (parse_int(v, 1, FB_MAX_DIM / 2, f->id == F_COLS ? &o->cols : &o->rows))
+            return bad(e, f->name, "expected a count 1..4096", v);
+        return 0;
+    case F_FRAMES:
+        if (parse_int(v, 1, 1000000, &o->frames))
+            return bad(e, f->name, "expected a frame count 1..1000000", v);
+        return 0;
+    case F_ORBIT:
+        if (parse_double(v, &o->orbit_deg))
+            return bad(e, f->name, "expected degrees per frame", v);
+        return 0;
+    case F_CAMERA_PATH: o->camera_path = v; return 0;
+    case F_COLORS:
+        if (strcmp(v, "truecolor") && strcmp(v, "256") && strcmp(v, "16") && strcmp(v, "none"))
+            return bad(e, f->name, "expected truecolor, 256, 16 or none", v);
+        o->colors = v;
+        return 0;
+    case F_TOLERANCE:
+        if (parse_int(v, 0, 255, &o->tolerance))
+            return bad(e, f->name, "expected 0..255", v);
+        return 0;
+    case F_DIFF: o->diff = true; return 0;
+    case F_PPM_DIR: o->ppm_dir = v; return 0;
+    case F_FRAME_INDEX:
+        if (parse_int(v, 0, 100000000, &o->frame_index))
+            return bad(e, f->name, "expected a frame number >= 0", v);
+        return 0;
+    case F_FPS:
+        if (parse_double(v, &o->fps) || !(o->fps >= 1 && o->fps <= 1000))
+            return bad(e, f->name, "expected 1..1000 frames per second", v);
+        return 0;
+    case F_NO_HUD: o->no_hud = true; return 0;
+    case F_HELP: o->cmd = CMD_HELP; return 0;
+    case F_VERSION: o->cmd = CMD_VERSION; return 0;
+    }
+    return 0;
+}
+
+static int validate(struct options *o, struct err *e)
+{
+    struct camera *c = &o->camera;
+    if (!(c->far > c->near))
+        return err_set(e, "rastty: --far (%g) must be greater than --near (%g)", c->far, c->near);
+    vec3 dir = v3_sub(c->target, c->eye);
+    if (v3_len(dir) == 0)
+        return err_set(e, "rastty: --eye and --target must differ");
+    if (v3_len(v3_cross(dir, c->up)) <= 1e-12 * v3_len(dir) * v3_len(c->up))
+        return err_set(e, "rastty: --up must not be parallel to the view direction (or zero)");
+    switch (o->cmd) {
+    case CMD_RENDER:
+        if (o->n_inputs != 1)
+            return err_set(e, "rastty render: expected one MODEL.obj (see rastty --help)");
+        if (!o->out)
+            return err_set(e, "rastty render: --out FILE.ppm|FILE.png is required");
+        if (o->width == 0)
+            o->width = 160, o->height = 96;
+        break;
+    case CMD_DUMP:
+        if (o->n_inputs != 1)
+            return err_set(e, "rastty dump: expected one MODEL.obj (see rastty --help)");
+        break;
+    case CMD_ANSI2PPM:
+        if (o->n_inputs != 1 || !o->out)
+            return err_set(e, "rastty ansi2ppm: expected FILE.ans and --out FILE.ppm");
+        break;
+    default:
+        break;
+    }
+    return 0;
+}
+
+int options_parse(int argc, char **argv, struct options *o, struct err *e)
+{
+    defaults(o);
+    int i = 1;
+    if (argc > 1 && argv[1][0] != '-') {
+        for (int c = 0; c < CMD_COUNT; c++)
+            if (strcmp(argv[1], cmd_names[c]) == 0) {
+                o->cmd = (enum options_cmd)c;
+                i = 2;
+            }
+    }
+    enum options_cmd cmd = o->cmd;
+    bool only_inputs = false;
+    for (; i < argc; i++) {
+        const char *a = argv[i];
+        if (only_inputs || a[0] != '-' || a[1] == '\0') {
+            if (o->n_inputs == OPTIONS_MAX_INPUTS)
+                return err_set(e, "rastty: too many input files (limit %d)", OPTIONS_MAX_INPUTS);
+            o->inputs[o->n_inputs++] = a;
+            continue;
+        }
+        if (strcmp(a, "--") == 0) {
+            only_inputs = true;
+            continue;
+        }
+        const char *eq = strchr(a, '=');
+        size_t len = eq ? (size_t)(eq - a) : strlen(a);
+        const struct flag *f = NULL;
+        for (size_t k = 0; k < sizeof flags / sizeof flags[0]; k++)
+            if (strlen(flags[k].name) == len && strncmp(flags[k].name, a, len) == 0)
+                f = &flags[k];
+        char q[80];
+        if (!f)
+            return err_set(e, "rastty: unknown option '%s' (see rastty --help)",
+                           err_quote(a, len, 60, q, sizeof q));
+        if (!(f->cmds & (1u << cmd)))
+            return err_set(e, "rastty %s: %s does not apply here (see rastty --help)",
+                           cmd_names[cmd], f->name);
+        const char *v = NULL;
+        if (f->arg == ARG_VALUE) {
+            if (eq)
+                v = eq + 1;
+            else if (i + 1 < argc)
+                v = argv[++i];
+            else
+                return bad(e, f->name, "needs a value", NULL);
+        } else if (eq) {
+            return bad(e, f->name, "takes no value", NULL);
+        }
+        if (apply(o, f, v, e))
+            return -1;
+    }
+    if (o->cmd == CMD_HELP || o->cmd == CMD_VERSION)
+        return 0;
+    return validate(o, e);
+}
+
+void options_usage(FILE *out)
+{
+    fprintf(out,
+            "usage: rastty [view] [MODEL.obj|SCENE.rsc ...]   interactive viewer (no file: demo)\n"
+            "       rastty render MODEL.obj --out FILE.ppm|FILE.png [options]\n"
+            "       rastty dump MODEL.obj [--out FILE.ans] [options]\n"
+            "       rastty ansi2ppm FILE.ans --out FILE.ppm [--frame-index K]\n"
+            "       rastty bench [options]\n\noptions:\n");
+    for (size_t k = 0; k < sizeof flags / sizeof flags[0]; k++) {
+        const struct flag *f = &flags[k];
+        char left[48];
+        snprintf(left, sizeof left, "%s%s%s", f->name, f->metavar ? " " : "",
+                 f->metavar ? f->metavar : "");
+        fprintf(out, "  %-24s %s [", left, f->help);
+        const char *sep = "";
+        for (int c = 0; c < CMD_HELP; c++)
+            if (f->cmds & (1u << c) && f->cmds != ~0u) {
+                fprintf(out, "%s%s", sep, cmd_names[c]);
+                sep = ",";
+            }
+        fprintf(out, "%s]\n", f->cmds == ~0u ? "all" : "");
+    }
+    fprintf(out, "\nExit status: 0 success, 1 runtime failure, 2 bad usage or bad input file.\n"
+                 "See rastty(1) for keys, the scene format and examples.\n");
+}
