@@ -1,0 +1,159 @@
+#!/usr/bin/env bash
+# tests/oracle/run.sh: rastty against an independent reference renderer (Mesa via OSMesa).
+#
+#   tests/oracle/run.sh [--calibrate|--calibrate-clip] [--rastty PATH] [--only S] [--list N]
+#
+# Every scene of tests/oracle/scenes.txt is drawn by `rastty render` and by build/oracle/glref
+# (Mesa llvmpipe unless GALLIUM_DRIVER says otherwise) and the two are compared by
+# build/oracle/compare, one line per scene, then "N passed, N failed, N skipped"; exit 1 when a
+# scene failed. Builds nothing: `make oracle-build` (tests/oracle/oracle.mk) makes glref and
+# compare, the top-level Makefile makes rastty. Outputs go to build/oracle/out/NAME.*; a failing
+# scene leaves NAME.diff.png there (red: only rastty covers, cyan: only Mesa covers, yellow:
+# colour differs by more than 8, blue: by 1..8).
+#
+#   --calibrate   instead of rastty, compare Mesa softpipe (as the tested image) with Mesa
+#                 llvmpipe: how far two conforming GL rasterizers differ on the same scenes.
+#   --calibrate-clip  compare glref --gl-clip (float MVP in the shader, Mesa's float clipper)
+#                 with glref's default (clip coordinates and frustum clipping in double).
+#   --rastty P    the binary to test (default ./rastty, or $RASTTY)
+#   --only S      run only scenes whose name contains S
+#   --list N      print up to N mismatching pixels per scene (stderr)
+# Environment: RASTTY_SHARED overrides ../shared (the shared models live in its models/).
+set -u
+
+root=$(cd "$(dirname "$0")/../.." && pwd)
+cd "$root" || exit 2
+
+mode=rastty
+rastty=${RASTTY:-./rastty}
+only=
+list=0
+while [ $# -gt 0 ]; do
+    case $1 in
+    --calibrate) mode=calibrate ;;
+    --calibrate-clip) mode=calibrate-clip ;;
+    --rastty) rastty=$2; shift ;;
+    --only) only=$2; shift ;;
+    --list) list=$2; shift ;;
+    --asan) ;; # accepted for tests/run.sh; the binary comes from --rastty
+    *) echo "usage: tests/oracle/run.sh [--calibrate|--calibrate-clip] [--rastty PATH] [--only S] [--list N]" >&2
+       exit 2 ;;
+    esac
+    shift
+done
+
+scenes=tests/oracle/scenes.txt
+out=build/oracle/out
+gen=build/oracle/models
+glref=build/oracle/glref
+compare=build/oracle/compare
+shared_root=${RASTTY_SHARED:-../shared}
+shared=$shared_root/models
+
+# scene lines: name, checks, args (comments and blank lines dropped)
+mapfile -t lines < <(grep -v '^[[:space:]]*\(#\|$\)' "$scenes")
+total=0
+for l in "${lines[@]}"; do
+    read -r name _ <<<"$l"
+    [[ -z $only || $name == *"$only"* ]] && total=$((total + 1))
+done
+
+passed=0 failed=0 skipped=0
+summary() {
+    echo "$passed passed, $failed failed, $skipped skipped"
+    [ "$failed" -eq 0 ]
+    exit $?
+}
+
+if ! { pkg-config --exists osmesa 2>/dev/null || [ -f /usr/include/GL/osmesa.h ]; }; then
+    echo "oracle: OSMesa is not installed (Debian: apt-get install libosmesa6-dev); skipping all $total scenes"
+    skipped=$total
+    summary
+fi
+for b in "$glref" "$compare"; do
+    if [ ! -x "$b" ]; then
+        echo "oracle: $b is missing: run 'make oracle-build' first"
+        failed=$total
+        summary
+    fi
+done
+if [ "$mode" = rastty ] && [ ! -x "$rastty" ]; then
+    echo "oracle: $rastty does not exist yet (make rastty); skipping all $total scenes"
+    skipped=$total
+    summary
+fi
+have_gen=1
+if ! /usr/bin/python3 tests/oracle/gen_models.py "$gen" 2>"$out.gen.err"; then
+    mkdir -p "$out"
+    echo "oracle: generating models failed ($(head -c 300 "$out.gen.err")); generated scenes are skipped"
+    have_gen=0
+fi
+rm -f "$out.gen.err"
+mkdir -p "$out"
+
+if [ "$mode" = calibrate ]; then
+    echo "oracle: calibration — Mesa softpipe (tested) against Mesa llvmpipe (reference)"
+elif [ "$mode" = calibrate-clip ]; then
+    echo "oracle: calibration — glref --gl-clip (tested) against glref (reference)"
+else
+    echo "oracle: $rastty render against Mesa ${GALLIUM_DRIVER:-llvmpipe}"
+fi
+
+for l in "${lines[@]}"; do
+    read -r name checks args <<<"$l"
+    [[ -n $only && $name != *"$only"* ]] && continue
+    if [[ $args == *'$SHARED'* && ! -d $shared ]]; then
+        echo "$name SKIP (no shared models at $shared)"
+        skipped=$((skipped + 1))
+        continue
+    fi
+    if [[ $args == *'$GEN'* && $have_gen = 0 ]]; then
+        echo "$name SKIP (generated models unavailable)"
+        skipped=$((skipped + 1))
+        continue
+    fi
+    args=${args//\$SHARED/$shared}
+    args=${args//\$GEN/$gen}
+    read -r -a argv <<<"$args"
+    ref=$out/$name.mesa test=$out/$name.rastty
+    rm -f "$ref".* "$test".* "$out/$name.diff.png"
+    if ! "$glref" "${argv[@]}" --out "$ref.ppm" --depth-out "$ref.pfm" 2>"$ref.err"; then
+        echo "$name FAIL (reference renderer: $(head -n 1 "$ref.err"))"
+        failed=$((failed + 1))
+        continue
+    fi
+    if [ "$mode" = calibrate ]; then
+        test=$out/$name.softpipe
+        if ! GALLIUM_DRIVER=softpipe "$glref" "${argv[@]}" --out "$test.ppm" \
+            --depth-out "$test.pfm" 2>"$test.err"; then
+            echo "$name FAIL (softpipe: $(head -n 1 "$test.err"))"
+            failed=$((failed + 1))
+            continue
+        fi
+    elif [ "$mode" = calibrate-clip ]; then
+        test=$out/$name.glclip
+        if ! "$glref" "${argv[@]}" --gl-clip --out "$test.ppm" --depth-out "$test.pfm" \
+            2>"$test.err"; then
+            echo "$name FAIL (glref --gl-clip: $(head -n 1 "$test.err"))"
+            failed=$((failed + 1))
+            continue
+        fi
+    elif ! "$rastty" render "${argv[@]}" --out "$test.ppm" --depth-out "$test.pfm" \
+        2>"$test.err" >/dev/null; then
+        echo "$name FAIL (rastty render exited non-zero: $(head -n 1 "$test.err"))"
+        failed=$((failed + 1))
+        continue
+    fi
+    flags=()
+    [[ $checks == *magenta* ]] && flags+=(--magenta)
+    [[ $checks == *exact* ]] && flags+=(--exact)
+    if "$compare" --name "$name" "${flags[@]}" --list "$list" --diff "$out/$name.diff.png" \
+        "$test.ppm" "$test.pfm" "$ref.ppm" "$ref.pfm"; then
+        passed=$((passed + 1))
+    else
+        [ -f "$out/$name.diff.png" ] && echo "    diff image: $out/$name.diff.png"
+        failed=$((failed + 1))
+    fi
+    rm -f "$ref.err" "$test.err"
+done
+summary
