@@ -1,0 +1,249 @@
+/* skybox.c: cube-map background (see skybox.h). */
+#include "skybox.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "texture.h"
+
+/* GL cube-map table: face of the major axis, its sc/tc coordinates */
+static int face_of(vec3 d, double *sc, double *tc, double *ma)
+{
+    double ax = fabs(d.x), ay = fabs(d.y), az = fabs(d.z);
+    if (ax >= ay && ax >= az) {
+        *ma = ax;
+        *tc = -d.y;
+        *sc = d.x > 0 ? -d.z : d.z;
+        return d.x > 0 ? 0 : 1;
+    }
+    if (ay >= az) {
+        *ma = ay;
+        *sc = d.x;
+        *tc = d.y > 0 ? d.z : -d.z;
+        return d.y > 0 ? 2 : 3;
+    }
+    *ma = az;
+    *tc = -d.y;
+    *sc = d.z > 0 ? d.x : -d.x;
+    return d.z > 0 ? 4 : 5;
+}
+
+/* inverse: the direction of face coordinates (sc, tc in [-1,1], may exceed for borders) */
+static vec3 dir_of(int face, double sc, double tc)
+{
+    switch (face) {
+    case 0: return v3(1, -tc, -sc);
+    case 1: return v3(-1, -tc, sc);
+    case 2: return v3(sc, 1, tc);
+    case 3: return v3(sc, -1, -tc);
+    case 4: return v3(sc, -tc, 1);
+    default: return v3(-sc, -tc, -1);
+    }
+}
+
+static inline uint8_t *texel(const struct skybox_level *l, int face, int i, int j)
+{
+    /* i, j in [-1, n]: interior plus border */
+    return l->rgb[face] + ((size_t)(j + 1) * (size_t)(l->n + 2) + (size_t)(i + 1)) * 3;
+}
+
+/* border texels: nearest interior texel of the neighbouring face in that direction */
+static void fill_border(struct skybox_level *l)
+{
+    int n = l->n;
+    for (int f = 0; f < 6; f++)
+        for (int j = -1; j <= n; j++)
+            for (int i = -1; i <= n; i++) {
+                if (i >= 0 && i < n && j >= 0 && j < n)
+                    continue;
+                vec3 d = dir_of(f, 2.0 * (i + 0.5) / n - 1, 2.0 * (j + 0.5) / n - 1);
+                double sc, tc, ma;
+                int g = face_of(d, &sc, &tc, &ma);
+                int si = (int)floor((sc / ma + 1) * 0.5 * n), sj = (int)floor((tc / ma + 1) * 0.5 * n);
+                si = si < 0 ? 0 : si >= n ? n - 1 : si;
+                sj = sj < 0 ? 0 : sj >= n ? n - 1 : sj;
+                memcpy(texel(l, f, i, j), texel(l, g, si, sj), 3);
+            }
+}
+
+static int alloc_level(struct skybox_level *l, int n)
+{
+    l->n = n;
+    for (int f = 0; f < 6; f++)
+        if (!(l->rgb[f] = malloc((size_t)(n + 2) * (size_t)(n + 2) * 3)))
+            return -1;
+    return 0;
+}
+
+/* levels 1.. by 2x2 box filtering; every level gets its border */
+static int build_chain(struct skybox *s, struct err *e)
+{
+    fill_border(&s->level[0]);
+    while (s->n_levels < SKYBOX_MAX_LEVELS && s->level[s->n_levels - 1].n >= 2) {
+        const struct skybox_level *src = &s->level[s->n_levels - 1];
+        struct skybox_level *dst = &s->level[s->n_levels];
+        if (alloc_level(dst, src->n / 2))
+            return err_set(e, "out of memory for the skybox");
+        s->n_levels++;
+        for (int f = 0; f < 6; f++)
+            for (int j = 0; j < dst->n; j++)
+                for (int i = 0; i < dst->n; i++)
+                    for (int c = 0; c < 3; c++) {
+                        int sum = texel(src, f, 2 * i, 2 * j)[c] + texel(src, f, 2 * i + 1, 2 * j)[c] +
+                                  texel(src, f, 2 * i, 2 * j + 1)[c] +
+                                  texel(src, f, 2 * i + 1, 2 * j + 1)[c];
+                        texel(dst, f, i, j)[c] = (uint8_t)((sum + 2) / 4);
+                    }
+        fill_border(dst);
+    }
+    return 0;
+}
+
+int skybox_load(struct skybox *s, const char *const paths[6], struct err *e)
+{
+    memset(s, 0, sizeof *s);
+    struct texture t[6];
+    memset(t, 0, sizeof t);
+    int rc = 0;
+    for (int f = 0; f < 6 && rc == 0; f++) {
+        rc = texture_load(paths[f], &t[f], e);
+        if (rc == 0 && (t[f].w != t[f].h || t[f].w != t[0].w)) {
+            char q[200];
+            rc = err_set(e, "%s: skybox faces must be square and equal (%dx%d, first face %dx%d)",
+                         err_quote(paths[f], strlen(paths[f]), 160, q, sizeof q), t[f].w,
+                         t[f].h, t[0].w, t[0].h);
+        }
+    }
+    if (rc == 0 && alloc_level(&s->level[0], t[0].w))
+        rc = err_set(e, "out of memory for the skybox");
+    if (rc == 0) {
+        s->n_levels = 1;
+        for (int f = 0; f < 6; f++)
+            for (int j = 0; j < t[f].h; j++)
+                for (int i = 0; i < t[f].w; i++)
+                    memcpy(texel(&s->level[0], f, i, j), t[f].rgba + ((size_t)j * t[f].w + i) * 4, 3);
+        rc = build_chain(s, e);
+    }
+    for (int f = 0; f < 6; f++)
+        texture_free(&t[f]);
+    if (rc)
+        skybox_free(s);
+    return rc;
+}
+
+/* Default sky: zenith blue to a pale horizon, darker ground below, a sun disc with glow. */
+static void sky_color(vec3 d, vec3 sun, float out[3])
+{
+    d = v3_norm(d);
+    double h = d.y;
+    double r, g, b;
+    if (h >= 0) {
+        double k = pow(1 - h, 3); /* 1 at the horizon, 0 at the zenith */
+        r = 0.18 + 0.62 * k, g = 0.36 + 0.50 * k, b = 0.78 + 0.17 * k;
+    } else {
+        double k = pow(1 + h, 8);
+        r = 0.22 + 0.45 * k, g = 0.20 + 0.46 * k, b = 0.18 + 0.42 * k;
+    }
+    double c = v3_dot(d, sun);
+    double glow = c > 0 ? 0.35 * pow(c, 64) : 0;
+    double disc = c > 0.9993 ? 1 : c > 0.9986 ? (c - 0.9986) / 0.0007 : 0;
+    out[0] = (float)(r + glow + disc), out[1] = (float)(g + glow * 0.9 + disc * 0.95);
+    out[2] = (float)(b + glow * 0.7 + disc * 0.85);
+}
+
+int skybox_procedural(struct skybox *s, vec3 sun_dir, struct err *e)
+{
+    enum { N = 128, SS = 4 }; /* 4x4 supersampling keeps the sun's edge smooth */
+    memset(s, 0, sizeof *s);
+    if (alloc_level(&s->level[0], N)) {
+        skybox_free(s);
+        return err_set(e, "out of memory for the skybox");
+    }
+    s->n_levels = 1;
+    vec3 sun = v3_norm(sun_dir);
+    for (int f = 0; f < 6; f++)
+        for (int j = 0; j < N; j++)
+            for (int i = 0; i < N; i++) {
+                float acc[3] = {0, 0, 0}, c[3];
+                for (int sj = 0; sj < SS; sj++)
+                    for (int si = 0; si < SS; si++) {
+                        double sc = 2.0 * (i + (si + 0.5) / SS) / N - 1;
+                        double tc = 2.0 * (j + (sj + 0.5) / SS) / N - 1;
+                        sky_color(dir_of(f, sc, tc), sun, c);
+                        for (int k = 0; k < 3; k++)
+                            acc[k] += c[k] / (SS * SS);
+                    }
+                uint8_t *p = texel(&s->level[0], f, i, j);
+                for (int k = 0; k < 3; k++)
+                    p[k] = fb_quantize(acc[k]);
+            }
+    if (build_chain(s, e)) {
+        skybox_free(s);
+        return -1;
+    }
+    return 0;
+}
+
+void skybox_free(struct skybox *s)
+{
+    for (int l = 0; l < SKYBOX_MAX_LEVELS; l++)
+        for (int f = 0; f < 6; f++)
+            free(s->level[l].rgb[f]);
+    memset(s, 0, sizeof *s);
+}
+
+void skybox_sample(const struct skybox *s, int level, vec3 d, float rgb_out[3])
+{
+    const struct skybox_level *l = &s->level[level];
+    double sc, tc, ma;
+    int f = face_of(d, &sc, &tc, &ma);
+    if (!(ma > 0)) {
+        rgb_out[0] = rgb_out[1] = rgb_out[2] = 0;
+        return;
+    }
+    /* texel space: centre of texel i at i + 0.5; border texels at -1 and n cover the edges */
+    double x = (sc / ma + 1) * 0.5 * l->n - 0.5, y = (tc / ma + 1) * 0.5 * l->n - 0.5;
+    int i0 = (int)floor(x), j0 = (int)floor(y);
+    i0 = i0 < -1 ? -1 : i0 > l->n - 1 ? l->n - 1 : i0;
+    j0 = j0 < -1 ? -1 : j0 > l->n - 1 ? l->n - 1 : j0;
+    float ax = (float)(x - i0), ay = (float)(y - j0);
+    ax = ax < 0 ? 0 : ax > 1 ? 1 : ax;
+    ay = ay < 0 ? 0 : ay > 1 ? 1 : ay;
+    const uint8_t *p00 = texel(l, f, i0, j0), *p10 = texel(l, f, i0 + 1, j0);
+    const uint8_t *p01 = texel(l, f, i0, j0 + 1), *p11 = texel(l, f, i0 + 1, j0 + 1);
+    for (int c = 0; c < 3; c++) {
+        float a = p00[c] + ax * (p10[c] - p00[c]), b = p01[c] + ax * (p11[c] - p01[c]);
+        rgb_out[c] = (a + ay * (b - a)) * (1.0f / 255.0f);
+    }
+}
+
+void skybox_draw(const struct skybox *s, const struct camera *cam, struct fb *fb)
+{
+    if (s->n_levels == 0)
+        return;
+    vec3 f = v3_norm(v3_sub(cam->target, cam->eye));
+    vec3 r = v3_norm(v3_cross(f, cam->up));
+    vec3 u = v3_cross(r, f);
+    double fov = cam->fov_deg > 0 ? cam->fov_deg : 50;
+    double ty = tan(fov * (M_PI / 360.0)), tx = ty * fb->w / fb->h;
+    /* level whose texel matches a pixel: a face spans 2 (in tan units) over n texels */
+    double texels_per_px = (2 * ty / fb->h) / (2.0 / s->level[0].n);
+    int level = texels_per_px > 1 ? (int)floor(log2(texels_per_px) + 0.5) : 0;
+    level = level >= s->n_levels ? s->n_levels - 1 : level;
+    for (int y = 0; y < fb->h; y++) {
+        double ny = 1 - 2 * (y + 0.5) / fb->h;
+        for (int x = 0; x < fb->w; x++) {
+            size_t i = (size_t)y * fb->w + x;
+            if (fb->depth[i] < 1.0f)
+                continue;
+            double nx = 2 * (x + 0.5) / fb->w - 1;
+            vec3 d = v3_add(f, v3_add(v3_scale(r, nx * tx), v3_scale(u, ny * ty)));
+            float c[3];
+            skybox_sample(s, level, d, c);
+            fb->rgb[3 * i] = fb_quantize(c[0]);
+            fb->rgb[3 * i + 1] = fb_quantize(c[1]);
+            fb->rgb[3 * i + 2] = fb_quantize(c[2]);
+        }
+    }
+}
