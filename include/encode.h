@@ -1,0 +1,139 @@
+/* encode.h: framebuffer -> terminal bytes (ANSI half blocks), and the model of the screen.
+ *
+ * Pure: no terminal I/O. The caller owns a struct encode_screen (encode_screen_init/free) that
+ * remembers what the terminal shows and holds the output buffer; encode_frame fills that
+ * buffer and the tty layer writes it with one write(). Callers: the viewer, `dump`, `bench`.
+ *
+ * Picture: the framebuffer is cols x 2*rows pixels, row 0 on top. Cell (c, r) shows pixel
+ * (c, 2r) in its top half and (c, 2r+1) in its bottom half. An odd height pads the last cell
+ * row's bottom half with opts.pad_rgb.
+ * Glyphs: U+2580 upper half (fg = top, bg = bottom), or whichever equivalent needs fewer SGR
+ * changes given the current colours: ' ' (bg) or U+2588 full block (fg) when both halves are
+ * equal, U+2584 lower half (fg = bottom, bg = top) when the colours are the other way round.
+ * Colour modes (palette.h): truecolor 38;2/48;2, 256 38;5/48;5 (16..255), 16 30-37/90-97 and
+ * 40-47/100-107, none (one ramp character per cell from the mean luma of its two pixels;
+ * no SGR, no synchronized output: only cursor positioning).
+ * SGR: only when fg or bg changes, both in one sequence when both change; digits come from a
+ * table. Each frame that set a colour ends with ESC[0m, so the terminal is never left
+ * coloured between frames (and the next frame starts from "colours unknown").
+ * Cursor: moves by the shortest of CUP (ESC[r;cH), CUF (ESC[nC), HPA (ESC[nG, strictly CHA),
+ * CR, CR LF, or rewriting the skipped cells (with what they show, or this frame's colours)
+ * when that needs no SGR and is shorter. Never relies on auto-wrap: after the last column the column counts as unknown.
+ * LF is only ever sent right after CR (safe whether or not the tty translates LF).
+ *
+ * Frames. Full frame: ESC[H, then every cell, rows joined by CR LF. Diff frame: only cells
+ * whose displayed colours change; a frame equal to the screen is 0 bytes. opts.mark_frames
+ * makes every frame, even an empty diff, start with ESC[H (3 bytes): the frame boundary that
+ * decode_frame counts, for `dump --diff` files. A frame whose body exceeds
+ * ENCODE_SYNC_MIN_BYTES is wrapped in ESC[?2026h .. ESC[?2026l (synchronized output).
+ * Tolerance N (diff frames only): a cell stays as it is when the terminal already shows
+ * exactly the cell this frame would draw, or when every channel of both halves of what it
+ * REALLY shows (the screen model, never the previous frame) is within N of the true pixel.
+ * A cell that is redrawn may show the current fg/bg (or one colour for both halves) instead
+ * of its exact colours when those are within N of its true pixels: no SGR needed. So in
+ * truecolor a decoded screen is never more than N per channel from the true frame, and in
+ * 256/16 colours never more than max(N, that palette's quantisation error). On the skybox
+ * photo panned by half a pixel per frame, N = 2/3/4 gives 148/112/86 KB per frame at
+ * 49.5/45.8/43.2 dB PSNR, against 264 KB exact (160x48 cells; tests/bench_encode.c sweep).
+ *
+ * Cost: ~15 us for an unchanged 160x48 truecolor frame, ~80 us for a full one (267 KB of a
+ * photo). 256/16 colours search the palette (~30 ns a pixel), memoised per pixel position and
+ * by colour, so static regions stay cheap; a frame of all-new colours costs ~0.3-0.5 ms. */
+#ifndef RASTTY_ENCODE_H
+#define RASTTY_ENCODE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "err.h"
+#include "fb.h"
+#include "palette.h"
+
+#define ENCODE_MAX_COLS 8192 /* = FB_MAX_DIM: CUP column has at most 4 digits */
+#define ENCODE_MAX_ROWS 4096 /* = FB_MAX_DIM / 2 */
+
+/* A body this large (~110 truecolor cells whose fg and bg both change; a full 80x24 frame of
+ * a photo is ~67 KB) may reach the terminal in several reads, so it gets wrapped in
+ * synchronized output; 16 bytes are < 0.4% of it. Smaller frames almost always arrive in one
+ * read and are left bare. */
+#define ENCODE_SYNC_MIN_BYTES 4096
+
+/* Worst case per cell: a cursor move (<= CUP "ESC[rrrr;ccccH" = 12 bytes; every cheaper move
+ * we choose costs less, rewrites included) + fg and bg in one truecolor SGR
+ * ("ESC[38;2;255;255;255;48;2;255;255;255m" = 36) + a 3-byte glyph = 51. Per frame:
+ * ESC[H (3) + ESC[?2026h (8) + ESC[0m (4) + ESC[?2026l (8) = 23. Plus 8 bytes of slack
+ * because digits are stored 4 bytes at a time. */
+#define ENCODE_CELL_MAX_BYTES 51
+#define ENCODE_FRAME_MAX_BYTES 23
+#define ENCODE_BOUND(cols, rows)                                                          \
+    ((size_t)(cols) * (size_t)(rows) * ENCODE_CELL_MAX_BYTES + ENCODE_FRAME_MAX_BYTES + 8)
+
+/* 2^15 entries x 8 bytes = 256 KB per screen: holds the distinct colours of a typical
+ * 160x96 frame, so a diff frame in 256/16 colours rarely searches the palette. */
+#define ENCODE_QCACHE_BITS 16
+
+struct encode_opts {
+    enum palette_mode mode;
+    bool diff;           /* emit only changed cells (a full frame when the screen is unknown) */
+    int tolerance;       /* 0..255 per channel; diff frames only */
+    bool dither;         /* 4x4 ordered dither before quantising (256/16 only; off = exact
+                          * nearest colour; on adds up to PALETTE_DITHER_AMP of error) */
+    bool mark_frames;    /* every frame starts with ESC[H, even an empty diff */
+    uint8_t pad_rgb[3];  /* bottom half of the last row when the height is odd */
+};
+
+/* A cell as the terminal displays it: colours packed 0xIIRRGGBB where RRGGBB is the colour
+ * really shown (after quantisation) and II the palette index (256/16), the ramp level (none)
+ * or 0 (truecolor). In none mode top == bot (grey of the level). */
+struct encode_cell {
+    uint32_t top, bot;
+};
+#define ENCODE_CELL_UNKNOWN 0xFFFFFFFFu /* never a real colour: forces a redraw */
+
+struct encode_screen {
+    int cols, rows;
+    struct encode_cell *cells;  /* cols*rows, row-major: what the terminal shows */
+    struct encode_cell *target; /* cols*rows scratch: this frame after quantisation */
+    bool valid;                 /* false: the terminal is unknown, the next frame is full */
+    enum palette_mode mode;     /* mode the cells were drawn in (a change forces a full frame) */
+    char *out;                  /* output buffer, out_cap = ENCODE_BOUND(cols, rows) bytes */
+    size_t out_cap;
+    /* palette-mode speed-ups (pure caches: they never change the output) */
+    struct encode_cell *memo;   /* cols*rows: input pixels (packed RGB) behind `target` */
+    uint32_t memo_tag;          /* mode/dither/pad that `target` was made with; 0 = none */
+    uint32_t *qcache;           /* RGB -> cell colour, 2 << ENCODE_QCACHE_BITS words */
+};
+
+struct encode_stats {
+    int cells_drawn;   /* changed cells (all cells in a full frame) */
+    int cells_rewritten; /* unchanged cells rewritten because that beat a cursor move */
+    int sgr;           /* SGR sequences emitted */
+    int moves;         /* cursor moves emitted (CUP, CUF, HPA, CR, CR LF runs) */
+    size_t bytes;
+    bool full, synced;
+};
+
+/* 1 <= cols <= ENCODE_MAX_COLS, 1 <= rows <= ENCODE_MAX_ROWS. Screen starts unknown. */
+int encode_screen_init(struct encode_screen *s, int cols, int rows, struct err *e);
+void encode_screen_free(struct encode_screen *s);
+/* The terminal was cleared, resized or scribbled on: the next frame is a full frame. */
+void encode_screen_invalidate(struct encode_screen *s);
+/* Cells in the rectangle were overwritten by someone else (a HUD): redraw them next frame. */
+void encode_screen_damage(struct encode_screen *s, int col, int row, int ncols, int nrows);
+
+/* Encode a w x h RGB image (row 0 top, 3 bytes/pixel) with w == s->cols and
+ * (h + 1) / 2 == s->rows (asserted). Returns the bytes (inside s->out, valid until the next
+ * call) and their count in *len_out; updates the screen model. stats_out may be NULL. */
+const char *encode_frame(struct encode_screen *s, const uint8_t *rgb, int w, int h,
+                         const struct encode_opts *o, size_t *len_out,
+                         struct encode_stats *stats_out);
+
+static inline const char *encode_fb(struct encode_screen *s, const struct fb *fb,
+                                    const struct encode_opts *o, size_t *len_out,
+                                    struct encode_stats *stats_out)
+{
+    return encode_frame(s, fb->rgb, fb->w, fb->h, o, len_out, stats_out);
+}
+
+#endif

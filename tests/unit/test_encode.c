@@ -1,0 +1,686 @@
+/* test_encode.c: half-block encoder — golden bytes, cursor-move choice, diffs, tolerance,
+ * colour modes, and the invariant decode(encode(frame)) == frame. */
+#include <stdbool.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "decode.h"
+#include "encode.h"
+#include "test.h"
+
+#define UP "\xe2\x96\x80"
+#define LO "\xe2\x96\x84"
+#define FULL "\xe2\x96\x88"
+
+static bool contains(const char *hay, size_t n, const char *needle)
+{
+    size_t m = strlen(needle);
+    for (size_t i = 0; i + m <= n; i++)
+        if (memcmp(hay + i, needle, m) == 0)
+            return true;
+    return false;
+}
+
+static uint32_t rng_next(uint32_t *s) /* xorshift32: deterministic test data */
+{
+    uint32_t x = *s;
+    x ^= x << 13;
+    x ^= x >> 17;
+    x ^= x << 5;
+    return *s = x;
+}
+
+static void set_px(uint8_t *rgb, int w, int x, int y, uint32_t c)
+{
+    uint8_t *p = rgb + 3 * (y * w + x);
+    p[0] = (uint8_t)(c >> 16);
+    p[1] = (uint8_t)(c >> 8);
+    p[2] = (uint8_t)c;
+}
+
+static const struct encode_opts TRUE_FULL = {.mode = PALETTE_TRUECOLOR};
+static const struct encode_opts TRUE_DIFF = {.mode = PALETTE_TRUECOLOR, .diff = true};
+
+/* Encode one frame and compare with golden bytes; prints both escaped on failure. */
+static void print_escaped(const char *label, const char *s, size_t n)
+{
+    fprintf(stderr, "      %s (%zu bytes): \"", label, n);
+    for (size_t i = 0; i < n; i++) {
+        unsigned char c = (unsigned char)s[i];
+        if (c == 0x1b)
+            fputs("\\e", stderr);
+        else if (c < 0x20 || c >= 0x7f)
+            fprintf(stderr, "\\x%02x", c);
+        else
+            fputc(c, stderr);
+    }
+    fputs("\"\n", stderr);
+}
+
+#define CHECK_BYTES(got, n, want)                                                          \
+    do {                                                                                   \
+        const char *w_ = (want);                                                           \
+        if ((n) != strlen(w_) || memcmp((got), w_, (n)) != 0) {                            \
+            test_fail(t, __FILE__, __LINE__, "bytes differ from golden");                  \
+            print_escaped("got ", (got), (n));                                             \
+            print_escaped("want", w_, strlen(w_));                                         \
+        }                                                                                  \
+    } while (0)
+
+/* Max per-channel difference between the decoded grid and want (w x h); on a mismatch above
+ * tol prints a picture: '.' within tol, 'X' beyond. */
+static int compare_grid(struct test *t, const struct decode_state *d, const uint8_t *want, int w,
+                        int h, int tol, const char *what)
+{
+    int worst = 0;
+    for (int i = 0; i < w * h * 3; i++) {
+        int e = abs((int)d->rgb[i] - want[i]);
+        if (e > worst)
+            worst = e;
+    }
+    if (worst > tol) {
+        test_fail(t, __FILE__, __LINE__, "%s: decoded differs by %d > %d", what, worst, tol);
+        for (int y = 0; y < h && y < 40; y++) {
+            fputs("      ", stderr);
+            for (int x = 0; x < w && x < 100; x++) {
+                int e = 0;
+                for (int k = 0; k < 3; k++) {
+                    int v = abs((int)d->rgb[3 * (y * w + x) + k] - want[3 * (y * w + x) + k]);
+                    e = v > e ? v : e;
+                }
+                fputc(e > tol ? 'X' : '.', stderr);
+            }
+            fputc('\n', stderr);
+        }
+    }
+    return worst;
+}
+
+/* ---- golden bytes: glyph and SGR choice on a 2x2 frame (2 cells) ------------------------ */
+
+TEST(golden_equal_pixels_emit_space_then_upper_half)
+{
+    /* cell 0: red over red -> bg red + ' '; cell 1: blue over green, no colour known ->
+     * U+2580 with fg and bg in one SGR; the frame ends with a reset. */
+    uint8_t rgb[2 * 2 * 3];
+    set_px(rgb, 2, 0, 0, 0xff0000);
+    set_px(rgb, 2, 0, 1, 0xff0000);
+    set_px(rgb, 2, 1, 0, 0x0000ff);
+    set_px(rgb, 2, 1, 1, 0x00ff00);
+    struct encode_screen s;
+    REQUIRE(encode_screen_init(&s, 2, 1, NULL) == 0);
+    size_t n;
+    const char *out = encode_frame(&s, rgb, 2, 2, &TRUE_FULL, &n, NULL);
+    CHECK_BYTES(out, n, "\x1b[H\x1b[48;2;255;0;0m \x1b[38;2;0;0;255;48;2;0;255;0m" UP "\x1b[0m");
+    encode_screen_free(&s);
+}
+
+TEST(golden_lower_half_saves_a_colour_change)
+{
+    /* bg is red after cell 0; cell 1 red over green: U+2584 needs only fg=green. */
+    uint8_t rgb[12];
+    set_px(rgb, 2, 0, 0, 0xff0000);
+    set_px(rgb, 2, 0, 1, 0xff0000);
+    set_px(rgb, 2, 1, 0, 0xff0000);
+    set_px(rgb, 2, 1, 1, 0x00ff00);
+    struct encode_screen s;
+    REQUIRE(encode_screen_init(&s, 2, 1, NULL) == 0);
+    size_t n;
+    const char *out = encode_frame(&s, rgb, 2, 2, &TRUE_FULL, &n, NULL);
+    CHECK_BYTES(out, n, "\x1b[H\x1b[48;2;255;0;0m \x1b[38;2;0;255;0m" LO "\x1b[0m");
+    encode_screen_free(&s);
+}
+
+TEST(golden_full_block_reuses_fg)
+{
+    /* cell 0 red over green sets fg red; cell 1 all red: U+2588 with no SGR. */
+    uint8_t rgb[12];
+    set_px(rgb, 2, 0, 0, 0xff0000);
+    set_px(rgb, 2, 0, 1, 0x00ff00);
+    set_px(rgb, 2, 1, 0, 0xff0000);
+    set_px(rgb, 2, 1, 1, 0xff0000);
+    struct encode_screen s;
+    REQUIRE(encode_screen_init(&s, 2, 1, NULL) == 0);
+    size_t n;
+    const char *out = encode_frame(&s, rgb, 2, 2, &TRUE_FULL, &n, NULL);
+    CHECK_BYTES(out, n, "\x1b[H\x1b[38;2;255;0;0;48;2;0;255;0m" UP FULL "\x1b[0m");
+    encode_screen_free(&s);
+}
+
+TEST(golden_same_colours_need_no_second_sgr)
+{
+    uint8_t rgb[12];
+    set_px(rgb, 2, 0, 0, 0x0a0b0c);
+    set_px(rgb, 2, 0, 1, 0x010203);
+    set_px(rgb, 2, 1, 0, 0x0a0b0c);
+    set_px(rgb, 2, 1, 1, 0x010203);
+    struct encode_screen s;
+    REQUIRE(encode_screen_init(&s, 2, 1, NULL) == 0);
+    size_t n;
+    const char *out = encode_frame(&s, rgb, 2, 2, &TRUE_FULL, &n, NULL);
+    CHECK_BYTES(out, n, "\x1b[H\x1b[38;2;10;11;12;48;2;1;2;3m" UP UP "\x1b[0m");
+    encode_screen_free(&s);
+}
+
+TEST(golden_256_16_and_none_modes)
+{
+    /* Pure red is cube 196 and ANSI 9 (bright red). (0,0,95) is cube 17 but ANSI 0 (black):
+     * 95 is nearer 0 than blue's 238. White is cube 231, ANSI 15 (SGR 107 as a bg). */
+    uint8_t rgb[12];
+    set_px(rgb, 2, 0, 0, 0xff0000);
+    set_px(rgb, 2, 0, 1, 0x00005f);
+    set_px(rgb, 2, 1, 0, 0xffffff);
+    set_px(rgb, 2, 1, 1, 0xffffff);
+    struct encode_screen s;
+    REQUIRE(encode_screen_init(&s, 2, 1, NULL) == 0);
+    size_t n;
+    struct encode_opts o = {.mode = PALETTE_256};
+    const char *out = encode_frame(&s, rgb, 2, 2, &o, &n, NULL);
+    CHECK_BYTES(out, n, "\x1b[H\x1b[38;5;196;48;5;17m" UP "\x1b[48;5;231m \x1b[0m");
+    o.mode = PALETTE_16;
+    out = encode_frame(&s, rgb, 2, 2, &o, &n, NULL);
+    CHECK_BYTES(out, n, "\x1b[H\x1b[91;40m" UP "\x1b[107m \x1b[0m");
+    /* none: mean luma of red (54) and dark blue (7) is 30 -> level 1 '.'; white -> '@'. */
+    o.mode = PALETTE_NONE;
+    out = encode_frame(&s, rgb, 2, 2, &o, &n, NULL);
+    CHECK_BYTES(out, n, "\x1b[H.@");
+    encode_screen_free(&s);
+}
+
+TEST(unchanged_frame_costs_zero_bytes)
+{
+    uint8_t rgb[8 * 6 * 3];
+    uint32_t seed = 7;
+    for (size_t i = 0; i < sizeof rgb; i++)
+        rgb[i] = (uint8_t)rng_next(&seed);
+    struct encode_screen s;
+    REQUIRE(encode_screen_init(&s, 8, 3, NULL) == 0);
+    static const enum palette_mode modes[] = {PALETTE_TRUECOLOR, PALETTE_256, PALETTE_16,
+                                              PALETTE_NONE};
+    for (int m = 0; m < 4; m++) {
+        struct encode_opts o = {.mode = modes[m], .diff = true};
+        size_t n;
+        encode_frame(&s, rgb, 8, 6, &o, &n, NULL);
+        CHECK(n > 0);
+        encode_frame(&s, rgb, 8, 6, &o, &n, NULL);
+        CHECK_EQ_INT(n, 0);
+        o.mark_frames = true;
+        const char *out = encode_frame(&s, rgb, 8, 6, &o, &n, NULL);
+        CHECK_BYTES(out, n, "\x1b[H");
+    }
+    encode_screen_free(&s);
+}
+
+/* ---- cursor moves ---------------------------------------------------------------------- */
+
+/* A 40x3-cell black screen, already drawn; then a diff with the given cells turned white. */
+static const char *diff_with_white_cells(struct encode_screen *s, uint8_t *rgb,
+                                         const int (*cells)[2], int n_cells, size_t *n)
+{
+    memset(rgb, 0, 40 * 6 * 3);
+    encode_frame(s, rgb, 40, 6, &TRUE_FULL, n, NULL);
+    for (int i = 0; i < n_cells; i++) {
+        set_px(rgb, 40, cells[i][1], 2 * cells[i][0], 0xffffff);
+        set_px(rgb, 40, cells[i][1], 2 * cells[i][0] + 1, 0xffffff);
+    }
+    return encode_frame(s, rgb, 40, 6, &TRUE_DIFF, n, NULL);
+}
+
+#define W "\x1b[48;2;255;255;255m"
+
+TEST(cursor_move_picks_the_shortest)
+{
+    static uint8_t rgb[40 * 6 * 3];
+    struct encode_screen s;
+    REQUIRE(encode_screen_init(&s, 40, 3, NULL) == 0);
+    size_t n;
+    const char *out;
+    /* Unknown cursor: CUP, 1-based, column omitted when it is 1. */
+    static const int a[][2] = {{0, 5}};
+    out = diff_with_white_cells(&s, rgb, a, 1, &n);
+    CHECK_BYTES(out, n, "\x1b[1;6H" W " \x1b[0m");
+    static const int b[][2] = {{1, 0}};
+    out = diff_with_white_cells(&s, rgb, b, 1, &n);
+    CHECK_BYTES(out, n, "\x1b[2H" W " \x1b[0m");
+    /* A one-cell gap that is black while the bg is white: rewriting it would need an SGR,
+     * so ESC[C (skipped_cells_are_rewritten_when_cheaper covers the other case). */
+    static const int c[][2] = {{0, 5}, {0, 7}};
+    out = diff_with_white_cells(&s, rgb, c, 2, &n);
+    CHECK_BYTES(out, n, "\x1b[1;6H" W " \x1b[C \x1b[0m");
+    /* CUF with a count beats HPA (ESC[6C vs ESC[13G). */
+    static const int d[][2] = {{0, 5}, {0, 12}};
+    out = diff_with_white_cells(&s, rgb, d, 2, &n);
+    CHECK_BYTES(out, n, "\x1b[1;6H" W " \x1b[6C \x1b[0m");
+    /* Next row, column 0: CR LF (2 bytes) beats ESC[2H (4). */
+    static const int e[][2] = {{0, 3}, {1, 0}};
+    out = diff_with_white_cells(&s, rgb, e, 2, &n);
+    CHECK_BYTES(out, n, "\x1b[1;4H" W " \r\n \x1b[0m");
+    /* After the last column the column is unknown: CR LF + ESC[9C (6) beats ESC[2;10H (7). */
+    static const int f[][2] = {{0, 39}, {1, 9}};
+    out = diff_with_white_cells(&s, rgb, f, 2, &n);
+    CHECK_BYTES(out, n, "\x1b[1;40H" W " \r\n\x1b[9C \x1b[0m");
+    /* Two rows down and far right: CUP (ESC[3;31H, 7) beats CR LF CR LF ESC[30C (9). */
+    static const int g[][2] = {{0, 0}, {2, 30}};
+    out = diff_with_white_cells(&s, rgb, g, 2, &n);
+    CHECK_BYTES(out, n, "\x1b[H" W " \x1b[3;31H \x1b[0m");
+    encode_screen_free(&s);
+}
+
+TEST(skipped_cells_are_rewritten_when_cheaper)
+{
+    /* Row of white cells with two black ones at 2 and 5; both turn grey. Between them cells
+     * 3 and 4 are white, and after the first grey cell the bg is grey: rewriting needs an
+     * SGR, so CUF. Now make 3..4 grey already: rewriting them costs 2 spaces < ESC[2C. */
+    static uint8_t rgb[10 * 2 * 3];
+    struct encode_screen s;
+    REQUIRE(encode_screen_init(&s, 10, 1, NULL) == 0);
+    for (int x = 0; x < 10; x++)
+        for (int y = 0; y < 2; y++)
+            set_px(rgb, 10, x, y, x == 2 || x == 5 ? 0x000000 : x == 3 || x == 4 ? 0x808080 : 0xffffff);
+    size_t n;
+    encode_frame(&s, rgb, 10, 2, &TRUE_FULL, &n, NULL);
+    for (int y = 0; y < 2; y++) {
+        set_px(rgb, 10, 2, y, 0x808080);
+        set_px(rgb, 10, 5, y, 0x808080);
+    }
+    struct encode_stats st;
+    const char *out = encode_frame(&s, rgb, 10, 2, &TRUE_DIFF, &n, &st);
+    CHECK_BYTES(out, n, "\x1b[1;3H\x1b[48;2;128;128;128m    \x1b[0m");
+    CHECK_EQ_INT(st.cells_drawn, 2);
+    CHECK_EQ_INT(st.cells_rewritten, 2);
+    encode_screen_free(&s);
+}
+
+/* ---- round trips ------------------------------------------------------------------------ */
+
+static void random_frame(uint8_t *rgb, int w, int h, uint32_t *seed, int levels)
+{
+    for (int i = 0; i < w * h * 3; i++)
+        rgb[i] = (uint8_t)(rng_next(seed) % (unsigned)levels * (255 / (levels - 1)));
+}
+
+/* Background gradient + n rectangles that move with frame number f. */
+static void rect_frame(uint8_t *rgb, int w, int h, int f, uint32_t seed)
+{
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++)
+            set_px(rgb, w, x, y, (uint32_t)(x * 255 / w) << 16 | (uint32_t)(y * 255 / h) << 8 | 40);
+    for (int k = 0; k < 6; k++) {
+        uint32_t col = rng_next(&seed) & 0xffffff;
+        int rw = 3 + (int)(rng_next(&seed) % 15), rh = 2 + (int)(rng_next(&seed) % 11);
+        int x0 = (int)(rng_next(&seed) % (unsigned)w), y0 = (int)(rng_next(&seed) % (unsigned)h);
+        int vx = (int)(rng_next(&seed) % 5) - 2, vy = (int)(rng_next(&seed) % 3) - 1;
+        x0 = ((x0 + vx * f) % w + w) % w;
+        y0 = ((y0 + vy * f) % h + h) % h;
+        for (int y = y0; y < y0 + rh && y < h; y++)
+            for (int x = x0; x < x0 + rw && x < w; x++)
+                set_px(rgb, w, x, y, col);
+    }
+}
+
+TEST(truecolor_full_frames_decode_exactly)
+{
+    enum { C = 37, R = 11 };
+    static uint8_t rgb[C * 2 * R * 3];
+    struct encode_screen s;
+    struct decode_state d;
+    REQUIRE(encode_screen_init(&s, C, R, NULL) == 0);
+    REQUIRE(decode_init(&d, C, R, NULL) == 0);
+    uint32_t seed = 12345;
+    for (int it = 0; it < 20; it++) {
+        if (it % 2)
+            random_frame(rgb, C, 2 * R, &seed, it % 4 == 1 ? 2 : 256);
+        else
+            rect_frame(rgb, C, 2 * R, it, seed);
+        size_t n;
+        const char *out = encode_frame(&s, rgb, C, 2 * R, &TRUE_FULL, &n, NULL);
+        CHECK(n <= ENCODE_BOUND(C, R));
+        struct err e;
+        e.msg[0] = 0;
+        CHECK(decode_frame(&d, out, n, 0, &e) == 0);
+        CHECK_EQ_INT(d.used_cols, C);
+        CHECK_EQ_INT(d.used_rows, R);
+        compare_grid(t, &d, rgb, C, 2 * R, 0, "full frame");
+    }
+    encode_screen_free(&s);
+    decode_free(&d);
+}
+
+TEST(truecolor_diff_chain_of_50_decodes_exactly)
+{
+    /* Frames are concatenated (mark_frames) the way `dump --diff` writes them; every frame
+     * is checked both by decoding the stream's frame k and by applying the bytes in turn. */
+    enum { C = 48, R = 15, N = 50 };
+    static uint8_t rgb[N][C * 2 * R * 3];
+    struct encode_screen s;
+    struct decode_state inc, byk;
+    REQUIRE(encode_screen_init(&s, C, R, NULL) == 0);
+    REQUIRE(decode_init(&inc, C, R, NULL) == 0);
+    REQUIRE(decode_init(&byk, C, R, NULL) == 0);
+    size_t cap = 0, len = 0;
+    char *stream = NULL;
+    struct encode_opts o = TRUE_DIFF;
+    o.mark_frames = true;
+    for (int f = 0; f < N; f++) {
+        rect_frame(rgb[f], C, 2 * R, f, 99);
+        if (f % 17 == 16) { /* an occasional burst of noise in a corner */
+            uint32_t seed = (uint32_t)f + 1;
+            for (int y = 0; y < 6; y++)
+                for (int x = 0; x < 6; x++)
+                    set_px(rgb[f], C, x, y, rng_next(&seed) & 0xffffff);
+        }
+        size_t n;
+        const char *out = encode_frame(&s, rgb[f], C, 2 * R, &o, &n, NULL);
+        struct err e;
+        REQUIRE(decode_apply(&inc, out, n, &e) == 0);
+        compare_grid(t, &inc, rgb[f], C, 2 * R, 0, "incremental diff");
+        if (len + n > cap) {
+            cap = (len + n) * 2;
+            stream = realloc(stream, cap);
+            REQUIRE(stream);
+        }
+        memcpy(stream + len, out, n);
+        len += n;
+    }
+    for (int f = 0; f < N; f++) {
+        struct err e;
+        REQUIRE(decode_frame(&byk, stream, len, f, &e) == 0);
+        compare_grid(t, &byk, rgb[f], C, 2 * R, 0, "frame k of the stream");
+    }
+    struct err e;
+    CHECK(decode_frame(&byk, stream, len, N, &e) == -1);
+    CHECK_STR_CONTAINS(e.msg, "does not exist (50 frames)");
+    free(stream);
+    encode_screen_free(&s);
+    decode_free(&inc);
+    decode_free(&byk);
+}
+
+/* Reference quantisation for a palette mode, pixel by pixel. */
+static void quantise_ref(const uint8_t *in, uint8_t *out, int n, enum palette_mode mode)
+{
+    for (int i = 0; i < n; i++)
+        palette_rgb(mode == PALETTE_256 ? palette_nearest_256(in + 3 * i)
+                                         : palette_nearest_16(in + 3 * i),
+                    out + 3 * i);
+}
+
+TEST(palette_modes_decode_to_the_quantised_frame_within_the_bound)
+{
+    enum { C = 40, R = 12 };
+    static uint8_t rgb[C * 2 * R * 3], q[C * 2 * R * 3];
+    struct encode_screen s;
+    struct decode_state d;
+    REQUIRE(encode_screen_init(&s, C, R, NULL) == 0);
+    REQUIRE(decode_init(&d, C, R, NULL) == 0);
+    static const enum palette_mode modes[] = {PALETTE_256, PALETTE_16};
+    static const int bound[] = {PALETTE_256_MAX_ERR, PALETTE_16_MAX_ERR};
+    for (int m = 0; m < 2; m++) {
+        struct encode_opts o = {.mode = modes[m], .diff = true};
+        for (int f = 0; f < 30; f++) {
+            uint32_t seed = (uint32_t)(f + 1);
+            if (f % 3 == 2)
+                random_frame(rgb, C, 2 * R, &seed, 256);
+            else
+                rect_frame(rgb, C, 2 * R, f, 5);
+            size_t n;
+            const char *out = encode_frame(&s, rgb, C, 2 * R, &o, &n, NULL);
+            struct err e;
+            REQUIRE(decode_apply(&d, out, n, &e) == 0);
+            quantise_ref(rgb, q, C * 2 * R, modes[m]);
+            compare_grid(t, &d, q, C, 2 * R, 0, "decoded == quantised");
+            compare_grid(t, &d, rgb, C, 2 * R, bound[m], "decoded ~ true");
+        }
+    }
+    /* Switching modes back and forth must not reuse stale quantisations (the per-pixel memo). */
+    static const enum palette_mode seq[] = {PALETTE_256, PALETTE_TRUECOLOR, PALETTE_256,
+                                            PALETTE_16, PALETTE_256};
+    for (int i = 0; i < 5; i++) {
+        struct encode_opts o = {.mode = seq[i], .diff = true};
+        uint32_t seed = 1000 + (uint32_t)(i / 2); /* pairs of equal frames */
+        random_frame(rgb, C, 2 * R, &seed, 256);
+        size_t n;
+        const char *out = encode_frame(&s, rgb, C, 2 * R, &o, &n, NULL);
+        struct err e;
+        REQUIRE(decode_apply(&d, out, n, &e) == 0);
+        if (seq[i] == PALETTE_TRUECOLOR)
+            memcpy(q, rgb, sizeof q);
+        else
+            quantise_ref(rgb, q, C * 2 * R, seq[i]);
+        compare_grid(t, &d, q, C, 2 * R, 0, "after a mode switch");
+    }
+    /* Dithering stays within the bound of a colour up to PALETTE_DITHER_AMP away. */
+    struct encode_opts o = {.mode = PALETTE_256, .dither = true};
+    uint32_t seed = 77;
+    random_frame(rgb, C, 2 * R, &seed, 256);
+    size_t n;
+    const char *out = encode_frame(&s, rgb, C, 2 * R, &o, &n, NULL);
+    struct err e;
+    REQUIRE(decode_frame(&d, out, n, 0, &e) == 0);
+    compare_grid(t, &d, rgb, C, 2 * R, PALETTE_256_MAX_ERR + PALETTE_DITHER_AMP, "dithered");
+    encode_screen_free(&s);
+    decode_free(&d);
+}
+
+TEST(none_mode_decodes_to_the_ramp_grey_of_the_mean_luma)
+{
+    enum { C = 30, R = 7 };
+    static uint8_t rgb[C * 2 * R * 3], want[C * 2 * R * 3];
+    uint32_t seed = 4242;
+    random_frame(rgb, C, 2 * R, &seed, 256);
+    for (int r = 0; r < R; r++)
+        for (int c = 0; c < C; c++) {
+            int l = palette_luma(rgb + 3 * ((2 * r) * C + c)) +
+                    palette_luma(rgb + 3 * ((2 * r + 1) * C + c));
+            uint8_t g = palette_ramp_grey(palette_ramp_level((l + 1) / 2));
+            for (int k = 0; k < 3; k++)
+                want[3 * ((2 * r) * C + c) + k] = want[3 * ((2 * r + 1) * C + c) + k] = g;
+        }
+    struct encode_screen s;
+    struct decode_state d;
+    REQUIRE(encode_screen_init(&s, C, R, NULL) == 0);
+    REQUIRE(decode_init(&d, C, R, NULL) == 0);
+    struct encode_opts o = {.mode = PALETTE_NONE};
+    size_t n;
+    const char *out = encode_frame(&s, rgb, C, 2 * R, &o, &n, NULL);
+    for (size_t i = 0; i < n; i++) /* only cursor positioning may be escaped */
+        if (out[i] == 0x1b)
+            CHECK(out[i + 1] == '[' && (out[i + 2] == 'H' || (out[i + 2] >= '0' && out[i + 2] <= '9')));
+    CHECK(!contains(out, n, "m"));
+    struct err e;
+    REQUIRE(decode_frame(&d, out, n, 0, &e) == 0);
+    compare_grid(t, &d, want, C, 2 * R, 0, "none mode");
+    encode_screen_free(&s);
+    decode_free(&d);
+}
+
+/* ---- tolerance -------------------------------------------------------------------------- */
+
+TEST(tolerance_never_lets_the_screen_drift_beyond_n)
+{
+    /* Every pixel drifts by +1 per channel per frame (slow fades): comparing with the previous
+     * FRAME would skip every change forever and drift without limit; comparing with what the
+     * screen shows must redraw a cell once it is N away. */
+    enum { C = 32, R = 8, N = 120 };
+    static uint8_t rgb[C * 2 * R * 3], base[C * 2 * R * 3];
+    uint32_t seed = 31337;
+    random_frame(base, C, 2 * R, &seed, 100); /* values 0..198: room to drift */
+    static const int tols[] = {1, 4, 9};
+    for (int ti = 0; ti < 3; ti++) {
+        int tol = tols[ti];
+        struct encode_screen s;
+        struct decode_state d;
+        REQUIRE(encode_screen_init(&s, C, R, NULL) == 0);
+        REQUIRE(decode_init(&d, C, R, NULL) == 0);
+        struct encode_opts o = {.mode = PALETTE_TRUECOLOR, .diff = true, .tolerance = tol};
+        size_t total = 0, total_exact = 0;
+        struct encode_screen exact;
+        REQUIRE(encode_screen_init(&exact, C, R, NULL) == 0);
+        int worst = 0;
+        for (int f = 0; f < N; f++) {
+            for (int i = 0; i < C * 2 * R * 3; i++) {
+                /* slow drift: each channel moves by one every (1 + i % 3) frames, some down */
+                int step = f / (1 + i % 3), v = base[i] + ((i / 3) % 2 ? step / 2 : -step / 3);
+                rgb[i] = (uint8_t)(v < 0 ? 0 : v > 255 ? 255 : v);
+            }
+            size_t n;
+            const char *out = encode_frame(&s, rgb, C, 2 * R, &o, &n, NULL);
+            total += n;
+            struct err e;
+            REQUIRE(decode_apply(&d, out, n, &e) == 0);
+            int w = compare_grid(t, &d, rgb, C, 2 * R, tol, "tolerance");
+            worst = w > worst ? w : worst;
+            encode_frame(&exact, rgb, C, 2 * R, &TRUE_DIFF, &n, NULL);
+            total_exact += n;
+        }
+        CHECK(worst <= tol);
+        CHECK(worst == tol); /* the drift really reached the tolerance */
+        CHECK(total < total_exact); /* and the tolerance saved bytes */
+        encode_screen_free(&s);
+        encode_screen_free(&exact);
+        decode_free(&d);
+    }
+}
+
+TEST(tolerance_redraws_reuse_current_colours_within_n)
+{
+    /* Both cells change; cell 1's pixels are within 3 of cell 0's colours, so with tolerance 3
+     * cell 1 is drawn with the current fg/bg (no second SGR) and the screen model records
+     * what is really shown: a later frame equal to the truth changes nothing. */
+    uint8_t rgb[12] = {0};
+    struct encode_screen s;
+    REQUIRE(encode_screen_init(&s, 2, 1, NULL) == 0);
+    size_t n;
+    encode_frame(&s, rgb, 2, 2, &TRUE_FULL, &n, NULL);
+    set_px(rgb, 2, 0, 0, 0x646464);
+    set_px(rgb, 2, 0, 1, 0x323232);
+    set_px(rgb, 2, 1, 0, 0x666364);
+    set_px(rgb, 2, 1, 1, 0x333234);
+    struct encode_opts o = {.mode = PALETTE_TRUECOLOR, .diff = true, .tolerance = 3};
+    const char *out = encode_frame(&s, rgb, 2, 2, &o, &n, NULL);
+    CHECK_BYTES(out, n, "[H[38;2;100;100;100;48;2;50;50;50m" UP UP "[0m");
+    CHECK_EQ_INT(s.cells[1].top, 0x646464);
+    CHECK_EQ_INT(s.cells[1].bot, 0x323232);
+    encode_frame(&s, rgb, 2, 2, &o, &n, NULL);
+    CHECK_EQ_INT(n, 0);
+    /* the same frame without tolerance redraws cell 1 exactly */
+    out = encode_frame(&s, rgb, 2, 2, &TRUE_DIFF, &n, NULL);
+    CHECK_BYTES(out, n, "[1;2H[38;2;102;99;100;48;2;51;50;52m" UP "[0m");
+    encode_screen_free(&s);
+}
+
+TEST(tolerance_in_256_mode_is_bounded_by_the_palette_or_n)
+{
+    enum { C = 24, R = 6, N = 60, TOL = 6 };
+    static uint8_t rgb[C * 2 * R * 3];
+    struct encode_screen s;
+    struct decode_state d;
+    REQUIRE(encode_screen_init(&s, C, R, NULL) == 0);
+    REQUIRE(decode_init(&d, C, R, NULL) == 0);
+    struct encode_opts o = {.mode = PALETTE_256, .diff = true, .tolerance = TOL};
+    for (int f = 0; f < N; f++) {
+        for (int i = 0; i < C * 2 * R * 3; i++)
+            rgb[i] = (uint8_t)((i * 37 + f * 2) & 255);
+        size_t n;
+        const char *out = encode_frame(&s, rgb, C, 2 * R, &o, &n, NULL);
+        struct err e;
+        REQUIRE(decode_apply(&d, out, n, &e) == 0);
+        compare_grid(t, &d, rgb, C, 2 * R, PALETTE_256_MAX_ERR, "256 + tolerance");
+    }
+    encode_screen_free(&s);
+    decode_free(&d);
+}
+
+/* ---- frame structure -------------------------------------------------------------------- */
+
+TEST(large_frames_use_synchronized_output_small_ones_do_not)
+{
+    enum { C = 80, R = 24 };
+    static uint8_t rgb[C * 2 * R * 3];
+    uint32_t seed = 3;
+    random_frame(rgb, C, 2 * R, &seed, 256);
+    struct encode_screen s;
+    REQUIRE(encode_screen_init(&s, C, R, NULL) == 0);
+    size_t n;
+    struct encode_stats st;
+    const char *out = encode_frame(&s, rgb, C, 2 * R, &TRUE_DIFF, &n, &st);
+    CHECK(st.full && st.synced);
+    CHECK(n > 11 && memcmp(out, "\x1b[H\x1b[?2026h", 11) == 0);
+    CHECK(n > 12 && memcmp(out + n - 12, "\x1b[0m\x1b[?2026l", 12) == 0);
+    CHECK(n <= ENCODE_BOUND(C, R));
+    set_px(rgb, C, 3, 3, 0x123456);
+    out = encode_frame(&s, rgb, C, 2 * R, &TRUE_DIFF, &n, &st);
+    CHECK(!st.full && !st.synced && st.cells_drawn == 1);
+    CHECK(n < 60 && !contains(out, n, "2026"));
+    encode_screen_free(&s);
+}
+
+TEST(worst_case_frame_fits_the_documented_bound)
+{
+    /* Every cell needs a CUP-free but both-colours SGR with 3-digit channels and a 3-byte
+     * glyph: alternating distinct colours. Measure the per-cell cost against the bound. */
+    enum { C = 50, R = 20 };
+    static uint8_t rgb[C * 2 * R * 3];
+    for (int y = 0; y < 2 * R; y++)
+        for (int x = 0; x < C; x++)
+            set_px(rgb, C, x, y, 0xc8c8c8 + (uint32_t)((x + y * 7) % 50) * 0x010101);
+    struct encode_screen s;
+    REQUIRE(encode_screen_init(&s, C, R, NULL) == 0);
+    size_t n;
+    struct encode_stats st;
+    encode_frame(&s, rgb, C, 2 * R, &TRUE_FULL, &n, &st);
+    CHECK_EQ_INT(st.sgr, C * R);
+    CHECK(n <= ENCODE_BOUND(C, R));
+    CHECK(n >= (size_t)C * R * 39); /* 36-byte SGR + 3-byte glyph in every cell */
+    encode_screen_free(&s);
+}
+
+TEST(odd_height_pads_the_last_bottom_half)
+{
+    uint8_t rgb[3 * 3 * 3];
+    for (int i = 0; i < 27; i++)
+        rgb[i] = (uint8_t)(i * 9);
+    struct encode_screen s;
+    struct decode_state d;
+    REQUIRE(encode_screen_init(&s, 3, 2, NULL) == 0);
+    REQUIRE(decode_init(&d, 3, 2, NULL) == 0);
+    struct encode_opts o = {.mode = PALETTE_TRUECOLOR, .pad_rgb = {7, 8, 9}};
+    size_t n;
+    const char *out = encode_frame(&s, rgb, 3, 3, &o, &n, NULL);
+    struct err e;
+    REQUIRE(decode_frame(&d, out, n, 0, &e) == 0);
+    CHECK(memcmp(d.rgb, rgb, 27) == 0);
+    for (int x = 0; x < 3; x++)
+        CHECK(d.rgb[27 + 3 * x] == 7 && d.rgb[28 + 3 * x] == 8 && d.rgb[29 + 3 * x] == 9);
+    encode_screen_free(&s);
+    decode_free(&d);
+}
+
+TEST(damage_invalidate_and_mode_change_force_redraws)
+{
+    enum { C = 10, R = 4 };
+    static uint8_t rgb[C * 2 * R * 3];
+    uint32_t seed = 9;
+    random_frame(rgb, C, 2 * R, &seed, 256);
+    struct encode_screen s;
+    REQUIRE(encode_screen_init(&s, C, R, NULL) == 0);
+    size_t n;
+    struct encode_stats st;
+    encode_frame(&s, rgb, C, 2 * R, &TRUE_DIFF, &n, &st);
+    CHECK(st.full); /* unknown screen */
+    encode_screen_damage(&s, 8, 2, 5, 5); /* clipped to the 2x2 cells in the corner */
+    encode_frame(&s, rgb, C, 2 * R, &TRUE_DIFF, &n, &st);
+    CHECK(!st.full);
+    CHECK_EQ_INT(st.cells_drawn, 4);
+    encode_screen_invalidate(&s);
+    encode_frame(&s, rgb, C, 2 * R, &TRUE_DIFF, &n, &st);
+    CHECK(st.full);
+    CHECK_EQ_INT(st.cells_drawn, C * R);
+    struct encode_opts o = {.mode = PALETTE_256, .diff = true};
+    encode_frame(&s, rgb, C, 2 * R, &o, &n, &st);
+    CHECK(st.full);
+    encode_screen_free(&s);
+    struct err e;
+    CHECK(encode_screen_init(&s, 0, 5, &e) == -1);
+    CHECK_STR_CONTAINS(e.msg, "out of range");
+}

@@ -1,0 +1,108 @@
+/* test_termcaps.c: colour-mode detection from environment tables and terminfo facts. */
+#include <string.h>
+
+#include <curses.h>
+#include <term.h>
+
+#include "termcaps.h"
+#include "test.h"
+
+#define MAX_ENV 6
+
+/* One row: the environment, the terminfo facts, the expected mode. */
+struct row {
+    const char *env[MAX_ENV];
+    struct termcaps_terminfo ti;
+    enum palette_mode want;
+};
+
+static const struct termcaps_terminfo TI_NONE = {false, false, -1};
+static const struct termcaps_terminfo TI_8 = {true, false, 8};
+static const struct termcaps_terminfo TI_256 = {true, false, 256};
+static const struct termcaps_terminfo TI_RGB = {true, true, 256};
+static const struct termcaps_terminfo TI_MONO = {true, false, -1};
+
+TEST(detect_table_of_environments)
+{
+    static const struct row rows[] = {
+        /* NO_COLOR (non-empty) beats everything; empty NO_COLOR is ignored */
+        {{"TERM=xterm-256color", "COLORTERM=truecolor", "NO_COLOR=1"}, TI_RGB, PALETTE_NONE},
+        {{"TERM=xterm-256color", "NO_COLOR="}, TI_256, PALETTE_256},
+        /* no TERM, or dumb: none, whatever COLORTERM says */
+        {{"COLORTERM=truecolor"}, TI_NONE, PALETTE_NONE},
+        {{"TERM=dumb", "COLORTERM=truecolor"}, TI_MONO, PALETTE_NONE},
+        {{"TERM="}, TI_NONE, PALETTE_NONE},
+        /* COLORTERM */
+        {{"TERM=xterm-256color", "COLORTERM=truecolor"}, TI_256, PALETTE_TRUECOLOR},
+        {{"TERM=xterm", "COLORTERM=24bit"}, TI_8, PALETTE_TRUECOLOR},
+        {{"TERM=xterm-256color", "COLORTERM=yes"}, TI_256, PALETTE_256},
+        /* -direct entries and terminfo RGB/Tc */
+        {{"TERM=xterm-direct"}, TI_NONE, PALETTE_TRUECOLOR},
+        {{"TERM=konsole-direct"}, TI_NONE, PALETTE_TRUECOLOR},
+        {{"TERM=tmux-256color"}, TI_RGB, PALETTE_TRUECOLOR},
+        /* inside tmux (COLORTERM gone): outer-terminal traces */
+        {{"TERM=tmux-256color", "TMUX=/tmp/tmux-0/default,1,0", "TERM_PROGRAM=tmux"}, TI_256,
+         PALETTE_256},
+        {{"TERM=screen", "TMUX=/tmp/t,1,0", "KITTY_WINDOW_ID=1"}, TI_8, PALETTE_TRUECOLOR},
+        {{"TERM=tmux-256color", "TMUX=/tmp/t,1,0", "VTE_VERSION=6800"}, TI_256,
+         PALETTE_TRUECOLOR},
+        {{"TERM=tmux-256color", "TMUX=/tmp/t,1,0", "VTE_VERSION=3405"}, TI_256, PALETTE_256},
+        {{"TERM=screen-256color", "TMUX=/tmp/t,1,0", "LC_TERMINAL=iTerm2"}, TI_256,
+         PALETTE_TRUECOLOR},
+        {{"TERM=tmux-256color", "TMUX=/tmp/t,1,0", "WT_SESSION=abc"}, TI_256, PALETTE_TRUECOLOR},
+        {{"TERM=screen", "TMUX=/tmp/t,1,0"}, TI_8, PALETTE_256}, /* tmux parses 38;5 itself */
+        /* GNU screen: no 24-bit even if the outer terminal could */
+        {{"TERM=screen-256color", "STY=123.pts-0", "KITTY_WINDOW_ID=1"}, TI_256, PALETTE_256},
+        /* ssh to a box whose TERM is xterm-256color, from iTerm2 (LC_* forwarded) */
+        {{"TERM=xterm-256color", "LC_TERMINAL=iTerm2"}, TI_256, PALETTE_TRUECOLOR},
+        {{"TERM=xterm-256color", "TERM_PROGRAM=Apple_Terminal"}, TI_256, PALETTE_256},
+        {{"TERM=xterm-256color", "TERM_PROGRAM=vscode"}, TI_256, PALETTE_TRUECOLOR},
+        /* a hint on a 16-colour TERM does not upgrade it, a truecolor TERM name does */
+        {{"TERM=linux", "KITTY_WINDOW_ID=1"}, TI_8, PALETTE_16},
+        {{"TERM=xterm-kitty"}, TI_NONE, PALETTE_TRUECOLOR},
+        /* fallbacks */
+        {{"TERM=xterm-256color"}, TI_NONE, PALETTE_256},
+        {{"TERM=rxvt-unicode"}, TI_256, PALETTE_256}, /* terminfo says 256 */
+        {{"TERM=linux"}, TI_8, PALETTE_16},
+        {{"TERM=xterm"}, TI_NONE, PALETTE_16}, /* no terminfo: assume a colour terminal */
+        {{"TERM=vt100"}, TI_MONO, PALETTE_NONE},
+    };
+    for (size_t i = 0; i < sizeof rows / sizeof rows[0]; i++) {
+        const char *why = NULL;
+        enum palette_mode got = termcaps_detect(rows[i].env, &rows[i].ti, &why);
+        if (got != rows[i].want)
+            test_fail(t, __FILE__, __LINE__, "row %zu (%s, %s): got %s (%s), want %s", i,
+                      rows[i].env[0] ? rows[i].env[0] : "-", rows[i].env[1] ? rows[i].env[1] : "-",
+                      palette_mode_name(got), why ? why : "?", palette_mode_name(rows[i].want));
+        CHECK(why != NULL);
+    }
+    /* NULL terminfo facts and NULL env are allowed */
+    static const char *const env[] = {"TERM=xterm-256color", NULL};
+    CHECK_EQ_INT(termcaps_detect(env, NULL, NULL), PALETTE_256);
+    CHECK_EQ_INT(termcaps_detect(NULL, NULL, NULL), PALETTE_NONE);
+}
+
+TEST(terminfo_lookup_reads_rgb_and_colors_without_keeping_state)
+{
+    struct termcaps_terminfo ti;
+    TERMINAL *before = cur_term;
+    if (termcaps_terminfo("xterm-256color", &ti) != 0) {
+        test_skip(t, "no terminfo entry for xterm-256color");
+        return;
+    }
+    CHECK(ti.found);
+    CHECK_EQ_INT(ti.colors, 256);
+    CHECK(!ti.rgb);
+    CHECK(cur_term == before); /* ncurses' current terminal restored */
+    if (termcaps_terminfo("xterm-direct", &ti) == 0) { /* from ncurses-term */
+        CHECK(ti.rgb);
+        CHECK(ti.colors > 256);
+    }
+    CHECK(termcaps_terminfo("no-such-terminal-xyz", &ti) == -1);
+    CHECK(!ti.found);
+    CHECK(termcaps_terminfo("", &ti) == -1);
+    CHECK(termcaps_terminfo(NULL, &ti) == -1);
+    if (termcaps_terminfo("vt100", &ti) == 0)
+        CHECK(ti.colors < 8);
+    CHECK(cur_term == before);
+}
