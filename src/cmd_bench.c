@@ -1,0 +1,195 @@
+/* cmd_bench.c: `rastty bench` — what a frame costs: render time, encode time, terminal bytes,
+ * and how close the decoded terminal picture stays to the exact frame.
+ *
+ * For every scene given, the camera orbits the target (--orbit degrees a frame, --frames
+ * frames, --cols x --rows cells); each frame is rendered once and fed through every encoder
+ * configuration below, each with its own screen model, as a viewer would send it. Every
+ * configuration's output is decoded back (decode.c) and compared with the exact frame.
+ * Numbers, not verdicts: `make bench` prints them; tests never assert times. */
+#include "cmd.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "decode.h"
+#include "encode.h"
+#include "pipeline.h"
+
+struct config {
+    const char *name;
+    enum palette_mode mode;
+    bool diff;
+    int tolerance;
+};
+
+static const struct config configs[] = {
+    {"full truecolor", PALETTE_TRUECOLOR, false, 0},
+    {"diff truecolor", PALETTE_TRUECOLOR, true, 0},
+    {"diff tol 4", PALETTE_TRUECOLOR, true, 4},
+    {"diff 256", PALETTE_256, true, 0},
+    {"diff 256 tol 4", PALETTE_256, true, 4},
+};
+enum { N_CONFIGS = sizeof configs / sizeof configs[0] };
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double median(double *v, int n)
+{
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+static double pctl(double *v, int n, double p)
+{
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    int i = (int)ceil(p * n) - 1;
+    return v[i < 0 ? 0 : i >= n ? n - 1 : i];
+}
+
+/* sum of squared channel differences */
+static double sq_err(const uint8_t *a, const uint8_t *b, size_t n)
+{
+    double s = 0;
+    for (size_t i = 0; i < n; i++) {
+        double d = (double)a[i] - b[i];
+        s += d * d;
+    }
+    return s;
+}
+
+struct track {
+    struct encode_screen es;
+    struct decode_state dec;
+    double *bytes, *enc_ms;
+    double sq;      /* accumulated squared error, all frames */
+    double worst_psnr;
+    int max_dev;    /* largest channel deviation seen */
+};
+
+static int bench_scene(const struct options *o, const char *path, int cols, int rows, int frames,
+                       struct err *e)
+{
+    struct scene scene;
+    if (scene_load(path, &scene, e))
+        return 2;
+    struct camera cam;
+    struct render_opts ro;
+    cmd_view_setup(o, &scene, (double)cols / (2.0 * rows), !scene.has_camera, &cam, &ro);
+    struct fb fb = {0};
+    struct pipeline *p = pipeline_new();
+    struct track t[N_CONFIGS];
+    memset(t, 0, sizeof t);
+    double *render_ms = calloc((size_t)frames, sizeof *render_ms);
+    int rc = 1;
+    if (!p || !render_ms || fb_init(&fb, cols, 2 * rows, false, e))
+        goto done;
+    for (int c = 0; c < N_CONFIGS; c++) {
+        t[c].bytes = calloc((size_t)frames, sizeof(double));
+        t[c].enc_ms = calloc((size_t)frames, sizeof(double));
+        t[c].worst_psnr = INFINITY;
+        if (!t[c].bytes || !t[c].enc_ms || encode_screen_init(&t[c].es, cols, rows, e) ||
+            decode_init(&t[c].dec, cols, rows, e))
+            goto done;
+    }
+    size_t npx = (size_t)cols * 2 * rows * 3;
+    uint64_t static_bytes = 0;
+    for (int k = 0; k <= frames; k++) {
+        struct camera c = cam;
+        camera_turn(&c, o->orbit_deg * (k < frames ? k : frames - 1), 0, 1);
+        struct frame_stats st;
+        if (pipeline_draw(p, scene.items, scene.n_items, scene.has_sky ? &scene.sky : NULL, &c,
+                          &ro, &fb, &st, e))
+            goto done;
+        if (k < frames)
+            render_ms[k] = st.render_ms;
+        for (int i = 0; i < N_CONFIGS; i++) {
+            struct encode_opts eo = {.mode = configs[i].mode,
+                                     .diff = configs[i].diff && k > 0,
+                                     .tolerance = configs[i].tolerance};
+            size_t n;
+            double t0 = now_ms();
+            const char *bytes = encode_fb(&t[i].es, &fb, &eo, &n, NULL);
+            double dt = now_ms() - t0;
+            if (k == frames) { /* the same frame again: a static scene */
+                if (configs[i].diff)
+                    static_bytes += n;
+                continue;
+            }
+            t[i].bytes[k] = (double)n;
+            t[i].enc_ms[k] = dt;
+            if (decode_apply(&t[i].dec, bytes, n, e))
+                goto done;
+            double sq = sq_err(t[i].dec.rgb, fb.rgb, npx);
+            t[i].sq += sq;
+            double psnr = sq > 0 ? 10 * log10(255.0 * 255.0 * (double)npx / sq) : INFINITY;
+            t[i].worst_psnr = psnr < t[i].worst_psnr ? psnr : t[i].worst_psnr;
+            for (size_t j = 0; j < npx; j++) {
+                int d = abs((int)t[i].dec.rgb[j] - (int)fb.rgb[j]);
+                t[i].max_dev = d > t[i].max_dev ? d : t[i].max_dev;
+            }
+        }
+    }
+    printf("\n%s: %d frames, %dx%d cells (%dx%d px), orbit %g deg/frame, render median %.2f "
+           "ms, p95 %.2f ms\n",
+           scene.name, frames, cols, rows, cols, 2 * rows, o->orbit_deg,
+           median(render_ms, frames), pctl(render_ms, frames, 0.95));
+    printf("  %-16s %10s %10s %10s %10s %10s %8s %11s\n", "encoding", "median B", "mean B",
+           "p95 B", "enc med ms", "PSNR dB", "min dB", "max |err|");
+    for (int i = 0; i < N_CONFIGS; i++) {
+        double sum = 0;
+        for (int k = 0; k < frames; k++)
+            sum += t[i].bytes[k];
+        double mse = t[i].sq / ((double)npx * frames);
+        double psnr = mse > 0 ? 10 * log10(255.0 * 255.0 / mse) : INFINITY;
+        printf("  %-16s %10.0f %10.0f %10.0f %10.4f %10.2f %8.2f %11d\n", configs[i].name,
+               median(t[i].bytes, frames), sum / frames, pctl(t[i].bytes, frames, 0.95),
+               median(t[i].enc_ms, frames), psnr, t[i].worst_psnr, t[i].max_dev);
+    }
+    printf("  static scene (same frame again, all diff encodings): %llu bytes\n",
+           (unsigned long long)static_bytes);
+    rc = 0;
+done:
+    for (int i = 0; i < N_CONFIGS; i++) {
+        encode_screen_free(&t[i].es);
+        decode_free(&t[i].dec);
+        free(t[i].bytes);
+        free(t[i].enc_ms);
+    }
+    free(render_ms);
+    fb_free(&fb);
+    pipeline_destroy(p);
+    scene_free(&scene);
+    return rc;
+}
+
+int cmd_bench(const struct options *o, struct err *e)
+{
+    int cols = o->cols ? o->cols : 160, rows = o->rows ? o->rows : 48;
+    int frames = o->frames > 1 ? o->frames : 180;
+    if (o->n_inputs == 0)
+        return err_set(e, "rastty bench: give one or more MODEL.obj or SCENE.rsc "
+                          "(make bench supplies the standard set)"), 2;
+    struct options oo = *o;
+    if (oo.orbit_deg == 0)
+        oo.orbit_deg = 2;
+    for (int i = 0; i < o->n_inputs; i++) {
+        int rc = bench_scene(&oo, o->inputs[i], cols, rows, frames, e);
+        if (rc)
+            return rc;
+    }
+    return 0;
+}

@@ -1,0 +1,237 @@
+/* cmd_dump.c: `rastty dump` — frames as ANSI text that replays with `cat`, and `rastty
+ * ansi2ppm`, which decodes such text back to pixels.
+ *
+ * Output never assumes a terminal: no initialisation codes, no alternate screen; every frame
+ * starts at the home position (ESC[H), so `cat frames.ans` plays them back in place. With
+ * --diff, frames after the first carry only the cells that changed. */
+#include "cmd.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/ioctl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "decode.h"
+#include "encode.h"
+#include "image.h"
+#include "pipeline.h"
+#include "termcaps.h"
+
+/* Camera for frame k: from the path file, or the start camera orbited k * orbit degrees. */
+struct camera_path {
+    vec3 *eye, *target;
+    int n;
+};
+
+static int path_load(const char *path, struct camera_path *cp, struct err *e)
+{
+    memset(cp, 0, sizeof *cp);
+    char q[200];
+    err_quote(path, strlen(path), 160, q, sizeof q);
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return err_set(e, "%s: cannot open camera path: %s", q, strerror(errno));
+    char line[1024];
+    int lineno = 0, cap = 0, rc = 0;
+    while (rc == 0 && fgets(line, sizeof line, f)) {
+        lineno++;
+        char *s = line;
+        while (*s == ' ' || *s == '\t')
+            s++;
+        if (*s == '#' || *s == '\n' || *s == '\r' || *s == '\0')
+            continue;
+        double v[6];
+        int used = 0;
+        if (sscanf(s, "%lf %lf %lf %lf %lf %lf %n", &v[0], &v[1], &v[2], &v[3], &v[4], &v[5],
+                   &used) != 6 || (s[used] != '\0' && s[used] != '#')) {
+            rc = err_set(e, "%s:%d: expected 'ex ey ez tx ty tz'", q, lineno);
+            break;
+        }
+        if (v[0] == v[3] && v[1] == v[4] && v[2] == v[5]) {
+            rc = err_set(e, "%s:%d: eye and target are the same point", q, lineno);
+            break;
+        }
+        if (cp->n == cap) {
+            cap = cap ? cap * 2 : 64;
+            vec3 *ne = realloc(cp->eye, (size_t)cap * sizeof *ne);
+            vec3 *nt = ne ? realloc(cp->target, (size_t)cap * sizeof *nt) : NULL;
+            if (ne)
+                cp->eye = ne;
+            if (!nt) {
+                rc = err_set(e, "%s: out of memory", q);
+                break;
+            }
+            cp->target = nt;
+        }
+        cp->eye[cp->n] = v3(v[0], v[1], v[2]);
+        cp->target[cp->n] = v3(v[3], v[4], v[5]);
+        cp->n++;
+    }
+    fclose(f);
+    if (rc == 0 && cp->n == 0)
+        rc = err_set(e, "%s: no camera positions", q);
+    return rc;
+}
+
+static void path_free(struct camera_path *cp)
+{
+    free(cp->eye);
+    free(cp->target);
+}
+
+static enum palette_mode color_mode(const struct options *o)
+{
+    enum palette_mode m;
+    if (o->colors && palette_mode_parse(o->colors, &m, NULL) == 0)
+        return m;
+    return termcaps_detect_env(NULL);
+}
+
+int cmd_dump(const struct options *o, struct err *e)
+{
+    int cols = o->cols, rows = o->rows;
+    if (!cols || !rows) {
+        struct winsize ws;
+        int tty = isatty(STDOUT_FILENO) && !o->out && ioctl(STDOUT_FILENO, TIOCGWINSZ, &ws) == 0 &&
+                  ws.ws_col > 0 && ws.ws_row > 0;
+        if (!cols)
+            cols = tty ? ws.ws_col : 80;
+        if (!rows)
+            rows = tty ? ws.ws_row : 24;
+    }
+    if (o->ppm_dir) {
+        struct stat st;
+        if (stat(o->ppm_dir, &st) != 0 || !S_ISDIR(st.st_mode))
+            return err_set(e, "rastty dump: --ppm-dir %s: not a directory", o->ppm_dir), 2;
+    }
+    struct camera_path cp = {0};
+    if (o->camera_path && path_load(o->camera_path, &cp, e))
+        return 2;
+    struct scene scene;
+    if (o->texture ? scene_load_model(o->inputs[0], o->texture, &scene, e)
+                   : scene_load(o->inputs[0], &scene, e)) {
+        path_free(&cp);
+        return 2;
+    }
+    int frames = o->frames;
+    if (o->camera_path && frames == 1)
+        frames = cp.n; /* the path's length unless --frames says otherwise */
+
+    struct camera cam;
+    struct render_opts ro;
+    cmd_view_setup(o, &scene, (double)cols / (2.0 * rows), o->frame, &cam, &ro);
+    struct encode_opts eo = {.mode = color_mode(o), .diff = false, .tolerance = o->tolerance > 0 ? o->tolerance : 0,
+                             .mark_frames = true};
+    FILE *out = stdout;
+    int rc = 1;
+    struct fb fb = {0};
+    struct encode_screen es = {0};
+    struct pipeline *p = pipeline_new();
+    if (!p) {
+        err_set(e, "out of memory");
+        goto done;
+    }
+    if (o->out && !(out = fopen(o->out, "wb"))) {
+        err_set(e, "rastty dump: %s: cannot create: %s", o->out, strerror(errno));
+        goto done;
+    }
+    if (fb_init(&fb, cols, 2 * rows, ro.view == VIEW_OVERDRAW, e) ||
+        encode_screen_init(&es, cols, rows, e))
+        goto done;
+    for (int k = 0; k < frames; k++) {
+        struct camera c = cam;
+        if (o->camera_path) {
+            c.eye = cp.eye[k % cp.n];
+            c.target = cp.target[k % cp.n];
+        } else if (o->orbit_deg != 0) {
+            camera_turn(&c, o->orbit_deg * k, 0, 1);
+        }
+        struct frame_stats st;
+        if (pipeline_draw(p, scene.items, scene.n_items, scene.has_sky ? &scene.sky : NULL, &c,
+                          &ro, &fb, &st, e))
+            goto done;
+        eo.diff = o->diff && k > 0;
+        size_t n;
+        struct encode_stats es_stats;
+        const char *bytes = encode_fb(&es, &fb, &eo, &n, &es_stats);
+        if (fwrite(bytes, 1, n, out) != n) {
+            err_set(e, "rastty dump: write failed: %s", strerror(errno));
+            goto done;
+        }
+        if (o->ppm_dir) {
+            char path[4200];
+            snprintf(path, sizeof path, "%s/frame-%04d.ppm", o->ppm_dir, k);
+            if (image_write_ppm(path, &fb, e))
+                goto done;
+        }
+        if (o->stats)
+            fprintf(stderr, "frame %d: %zu bytes, %d cells, %.3f ms render\n", k, n,
+                    es_stats.cells_drawn, st.render_ms);
+    }
+    if (fflush(out) != 0) {
+        err_set(e, "rastty dump: write failed: %s", strerror(errno));
+        goto done;
+    }
+    rc = 0;
+done:
+    if (out && out != stdout && fclose(out) != 0 && rc == 0)
+        rc = err_set(e, "rastty dump: %s: write failed", o->out) ? 1 : 1;
+    encode_screen_free(&es);
+    fb_free(&fb);
+    pipeline_destroy(p);
+    scene_free(&scene);
+    path_free(&cp);
+    return rc;
+}
+
+int cmd_ansi2ppm(const struct options *o, struct err *e)
+{
+    const char *path = o->inputs[0];
+    char q[200];
+    err_quote(path, strlen(path), 160, q, sizeof q);
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return err_set(e, "%s: cannot open: %s", q, strerror(errno)), 2;
+    size_t cap = 1 << 16, len = 0;
+    char *buf = malloc(cap);
+    size_t got;
+    while (buf && (got = fread(buf + len, 1, cap - len, f)) > 0) {
+        len += got;
+        if (len == cap) {
+            char *nb = realloc(buf, cap * 2);
+            if (!nb) {
+                free(buf);
+                buf = NULL;
+                break;
+            }
+            buf = nb;
+            cap *= 2;
+        }
+    }
+    int read_failed = ferror(f);
+    fclose(f);
+    if (!buf || read_failed) {
+        free(buf);
+        return err_set(e, "%s: cannot read", q), 1;
+    }
+    int cols, rows, frames, rc = 2;
+    struct decode_state d = {0};
+    if (decode_measure(buf, len, q, &cols, &rows, &frames, e) == 0) {
+        int k = o->frame_index >= 0 ? o->frame_index : frames - 1;
+        if (k >= frames) {
+            err_set(e, "%s: has %d frame%s, no frame %d", q, frames, frames == 1 ? "" : "s", k);
+        } else if (decode_init(&d, cols, rows, e) == 0) {
+            d.name = q;
+            if (decode_frame(&d, buf, len, k, e) == 0) {
+                struct fb fb = {.w = cols, .h = 2 * rows, .rgb = d.rgb};
+                rc = image_write_color(o->out, &fb, e) ? 1 : 0;
+            }
+            decode_free(&d);
+        }
+    }
+    free(buf);
+    return rc;
+}

@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# tests/bench.sh: `make bench` — render and terminal-output costs (numbers, never verdicts).
+#   1. bytes/frame and decoded PSNR for an orbit of the shared african_head (textured,
+#      2 deg/frame, 160x48 cells) on black, on the shared photo skybox, and on rastty's own sky;
+#   2. render time per frame of the demo scene and the big shared models.
+# Needs ../shared (or $RASTTY_SHARED) for the shared models; skips those parts without it.
+set -eu
+cd "$(dirname "$0")/.."
+BIN=${RASTTY_BIN:-./rastty}
+S=${RASTTY_SHARED:-../shared}/models
+S=$(cd "$(dirname "$S")" 2>/dev/null && echo "$PWD/$(basename "$S")" || echo "$S")
+A=$PWD/assets
+D=build/bench
+mkdir -p "$D"
+sky_files() { local p=$1 e=$2; echo "$p/posx.$e $p/negx.$e $p/posy.$e $p/negy.$e $p/posz.$e $p/negz.$e"; }
+echo "== rastty bench ($(date -u +%Y-%m-%dT%H:%MZ), $(nproc) cores, $(uname -m))"
+if [ -d "$S/african_head" ]; then
+    head="model $S/african_head/african_head.obj texture $S/african_head/african_head_diffuse.tga
+camera 0 0 3 target 0 0 0"
+    printf '%s\n' "$head" > $D/head_black.rsc
+    printf '%s\nsky %s\n' "$head" "$(sky_files "$S/skybox" jpg)" > $D/head_photo_sky.rsc
+    printf '%s\nsky %s\n' "$head" "$A/sky_posx.png $A/sky_negx.png $A/sky_posy.png $A/sky_negy.png $A/sky_posz.png $A/sky_negz.png" > $D/head_builtin_sky.rsc
+    echo "-- terminal bytes: african_head orbit, 2 deg/frame, 180 frames, 160x48 cells"
+    "$BIN" bench $D/head_black.rsc $D/head_photo_sky.rsc $D/head_builtin_sky.rsc \
+        --cols 160 --rows 48 --frames 180 --orbit 2
+else
+    echo "-- skipped terminal-bytes benchmark: no shared models at $S"
+fi
+echo
+echo "-- render time: demo scene and shared models, 160x48 and 320x96 cells, 36 frames"
+models=("assets/demo.rsc")
+for m in sports_car/sportsCar.obj lost_empire/lost_empire.obj bunny/bunny.obj; do
+    [ -f "$S/$m" ] && models+=("$S/$m")
+done
+for size in "160 48" "320 96"; do
+    set -- $size
+    "$BIN" bench "${models[@]}" --cols "$1" --rows "$2" --frames 36 --orbit 10 |
+        grep -E '^[^ ].*frames' || true
+done
