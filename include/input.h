@@ -1,0 +1,32 @@
+/* input.h: keys -> viewer commands, from one constant table (also the source of the help
+ * overlay and the man page's KEYS section, so they cannot disagree).
+ *
+ * Movement and turning commands are "held" commands: the viewer moves while a key keeps
+ * repeating, scaled by elapsed time (see view.c). Lowercase q quits; Shift-Q moves down. */
+#ifndef RASTTY_INPUT_H
+#define RASTTY_INPUT_H
+
+enum input_cmd {
+    IN_NONE,
+    /* held: continuous while the key repeats */
+    IN_FORWARD, IN_BACK, IN_LEFT, IN_RIGHT, IN_DOWN, IN_UP,
+    IN_YAW_LEFT, IN_YAW_RIGHT, IN_PITCH_UP, IN_PITCH_DOWN,
+    IN_HELD_COUNT,
+    /* one-shot */
+    IN_ORBIT = IN_HELD_COUNT, IN_FOV_IN, IN_FOV_OUT, IN_SLOWER, IN_FASTER, IN_RESET,
+    IN_NEXT_SCENE, IN_PREV_SCENE, IN_SHADE, IN_FILTER, IN_CULL, IN_LIGHT, IN_VIEW,
+    IN_PERSPECTIVE, IN_PAUSE, IN_HELP, IN_QUIT,
+    IN_COUNT
+};
+
+struct input_binding {
+    int key;               /* ncurses key code */
+    enum input_cmd cmd;
+};
+
+/* Command for a key, IN_NONE if unbound. */
+enum input_cmd input_command(int key);
+/* Help lines: "keys  description", one per command that has keys; NULL after the last. */
+const char *input_help_line(int i);
+
+#endif

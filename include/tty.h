@@ -1,0 +1,55 @@
+/* tty.h: the only code that touches the interactive terminal.
+ *
+ * Owns: terminal modes (through ncurses: cbreak, noecho, keypad, mouse), the alternate
+ * screen, the hidden cursor, the signal handlers, and the file descriptor frames are written
+ * to. ncurses is used for modes and input only — it never draws: frames are bytes from the
+ * encoder, written here with one write() loop per frame.
+ *
+ * Restoring the terminal, on every exit path:
+ *   normal exit, q/Esc      tty_close(): endwin() plus our own resets
+ *   Ctrl-C, SIGTERM, SIGHUP tty_signalled() turns true; blocking input returns at once;
+ *                           the caller leaves its loop and calls tty_close()
+ *   crash signals           (SEGV, BUS, FPE, ILL, ABRT) an async-signal-safe handler restores
+ *                           the saved termios with tcsetattr, writes fixed xterm reset bytes
+ *                           (leave alternate screen, show cursor, mouse off, SGR reset), then
+ *                           re-raises the signal with its default action. */
+#ifndef RASTTY_TTY_H
+#define RASTTY_TTY_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "err.h"
+
+enum tty_event_kind { TTY_NONE, TTY_KEY, TTY_MOUSE, TTY_RESIZE, TTY_SYNC_REPLY };
+
+struct tty_event {
+    enum tty_event_kind kind;
+    int key;             /* TTY_KEY: ncurses key code (KEY_UP, 'w', 27 = Esc, ...) */
+    int mx, my;          /* TTY_MOUSE: cell position */
+    int button;          /* 1 = left; 4/5 = wheel up/down; 0 = motion */
+    bool pressed, released;
+};
+
+struct tty {
+    int cols, rows;
+    bool mouse;          /* the terminal reports mouse events */
+};
+
+/* Fails (with a message) when stdin/stdout is not a terminal or TERM is unusable. */
+int tty_open(struct tty *t, struct err *e);
+void tty_close(struct tty *t);
+/* Re-read the size after a resize event. */
+void tty_refresh_size(struct tty *t);
+/* Wait up to timeout_ms (-1 = forever) for one event; returns its kind (TTY_NONE on
+ * timeout or when a quit signal arrived). */
+enum tty_event_kind tty_next_event(struct tty *t, int timeout_ms, struct tty_event *ev);
+/* Write all of buf to the terminal (retrying short writes); 0 or -1. */
+int tty_write(const char *buf, size_t n);
+/* A request whose answer (TTY_SYNC_REPLY) tells the caller the terminal has processed
+ * everything written before it: append it to a frame to count frames in flight. */
+#define TTY_SYNC_REQUEST "\033[5n" /* DSR; the terminal answers ESC [ 0 n */
+/* Has SIGINT/SIGTERM/SIGHUP/SIGQUIT arrived? */
+bool tty_signalled(void);
+
+#endif

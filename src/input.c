@@ -1,0 +1,53 @@
+/* input.c: the key table (see input.h). */
+#include "input.h"
+
+#include <curses.h>
+
+static const struct input_binding bindings[] = {
+    {'w', IN_FORWARD},     {'W', IN_FORWARD},    {'s', IN_BACK},        {'S', IN_BACK},
+    {'a', IN_LEFT},        {'A', IN_LEFT},       {'d', IN_RIGHT},       {'D', IN_RIGHT},
+    {'Q', IN_DOWN},        {'z', IN_DOWN},       {'Z', IN_DOWN},        {'e', IN_UP},
+    {'E', IN_UP},          {'x', IN_UP},         {'X', IN_UP},          {KEY_LEFT, IN_YAW_LEFT},
+    {KEY_RIGHT, IN_YAW_RIGHT}, {KEY_UP, IN_PITCH_UP}, {KEY_DOWN, IN_PITCH_DOWN},
+    {'o', IN_ORBIT},       {'+', IN_FOV_IN},     {'=', IN_FOV_IN},      {'-', IN_FOV_OUT},
+    {'[', IN_SLOWER},      {']', IN_FASTER},     {'r', IN_RESET},       {'\t', IN_NEXT_SCENE},
+    {KEY_BTAB, IN_PREV_SCENE}, {'m', IN_SHADE},  {'f', IN_FILTER},      {'c', IN_CULL},
+    {'l', IN_LIGHT},       {'v', IN_VIEW},       {'p', IN_PERSPECTIVE}, {' ', IN_PAUSE},
+    {'h', IN_HELP},        {'?', IN_HELP},       {'q', IN_QUIT},        {27, IN_QUIT},
+};
+
+static const char *const help[] = {
+    "w s        forward / back (orbit: zoom)",
+    "a d        strafe left / right",
+    "Q e / z x  down / up",
+    "arrows     turn (yaw, pitch)",
+    "mouse      drag: orbit, wheel: zoom",
+    "o          orbit around target / fly",
+    "+ -        narrower / wider field of view",
+    "[ ]        slower / faster movement",
+    "r          reset camera",
+    "Tab S-Tab  next / previous scene",
+    "m          shading: wire flat gouraud phong textured",
+    "f          texture filter nearest / bilinear",
+    "c          culling none / back / front",
+    "l          rotate the light",
+    "v          view: colour depth normals overdraw wireframe",
+    "p          texture perspective method",
+    "Space      pause / resume auto-rotation",
+    "h ?        this help",
+    "q Esc      quit",
+    0,
+};
+
+enum input_cmd input_command(int key)
+{
+    for (unsigned i = 0; i < sizeof bindings / sizeof bindings[0]; i++)
+        if (bindings[i].key == key)
+            return bindings[i].cmd;
+    return IN_NONE;
+}
+
+const char *input_help_line(int i)
+{
+    return i >= 0 && i < (int)(sizeof help / sizeof help[0]) ? help[i] : 0;
+}

@@ -1,0 +1,187 @@
+/* tty.c: terminal modes, input events, frame writes, restore on every exit path (tty.h). */
+#include "tty.h"
+
+#include <curses.h>
+#include <errno.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <termios.h>
+#include <unistd.h>
+
+/* The signal handlers' state. Signal handlers can only reach globals; these are the only
+ * mutable globals in rastty, written before the handlers are installed (saved termios) or
+ * only as sig_atomic_t flags. */
+static struct termios saved_termios;
+static volatile sig_atomic_t have_saved, quit_signal;
+static SCREEN *screen_handle;
+
+static const char RESET_BYTES[] = "\033[?2026l\033[0m\033[?1000l\033[?1002l\033[?1003l"
+                                  "\033[?1006l\033[?25h\033[?1049l";
+
+static void on_quit(int sig)
+{
+    quit_signal = sig;
+}
+
+static void on_crash(int sig)
+{
+    if (have_saved)
+        tcsetattr(STDIN_FILENO, TCSANOW, &saved_termios);
+    ssize_t unused = write(STDOUT_FILENO, RESET_BYTES, sizeof RESET_BYTES - 1);
+    (void)unused;
+    signal(sig, SIG_DFL);
+    raise(sig);
+}
+
+bool tty_signalled(void)
+{
+    return quit_signal != 0;
+}
+
+static void install_handlers(void)
+{
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sigemptyset(&sa.sa_mask);
+    sa.sa_handler = on_quit; /* no SA_RESTART: a blocking read returns with EINTR */
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+    sigaction(SIGHUP, &sa, NULL);
+    sigaction(SIGQUIT, &sa, NULL);
+    sa.sa_handler = on_crash;
+    sa.sa_flags = SA_RESETHAND;
+    static const int crash[] = {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT};
+    for (unsigned i = 0; i < sizeof crash / sizeof crash[0]; i++)
+        sigaction(crash[i], &sa, NULL);
+    signal(SIGPIPE, SIG_IGN);
+}
+
+int tty_open(struct tty *t, struct err *e)
+{
+    memset(t, 0, sizeof *t);
+    if (!isatty(STDIN_FILENO) || !isatty(STDOUT_FILENO))
+        return err_set(e, "rastty: the viewer needs a terminal on stdin and stdout "
+                          "(use 'rastty render' or 'rastty dump' for files and pipes)");
+    if (tcgetattr(STDIN_FILENO, &saved_termios) == 0)
+        have_saved = 1;
+    install_handlers();
+    screen_handle = newterm(NULL, stdout, stdin);
+    if (!screen_handle)
+        return err_set(e, "rastty: cannot use this terminal (TERM=%s)",
+                       getenv("TERM") ? "set but unknown" : "unset");
+    set_term(screen_handle);
+    cbreak();
+    noecho();
+    nonl();
+    keypad(stdscr, TRUE);
+    set_escdelay(25);
+    curs_set(0);
+    refresh(); /* ncurses' one and only drawing: it clears the alternate screen */
+    mmask_t want = BUTTON1_PRESSED | BUTTON1_RELEASED | REPORT_MOUSE_POSITION |
+                   BUTTON4_PRESSED | BUTTON5_PRESSED;
+    t->mouse = mousemask(want, NULL) != 0;
+    mouseinterval(0);
+    tty_refresh_size(t);
+    return 0;
+}
+
+void tty_close(struct tty *t)
+{
+    (void)t;
+    if (screen_handle) {
+        mousemask(0, NULL);
+        tty_write("\033[?2026l\033[0m", 12);
+        curs_set(1);
+        endwin();
+        delscreen(screen_handle);
+        screen_handle = NULL;
+    }
+    if (have_saved)
+        tcsetattr(STDIN_FILENO, TCSANOW, &saved_termios);
+}
+
+void tty_refresh_size(struct tty *t)
+{
+    int r, c;
+    getmaxyx(stdscr, r, c);
+    t->rows = r;
+    t->cols = c;
+}
+
+int tty_write(const char *buf, size_t n)
+{
+    while (n > 0) {
+        ssize_t w = write(STDOUT_FILENO, buf, n);
+        if (w < 0) {
+            if (errno == EINTR && !quit_signal)
+                continue;
+            return -1;
+        }
+        buf += w;
+        n -= (size_t)w;
+    }
+    return 0;
+}
+
+/* After an Esc: a CSI sequence ncurses did not recognise (our DSR answer), or the Esc key. */
+static enum tty_event_kind after_escape(struct tty_event *ev)
+{
+    timeout(0);
+    int c = getch();
+    if (c != '[') {
+        if (c != ERR)
+            ungetch(c);
+        ev->kind = TTY_KEY;
+        ev->key = 27;
+        return ev->kind;
+    }
+    char seq[16];
+    size_t n = 0;
+    for (;;) {
+        c = getch();
+        if (c == ERR || n + 1 >= sizeof seq)
+            break;
+        seq[n++] = (char)c;
+        if (c >= 0x40 && c <= 0x7e)
+            break;
+    }
+    seq[n] = '\0';
+    ev->kind = strcmp(seq, "0n") == 0 ? TTY_SYNC_REPLY : TTY_NONE;
+    return ev->kind;
+}
+
+enum tty_event_kind tty_next_event(struct tty *t, int timeout_ms, struct tty_event *ev)
+{
+    memset(ev, 0, sizeof *ev);
+    if (quit_signal)
+        return TTY_NONE;
+    timeout(timeout_ms);
+    int c = getch();
+    if (c == ERR)
+        return TTY_NONE;
+    if (c == KEY_RESIZE) {
+        tty_refresh_size(t);
+        ev->kind = TTY_RESIZE;
+        return ev->kind;
+    }
+    if (c == 27)
+        return after_escape(ev);
+    if (c == KEY_MOUSE) {
+        MEVENT m;
+        if (getmouse(&m) != OK)
+            return TTY_NONE;
+        ev->kind = TTY_MOUSE;
+        ev->mx = m.x;
+        ev->my = m.y;
+        ev->pressed = (m.bstate & (BUTTON1_PRESSED | BUTTON4_PRESSED | BUTTON5_PRESSED)) != 0;
+        ev->released = (m.bstate & BUTTON1_RELEASED) != 0;
+        ev->button = (m.bstate & BUTTON4_PRESSED) ? 4 : (m.bstate & BUTTON5_PRESSED) ? 5
+                     : (m.bstate & (BUTTON1_PRESSED | BUTTON1_RELEASED)) ? 1 : 0;
+        return ev->kind;
+    }
+    ev->kind = TTY_KEY;
+    ev->key = c;
+    return ev->kind;
+}
