@@ -61,6 +61,7 @@ struct view {
     struct encode_screen es;
     struct encode_opts eo;
     struct pipeline *pipe;
+    struct skybox default_sky;
     int fb_cols, fb_rows; /* cells used by the picture */
     bool dirty, hud_dirty;
     bool sync_ok;         /* the terminal answers DSR */
@@ -73,6 +74,9 @@ struct view {
     char message[96];
     double message_until;
     char hud_text[512];
+    /* everything for one update (frame, overlays, status line, DSR) goes out in one write */
+    char *out;
+    size_t out_len, out_cap;
 };
 
 static double now_s(void)
@@ -80,6 +84,28 @@ static double now_s(void)
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+/* Append to the pending output; grows rarely (the frame bound is reserved on resize). */
+static void out_add(struct view *v, const char *bytes, size_t n)
+{
+    if (v->out_len + n > v->out_cap) {
+        size_t cap = (v->out_len + n) * 2;
+        char *nb = realloc(v->out, cap);
+        if (!nb)
+            return; /* drop this piece; the next full frame repairs the screen */
+        v->out = nb;
+        v->out_cap = cap;
+    }
+    memcpy(v->out + v->out_len, bytes, n);
+    v->out_len += n;
+}
+
+static int out_flush(struct view *v)
+{
+    int rc = v->out_len ? tty_write(v->out, v->out_len) : 0;
+    v->out_len = 0;
+    return rc;
 }
 
 static void set_message(struct view *v, const char *msg)
@@ -112,6 +138,24 @@ static int find_demo(char *out, size_t n)
     }
     snprintf(out, n, "%s/demo.rsc", RASTTY_DATADIR);
     return access(out, R_OK);
+}
+
+/* The viewer's default sky for scenes that set neither a sky nor a background (and no
+ * --background): the procedural one, sun toward the first light. render and dump keep the
+ * conventions' black background. */
+static const struct skybox *scene_sky(struct view *v)
+{
+    const struct scene *s = v->scenes[v->cur];
+    if (s->has_sky)
+        return &s->sky;
+    if (s->has_background || v->o->background_set)
+        return NULL;
+    if (v->default_sky.n_levels == 0) {
+        struct err ignored;
+        if (skybox_procedural(&v->default_sky, v->ro.lights[0].dir, &ignored))
+            return NULL;
+    }
+    return &v->default_sky;
 }
 
 static double scene_extent(const struct scene *s)
@@ -158,7 +202,7 @@ static int resize(struct view *v, struct err *e)
         v->fb_rows = rows;
     }
     encode_screen_invalidate(&v->es);
-    tty_write("\033[0m\033[2J", 8);
+    out_add(v, "\033[0m\033[2J", 8);
     v->dirty = v->hud_dirty = true;
     return 0;
 }
@@ -204,7 +248,7 @@ static void hud_draw(struct view *v)
     int k = snprintf(buf, sizeof buf, "\033[%d;1H%s%.*s%*s\033[0m", v->tty.rows, sgr, len, text,
                      width - len > 0 && width < 600 ? width - len : 0, "");
     if (k > 0)
-        tty_write(buf, (size_t)(k < (int)sizeof buf ? k : (int)sizeof buf - 1));
+        out_add(v, buf, (size_t)(k < (int)sizeof buf ? k : (int)sizeof buf - 1));
     v->hud_dirty = false;
 }
 
@@ -230,9 +274,9 @@ static void help_draw(struct view *v, int *x0, int *y0, int *w, int *h)
         int k = snprintf(buf, sizeof buf, "\033[%d;%dH%s  %-*.*s  ", *y0 + i + 1, *x0 + 1, sgr,
                          width, width, text);
         if (k > 0)
-            tty_write(buf, (size_t)(k < avail + 16 ? k : avail + 16));
+            out_add(v, buf, (size_t)(k < avail + 16 ? k : avail + 16));
     }
-    tty_write("\033[0m", 4);
+    out_add(v, "\033[0m", 4);
 }
 
 static int draw_frame(struct view *v, struct err *e)
@@ -240,8 +284,8 @@ static int draw_frame(struct view *v, struct err *e)
     if (v->fb_cols == 0)
         return 0;
     const struct scene *s = v->scenes[v->cur];
-    if (pipeline_draw(v->pipe, s->items, s->n_items, s->has_sky ? &s->sky : NULL, &v->cam,
-                      &v->ro, &v->fb, &v->st, e))
+    if (pipeline_draw(v->pipe, s->items, s->n_items, scene_sky(v), &v->cam, &v->ro, &v->fb,
+                      &v->st, e))
         return -1;
     double t0 = now_s();
     size_t n;
@@ -249,8 +293,7 @@ static int draw_frame(struct view *v, struct err *e)
     const char *bytes = encode_fb(&v->es, &v->fb, &v->eo, &n, NULL);
     v->encode_ms = (now_s() - t0) * 1e3;
     v->last_bytes = n;
-    if (n && tty_write(bytes, n))
-        return err_set(e, "rastty: cannot write to the terminal");
+    out_add(v, bytes, n);
     if (v->help) {
         int x, y, w, h;
         help_draw(v, &x, &y, &w, &h);
@@ -266,11 +309,13 @@ static int draw_frame(struct view *v, struct err *e)
         v->next_hud_at = t + HUD_PERIOD_S;
     }
     if (v->sync_ok && n) {
-        tty_write(TTY_SYNC_REQUEST, sizeof TTY_SYNC_REQUEST - 1);
+        out_add(v, TTY_SYNC_REQUEST, sizeof TTY_SYNC_REQUEST - 1);
         if (v->inflight++ == 0)
             v->sync_sent_at = t;
     }
     v->dirty = false;
+    if (out_flush(v))
+        return err_set(e, "rastty: cannot write to the terminal");
     return 0;
 }
 
@@ -457,6 +502,7 @@ static int loop(struct view *v, struct err *e)
                 return -1;
         } else if (v->hud_dirty && !v->dirty) {
             hud_draw(v);
+            out_flush(v);
         }
     }
     return 0;
@@ -536,6 +582,8 @@ out:
     encode_screen_free(&v->es);
     fb_free(&v->fb);
     pipeline_destroy(v->pipe);
+    skybox_free(&v->default_sky);
+    free(v->out);
     free(v);
     return rc;
 }
