@@ -1,0 +1,2 @@
+model tri.obj
+background 1 2 300

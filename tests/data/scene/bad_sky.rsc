@@ -1,0 +1,2 @@
+model tri.obj
+sky a.png b.png

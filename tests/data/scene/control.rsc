@@ -1,0 +1,2 @@
+model tri.obj
+frobnicate [31mred

@@ -1,0 +1,1 @@
+model missing.obj

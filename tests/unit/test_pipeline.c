@@ -1,0 +1,132 @@
+/* test_pipeline.c: whole frames — culling a mesh by its bounding sphere, hidden lines,
+ * near-plane crossing, and that a failed depth test changes nothing. */
+#include <string.h>
+
+#include "obj.h"
+#include "pipeline.h"
+#include "test.h"
+
+static const char quad[] = "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n";
+
+struct frame {
+    struct mesh m;
+    struct fb fb;
+    struct pipeline *p;
+    struct draw_item item;
+    struct camera cam;
+    struct render_opts ro;
+    struct frame_stats st;
+};
+
+static int frame_init(struct frame *f, const char *obj, int w, int h)
+{
+    memset(f, 0, sizeof *f);
+    if (obj_parse(obj, strlen(obj), NULL, &f->m, NULL) || fb_init(&f->fb, w, h, true, NULL))
+        return -1;
+    f->p = pipeline_new();
+    f->item.mesh = &f->m;
+    f->item.model = m4_identity();
+    camera_default(&f->cam);
+    render_opts_default(&f->ro);
+    f->ro.shade = SHADE_UNLIT;
+    return f->p ? 0 : -1;
+}
+
+static void frame_free(struct frame *f)
+{
+    pipeline_destroy(f->p);
+    fb_free(&f->fb);
+    mesh_free(&f->m);
+}
+
+static int draw(struct frame *f)
+{
+    return pipeline_draw(f->p, &f->item, 1, NULL, &f->cam, &f->ro, &f->fb, &f->st, NULL);
+}
+
+static int covered(const struct fb *fb)
+{
+    int n = 0;
+    for (int i = 0; i < fb->w * fb->h; i++)
+        n += fb->depth[i] < 1;
+    return n;
+}
+
+TEST(mesh_outside_frustum_is_culled_whole)
+{
+    struct frame f;
+    REQUIRE(frame_init(&f, quad, 32, 32) == 0);
+    REQUIRE(draw(&f) == 0);
+    CHECK_EQ_INT(f.st.meshes_culled, 0);
+    CHECK(covered(&f.fb) > 0);
+    f.item.model = m4_translate(v3(0, 0, 10)); /* behind the camera */
+    REQUIRE(draw(&f) == 0);
+    CHECK_EQ_INT(f.st.meshes_culled, 1);
+    CHECK_EQ_INT(f.st.tris_drawn, 0);
+    CHECK_EQ_INT(covered(&f.fb), 0);
+    f.item.model = m4_translate(v3(30, 0, 0)); /* far off to the right */
+    REQUIRE(draw(&f) == 0);
+    CHECK_EQ_INT(f.st.meshes_culled, 1);
+    frame_free(&f);
+}
+
+TEST(near_plane_crossing_keeps_visible_part)
+{
+    /* a floor quad from behind the eye to far in front: clipped, and it covers the lower
+     * half of the picture right up to the bottom edge */
+    struct frame f;
+    REQUIRE(frame_init(&f, "v -50 -1 50\nv 50 -1 50\nv 50 -1 -50\nv -50 -1 -50\nf 1 2 3 4\n",
+                       40, 30) == 0);
+    REQUIRE(draw(&f) == 0);
+    CHECK(f.st.tris_clipped > 0);
+    for (int x = 0; x < 40; x++) {
+        CHECK(f.fb.depth[29 * 40 + x] < 1); /* bottom row covered */
+        CHECK(f.fb.depth[0 * 40 + x] == 1); /* top row (sky) empty */
+    }
+    frame_free(&f);
+}
+
+TEST(hidden_lines_removes_back_edges)
+{
+    /* a cube seen along a diagonal: without hidden-line removal its 3 back faces' edges show,
+     * with it fewer pixels are lit */
+    const char *cube = "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\n"
+                       "v 1 1 1\nv -1 1 1\nf 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 4 8 7 3\n"
+                       "f 1 5 8 4\nf 2 3 7 6\n";
+    struct frame f;
+    REQUIRE(frame_init(&f, cube, 64, 64) == 0);
+    f.cam.eye = v3(3, 2.5, 4);
+    f.ro.shade = SHADE_WIRE;
+    REQUIRE(draw(&f) == 0);
+    int all = 0, visible = 0;
+    for (int i = 0; i < 64 * 64; i++)
+        all += f.fb.rgb[3 * i] != 0;
+    f.ro.hidden_lines = true;
+    REQUIRE(draw(&f) == 0);
+    for (int i = 0; i < 64 * 64; i++)
+        visible += f.fb.rgb[3 * i] != 0;
+    CHECK(all > 0);
+    CHECK(visible > all / 2);
+    CHECK(visible < all);
+    frame_free(&f);
+}
+
+TEST(failed_depth_test_changes_nothing)
+{
+    /* draw a near red quad, then a far green one behind it: the red pixels and their depth
+     * stay exactly as they were */
+    const char *two = "mtllib none.mtl\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n"
+                      "v -2 -2 -1\nv 2 -2 -1\nv 2 2 -1\nv -2 2 -1\nf 1 2 3 4\nf 5 6 7 8\n";
+    struct frame f;
+    REQUIRE(frame_init(&f, two, 32, 32) == 0);
+    float kd_red[3] = {1, 0, 0};
+    f.item.kd_override = kd_red;
+    REQUIRE(draw(&f) == 0);
+    /* same frame, but count: every covered centre pixel was tested twice, shaded once */
+    int centre = 16 * 32 + 16;
+    CHECK_EQ_INT(f.fb.overdraw[centre], 2);
+    CHECK_EQ_INT(f.fb.rgb[3 * centre], 255);
+    CHECK_EQ_INT(f.fb.rgb[3 * centre + 1], 0);
+    CHECK(f.st.pixels_shaded < f.st.pixels_tested);
+    frame_free(&f);
+}
