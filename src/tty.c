@@ -83,14 +83,19 @@ int tty_open(struct tty *t, struct err *e)
                    BUTTON4_PRESSED | BUTTON5_PRESSED;
     t->mouse = mousemask(want, NULL) != 0;
     mouseinterval(0);
+    /* ncurses asks for press/release reports only (?1000); ?1002 adds motion while a button
+     * is held, in the same format, so a drag orbits live instead of on release */
+    if (t->mouse)
+        tty_write("\033[?1002h", 8);
     tty_refresh_size(t);
     return 0;
 }
 
 void tty_close(struct tty *t)
 {
-    (void)t;
     if (screen_handle) {
+        if (t->mouse)
+            tty_write("\033[?1002l", 8);
         mousemask(0, NULL);
         tty_write("\033[?2026l\033[0m", 12);
         curs_set(1);
