@@ -1,4 +1,4 @@
-/* mtl.h: Wavefront MTL material library, plus the lexical rules OBJ and MTL share.
+/* mtl.h: Wavefront MTL material library.
  *
  * newmtl, Kd, Ka, Ks, Ns, map_Kd (options such as -mm 0 1, -o u v w, -s u v w, -bm x,
  * -clamp on may precede the file name; the rest of the line is the file name). Other
@@ -16,8 +16,8 @@
  * each map_Kd, and obj.c loads the ones its faces use (mtl_load_texture) so that the
  * error names the MTL line. Errors: "path:line: message", return -1.
  *
- * Called by obj.c. The lexer helpers at the end (whole-file read, number parsing) are used
- * by obj.c too: one number syntax for both formats, one place to get it right. */
+ * Called by obj.c. Whitespace, tokens, the comment rule for names, the number syntax and the
+ * whole-file read are lex.h's, shared with obj.c: one syntax for both formats. */
 #ifndef RASTTY_MTL_H
 #define RASTTY_MTL_H
 
@@ -44,20 +44,5 @@ void mtl_default(struct material *m, const char *name);
 /* Decode material i's map_Kd (texture_paths[i] must be non-NULL). Errors name the MTL file
  * and line: "lib.mtl:7: cannot open texture 'dir/x.png': No such file or directory". */
 int mtl_load_texture(const struct mtl_lib *lib, uint32_t i, struct texture *out, struct err *e);
-
-/* Lexer helpers shared with obj.c. */
-
-/* Read a whole file into a malloc'd buffer (NUL-terminated; *len_out excludes the NUL).
- * Returns 0, or an errno value (ENOMEM, EISDIR, ...) with *text_out = NULL. */
-int mtl_read_file(const char *path, char **text_out, size_t *len_out);
-
-enum { MTL_NUM_OK = 0, MTL_NUM_SYNTAX = -1, MTL_NUM_RANGE = -2 };
-/* Parse the whole token s[0..n) as a decimal float: [+-] digits [. digits] [e [+-] digits]
- * (".5" and "5." too). No hex, inf or nan; a result that overflows float is MTL_NUM_RANGE,
- * underflow gives 0 or a subnormal. Correctly rounded (bit-identical to glibc strtof) and
- * locale-independent: up to 15-16 significant digits with a small exponent go through an
- * exact double computation (Clinger's fast path); the rest through strtof on a rewritten
- * token without a decimal point. */
-int mtl_lex_float(const char *s, size_t n, float *out);
 
 #endif

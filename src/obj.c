@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "lex.h"
 #include "mtl.h"
 
 #define OBJ_QUOTE_PATH 100
@@ -90,64 +91,20 @@ static void strmap_free(struct strmap *m)
     memset(m, 0, sizeof *m);
 }
 
-/* ---- lexing --------------------------------------------------------------------------- */
-
-static bool is_ws(char c)
-{
-    return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
-}
-
-static const char *skip_ws(const char *p, const char *end)
-{
-    while (p < end && is_ws(*p))
-        p++;
-    return p;
-}
-
-static const char *tok_end(const char *p, const char *end)
-{
-    while (p < end && !is_ws(*p))
-        p++;
-    return p;
-}
+/* ---- OBJ-only lexing (the rules shared with MTL are in lex.h) ------------------------- */
 
 /* Numbers and indices: a token also ends at '#', which ends the line. */
 static const char *num_end(const char *p, const char *end)
 {
-    while (p < end && !is_ws(*p) && *p != '#')
+    while (p < end && !lex_is_ws(*p) && *p != '#')
         p++;
     return p;
 }
 
 static const char *num_next(const char *p, const char *end)
 {
-    p = skip_ws(p, end);
+    p = lex_skip_ws(p, end);
     return p < end && *p == '#' ? end : p;
-}
-
-static bool tok_is(const char *t, const char *te, const char *word, size_t n)
-{
-    return (size_t)(te - t) == n && memcmp(t, word, n) == 0;
-}
-
-/* For names: a comment starts at a '#' that begins the text or follows whitespace. */
-static const char *name_comment(const char *p, const char *end)
-{
-    for (const char *q = p; q < end; q++) {
-        q = memchr(q, '#', (size_t)(end - q));
-        if (!q)
-            break;
-        if (q == p || is_ws(q[-1]))
-            return q;
-    }
-    return end;
-}
-
-static const char *rtrim(const char *p, const char *end)
-{
-    while (end > p && is_ws(end[-1]))
-        end--;
-    return end;
 }
 
 /* Grow an array to hold `need` elements; returns the (maybe moved) array, or NULL with the
@@ -220,11 +177,9 @@ static int parse_floats(struct oparse *P, const char *kw, const char *p, const c
     while (n < want && (p = num_next(p, end)) < end) {
         const char *t = p;
         p = num_end(p, end);
-        int rc = mtl_lex_float(t, (size_t)(p - t), &out[n]);
-        if (rc == MTL_NUM_RANGE)
-            return fail_text(P, "number out of range", t, p);
+        int rc = lex_float(t, (size_t)(p - t), &out[n]);
         if (rc)
-            return fail_text(P, "bad number", t, p);
+            return fail_text(P, lex_num_problem(rc), t, p);
         n++;
     }
     if (n < need)
@@ -457,7 +412,7 @@ static int load_library(struct oparse *P, const char *name, size_t n)
     P->libs = nl;
     char *text;
     size_t len;
-    int rc = mtl_read_file(full, &text, &len);
+    int rc = lex_read_file(full, &text, &len);
     if (rc) {
         char q[OBJ_QUOTE_PATH + 8];
         err_quote(full, strlen(full), OBJ_QUOTE_PATH, q, sizeof q);
@@ -478,9 +433,9 @@ static int parse_libraries(struct oparse *P, const char *p, const char *end)
 {
     if (!P->path)
         return 0; /* in-memory text has no directory to look in */
-    while ((p = skip_ws(p, end)) < end) {
+    while ((p = lex_skip_ws(p, end)) < end) {
         const char *t = p;
-        p = tok_end(p, end);
+        p = lex_tok_end(p, end);
         if (load_library(P, t, (size_t)(p - t)))
             return -1;
     }
@@ -489,31 +444,28 @@ static int parse_libraries(struct oparse *P, const char *p, const char *end)
 
 static int parse_line(struct oparse *P, const char *p, const char *end)
 {
-    p = skip_ws(p, end);
-    if (p == end || *p == '#')
-        return 0;
-    const char *kw = p;
-    while (p < end && !is_ws(*p) && *p != '#')
-        p++;
-    const char *kwe = p;
+    const char *kwe, *kw = lex_keyword(p, end, &kwe);
+    if (!kw)
+        return 0; /* blank or comment */
+    p = kwe;
     size_t kn = (size_t)(kwe - kw);
     if (kn <= 2) {
         /* numbers and indices: '#' anywhere ends the line (see num_end) */
-        if (tok_is(kw, kwe, "v", 1))
+        if (lex_tok_is(kw, kwe, "v"))
             return add_position(P, p, end);
-        if (tok_is(kw, kwe, "vt", 2))
+        if (lex_tok_is(kw, kwe, "vt"))
             return add_uv(P, p, end);
-        if (tok_is(kw, kwe, "vn", 2))
+        if (lex_tok_is(kw, kwe, "vn"))
             return add_normal(P, p, end);
-        if (tok_is(kw, kwe, "f", 1))
+        if (lex_tok_is(kw, kwe, "f"))
             return parse_face(P, p, end);
         return 0; /* o, g, s, l, p, vp, ... */
     }
-    end = rtrim(p, name_comment(p, end));
-    p = skip_ws(p, end);
-    if (tok_is(kw, kwe, "usemtl", 6))
+    end = lex_rtrim(p, lex_comment_start(p, end));
+    p = lex_skip_ws(p, end);
+    if (lex_tok_is(kw, kwe, "usemtl"))
         return use_material(P, p, end);
-    if (tok_is(kw, kwe, "mtllib", 6))
+    if (lex_tok_is(kw, kwe, "mtllib"))
         return parse_libraries(P, p, end);
     return 0;
 }
@@ -669,9 +621,7 @@ int obj_parse(const char *text, size_t len, const char *path, struct mesh *out, 
 
     const char *p = text, *end = text + len;
     while (p < end) {
-        const char *eol = memchr(p, '\n', (size_t)(end - p));
-        if (!eol)
-            eol = end;
+        const char *eol = lex_line_end(p, end);
         P.line++;
         if (parse_line(&P, p, eol))
             goto done;
@@ -690,7 +640,7 @@ int obj_load(const char *path, struct mesh *out, struct err *e)
     char *text;
     size_t len;
     memset(out, 0, sizeof *out);
-    int rc = mtl_read_file(path, &text, &len);
+    int rc = lex_read_file(path, &text, &len);
     if (rc) {
         char q[OBJ_QUOTE_PATH + 8];
         err_quote(path, strlen(path), OBJ_QUOTE_PATH, q, sizeof q);

@@ -1,11 +1,13 @@
 /* fuzz_mtl.c: libFuzzer target for mtl_parse (path NULL) and, differentially, for the
- * number lexer: every whitespace-separated token it accepts must give exactly strtof's
- * float (the fuzzer runs in the C locale). See tests/fuzz/README. */
+ * number lexer lex_float (lex.h, shared with OBJ): every whitespace-separated token it
+ * accepts must give exactly strtof's float (the fuzzer runs in the C locale). See
+ * tests/fuzz/README. */
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "lex.h"
 #include "mtl.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
@@ -20,8 +22,8 @@ static void check_numbers(const char *s, size_t n)
         while (j < n && s[j] != ' ' && s[j] != '\n' && s[j] != '\t')
             j++;
         float got;
-        int rc = mtl_lex_float(s + i, j - i, &got);
-        if (rc != MTL_NUM_SYNTAX) {
+        int rc = lex_float(s + i, j - i, &got);
+        if (rc != LEX_NUM_SYNTAX) {
             char *tok = malloc(j - i + 1), *endp;
             if (!tok)
                 abort();
@@ -30,7 +32,7 @@ static void check_numbers(const char *s, size_t n)
             float want = strtof(tok, &endp);
             if (*endp != '\0') /* we accepted something strtof does not read whole */
                 abort();
-            if (rc == MTL_NUM_RANGE ? !isinf(want) : memcmp(&got, &want, sizeof got) != 0)
+            if (rc == LEX_NUM_RANGE ? !isinf(want) : memcmp(&got, &want, sizeof got) != 0)
                 abort();
             free(tok);
         }
