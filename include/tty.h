@@ -49,7 +49,8 @@ int tty_write(const char *buf, size_t n);
 /* A request whose answer (TTY_SYNC_REPLY) tells the caller the terminal has processed
  * everything written before it: append it to a frame to count frames in flight. */
 #define TTY_SYNC_REQUEST "\033[5n" /* DSR; the terminal answers ESC [ 0 n */
-/* Has SIGINT/SIGTERM/SIGHUP/SIGQUIT arrived? */
+/* Has SIGINT/SIGTERM/SIGHUP/SIGQUIT arrived? Which one (0 = none)? */
 bool tty_signalled(void);
+int tty_quit_signal(void);
 
 #endif

@@ -13,7 +13,8 @@
 #include "err.h"
 #include "options.h"
 
-/* Returns the exit status (0, or 1/2 with e filled); the terminal is restored in all cases. */
+/* Returns the exit status (0; 1/2 with e filled; 128 + signal when SIGINT, SIGTERM, SIGHUP
+ * or SIGQUIT ended it); the terminal is restored in all cases. */
 int view_run(const struct options *o, struct err *e);
 
 #endif

@@ -108,8 +108,10 @@ int cmd_dump(const struct options *o, struct err *e)
             return err_set(e, "rastty dump: --ppm-dir %s: not a directory", o->ppm_dir), 2;
     }
     struct camera_path cp = {0};
-    if (o->camera_path && path_load(o->camera_path, &cp, e))
+    if (o->camera_path && path_load(o->camera_path, &cp, e)) {
+        path_free(&cp);
         return 2;
+    }
     struct scene scene;
     if (o->texture ? scene_load_model(o->inputs[0], o->texture, &scene, e)
                    : scene_load(o->inputs[0], &scene, e)) {

@@ -40,6 +40,11 @@ bool tty_signalled(void)
     return quit_signal != 0;
 }
 
+int tty_quit_signal(void)
+{
+    return (int)quit_signal;
+}
+
 static void install_handlers(void)
 {
     struct sigaction sa;

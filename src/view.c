@@ -117,25 +117,27 @@ static void set_message(struct view *v, const char *msg)
 
 /* ---- scenes ---- */
 
+/* demo.rsc: $RASTTY_ASSETS, else assets/ next to the binary (a build tree), else ./assets
+ * (running from the source tree), else the installed RASTTY_DATADIR. */
 static int find_demo(char *out, size_t n)
 {
     const char *env = getenv("RASTTY_ASSETS");
-    char exe[4096];
     if (env && *env) {
         snprintf(out, n, "%s/demo.rsc", env);
         return access(out, R_OK);
     }
+    char exe[4096];
     ssize_t len = readlink("/proc/self/exe", exe, sizeof exe - 1);
-    if (len > 0) {
-        exe[len] = '\0';
-        char *slash = strrchr(exe, '/');
-        if (slash) {
-            *slash = '\0';
-            snprintf(out, n, "%s/assets/demo.rsc", exe);
-            if (access(out, R_OK) == 0)
-                return 0;
-        }
+    char *slash = len > 0 ? (exe[len] = '\0', strrchr(exe, '/')) : NULL;
+    if (slash) {
+        *slash = '\0';
+        snprintf(out, n, "%s/assets/demo.rsc", exe);
+        if (access(out, R_OK) == 0)
+            return 0;
     }
+    snprintf(out, n, "assets/demo.rsc");
+    if (access(out, R_OK) == 0)
+        return 0;
     snprintf(out, n, "%s/demo.rsc", RASTTY_DATADIR);
     return access(out, R_OK);
 }
@@ -514,7 +516,7 @@ static int load_scenes(struct view *v, struct err *e)
     if (v->o->n_inputs == 0) {
         if (find_demo(demo, sizeof demo))
             return err_set(e, "rastty: cannot find the demo scene (looked in $RASTTY_ASSETS, "
-                              "./assets next to the binary and %s); run 'make' first",
+                              "assets/ next to the binary, ./assets and %s); run 'make' first",
                            RASTTY_DATADIR);
         v->paths[0] = demo;
         v->n_scenes = 1;
@@ -570,6 +572,8 @@ int view_run(const struct options *o, struct err *e)
     if (resize(v, e) == 0) {
         enter_scene(v);
         rc = loop(v, e) ? 1 : 0;
+        if (rc == 0 && tty_quit_signal()) /* the shell convention for "killed by" */
+            rc = 128 + tty_quit_signal();
     }
 out_tty:
     tty_close(&v->tty);

@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# bad_input.sh: every bad input gets one clear line naming the file (and line), exit status 2,
+# no crash, and never raw bytes from the input file on the terminal.
+source "$(dirname "$0")/lib/common.sh"
+
+# expect STATUS PATTERN CMD...: exit status STATUS, stderr one line matching PATTERN, no
+# control bytes in it (apart from the newline), nothing on stdout
+expect() {
+    local want=$1 pat=$2; shift 2
+    local err=$OUT/err.txt out=$OUT/out.txt rc
+    "$@" > "$out" 2> "$err"; rc=$?
+    local lines; lines=$(wc -l < "$err")
+    echo "exit $rc, stderr: $(cat "$err")"
+    [ "$rc" -eq "$want" ] || { echo "want exit $want"; return 1; }
+    [ "$lines" -eq 1 ] || { echo "want exactly one line on stderr, got $lines"; return 1; }
+    grep -qE -- "$pat" "$err" || { echo "stderr does not match /$pat/"; return 1; }
+    if LC_ALL=C grep -q $'[\x01-\x09\x0b-\x1f\x7f]' "$err"; then echo "control bytes in stderr"; return 1; fi
+    [ ! -s "$out" ] || { echo "unexpected stdout"; return 1; }
+}
+
+D=$OUT/files
+mkdir -p $D
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n' > $D/bad_index.obj
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 x 0\nf 1 2 3\n' > $D/bad_number.obj
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nusemtl \033[31mred\033]0;owned\007\nf 1 2 \033[2J3\n' > $D/control.obj
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nmtllib nothere.mtl\nf 1 2 3\n' > $D/missing_mtl.obj
+printf 'this is not an image\n' > $D/fake.png
+printf 'model %s/assets/cube.obj\nlight 1 1 1\nbackground 0 0 nine\n' "$PWD" > $D/bad.rsc
+head -c 4096 /dev/urandom > $D/random.obj
+
+check malformed_obj_index expect 2 "bad_index.obj:4:" "$BIN" render $D/bad_index.obj --out $OUT/x.png
+check malformed_obj_number expect 2 "bad_number.obj:4:" "$BIN" render $D/bad_number.obj --out $OUT/x.png
+check control_bytes_never_echoed expect 2 "control.obj:6:" "$BIN" render $D/control.obj --out $OUT/x.png
+check missing_mtllib_names_obj_line expect 2 "missing_mtl.obj:4:.*nothere.mtl" "$BIN" render $D/missing_mtl.obj --out $OUT/x.png
+check missing_model_file expect 2 "nope.obj" "$BIN" render $D/nope.obj --out $OUT/x.png
+check corrupt_texture expect 2 "fake.png" "$BIN" render assets/cube.obj --texture $D/fake.png --out $OUT/x.png
+check scene_file_error_names_line expect 2 "bad.rsc:3:" "$BIN" render $D/bad.rsc --out $OUT/x.png
+check random_bytes_obj expect 2 "random.obj" "$BIN" render $D/random.obj --out $OUT/x.png
+check bad_flag_value expect 2 "--fov" "$BIN" render assets/cube.obj --fov abc --out $OUT/x.png
+check unknown_flag expect 2 "unknown option" "$BIN" render assets/cube.obj --frobnicate --out $OUT/x.png
+check zero_size expect 2 "--size" "$BIN" render assets/cube.obj --size 0x0 --out $OUT/x.png
+check huge_size expect 2 "--size" "$BIN" render assets/cube.obj --size 9000x10 --out $OUT/x.png
+check flag_for_other_subcommand expect 2 "does not apply" "$BIN" render assets/cube.obj --diff --out $OUT/x.png
+check missing_out expect 2 "--out" "$BIN" render assets/cube.obj
+check bad_output_extension expect 2 "\\.ppm or \\.png" "$BIN" render assets/cube.obj --out $OUT/x.jpg
+check eye_equals_target expect 2 "differ" "$BIN" render assets/cube.obj --eye 0,0,0 --out $OUT/x.png
+check dump_bad_camera_path expect 2 "path.txt:2:" sh -c "printf '0 0 3 0 0 0\nnot numbers\n' > $D/path.txt; exec $BIN dump assets/cube.obj --camera-path $D/path.txt --out $OUT/x.ans"
+check ansi2ppm_rejects_garbage expect 2 "byte" sh -c "printf '\033[H\033[38;2;1;2;3mX' > $D/g.ans; exec $BIN ansi2ppm $D/g.ans --out $OUT/x.ppm"
+check viewer_bad_file_before_terminal expect 2 "bad_index.obj:4:" "$BIN" $D/bad_index.obj
+
+finish

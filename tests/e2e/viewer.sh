@@ -1,0 +1,166 @@
+#!/usr/bin/env bash
+# viewer.sh (issue 4): the real viewer in a detached tmux: demo scene, camera keys move the
+# picture the expected way, resize refills the window, idle writes nothing, and every way
+# out (q, Esc, Ctrl-C, SIGTERM, SIGHUP) leaves the shell with echo and canonical mode on.
+source "$(dirname "$0")/lib/common.sh"
+
+NAMES=(demo_scene_starts_and_fills_window zoom_in_grows_the_model strafe_right_moves_model_left
+       fly_yaw_left_moves_model_right resize_refills_the_window idle_viewer_writes_nothing
+       tiny_and_huge_terminals quit_restores_terminal)
+if ! have_tmux; then
+    for n in "${NAMES[@]}"; do skip "$n" "tmux not installed"; done
+    finish
+fi
+
+# start the viewer in session $1 (cols $2 rows $3) with arguments; wait for its status line
+start() {
+    local s=$1 c=$2 r=$3; shift 3
+    tm new-session -d -s "$s" -x "$c" -y "$r" \
+        "$(printf '%q ' "$BIN" --colors truecolor "$@"); echo EXIT=\$? > $OUT/$s.exit; sleep 120"
+    wait_for 15 hud_has "$s" " fps " || { echo "no status line"; tm capture-pane -t "$s" -p | tail -3; return 1; }
+}
+hud_has() { tm capture-pane -t "$1" -p | tail -n 1 | grep -q -- "$2"; }
+# the picture of session $1 (status line dropped) as $OUT/$2.ppm; echo its stats
+picture() {
+    local rows; rows=$(tm display -p -t "$1" '#{pane_height}')
+    capture "$1" "$OUT/$2.ans" $((rows - 1))
+    decode "$OUT/$2.ans" "$OUT/$2.ppm" && ppmstat "$OUT/$2.ppm" "${3:-0,0,0}"
+}
+# wait until the picture stops changing (frames in flight drained)
+settle() {
+    local prev="" cur i
+    for i in $(seq 1 $((30 * SLOW))); do
+        sleep 0.1
+        cur=$(tm capture-pane -t "$1" -e -p | head -n -1 | md5sum)
+        [ "$cur" = "$prev" ] && return 0
+        prev=$cur
+    done
+}
+keys() { local s=$1; shift; for k in "$@"; do tm send-keys -t "$s" "$k"; sleep 0.05; done; }
+
+demo() {
+    start demo 100 30 || return 1
+    tm capture-pane -t demo -p | tail -n 1 | grep -q "demo.rsc" || { echo "status line lacks demo.rsc"; return 1; }
+    keys demo Space; settle demo
+    set -- $(picture demo demo)
+    echo "demo picture: $*"
+    [ "$1x$2" = 100x58 ] || { echo "size $1x$2, want 100x58"; return 1; }
+    [ "$6" -gt 200 ] || { echo "only $6 colours"; return 1; }
+    [ "$3" -eq 5800 ] || { echo "$((5800 - $3)) black pixels: the sky should fill the window"; return 1; }
+}
+check demo_scene_starts_and_fills_window demo
+
+# a lone model on black: area and centroid tell where the camera went
+model_session() { start m 80 25 assets/sphere.obj --background 0,0,0 && keys m Space && settle m; }
+zoom() {
+    model_session || return 1
+    set -- $(picture m before); local a0=$3
+    keys m w w w; settle m
+    set -- $(picture m after); local a1=$3
+    echo "area before $a0, after zoom $a1"
+    [ "$a1" -gt $((a0 * 5 / 4)) ]
+}
+check zoom_in_grows_the_model zoom
+
+strafe() {
+    keys m r Space; settle m
+    set -- $(picture m s0); local x0=$4
+    keys m d d; settle m
+    set -- $(picture m s1); local x1=$4
+    echo "centroid x before $x0, after 'd' $x1"
+    awk -v a="$x0" -v b="$x1" 'BEGIN { exit !(b < a - 2) }'
+}
+check strafe_right_moves_model_left strafe
+
+fly_yaw() {
+    keys m r o; settle m            # o: fly mode
+    tm capture-pane -t m -p | tail -n 1 | grep -q "| fly |" || { echo "status line does not say fly"; return 1; }
+    set -- $(picture m y0); local x0=$4
+    keys m Left; settle m
+    set -- $(picture m y1); local x1=$4
+    echo "centroid x before $x0, after Left (turn left) $x1"
+    awk -v a="$x0" -v b="$x1" 'BEGIN { exit !(b > a + 2) }'
+}
+check fly_yaw_left_moves_model_right fly_yaw
+
+resize() {
+    tm resize-window -t demo -x 70 -y 20
+    sleep 0.3; settle demo
+    set -- $(picture demo resized)
+    echo "after resize to 70x20: $*"
+    [ "$1x$2" = 70x38 ] || return 1
+    [ "$3" -eq $((70 * 38)) ] || { echo "unfilled pixels"; return 1; }
+    tm capture-pane -t demo -p | tail -n 1 | grep -q "demo.rsc"
+}
+check resize_refills_the_window resize
+
+idle() {
+    local log=$OUT/pane.log
+    : > "$log"
+    tm pipe-pane -o -t m "cat >> $log"
+    keys m Space; sleep $((1 * SLOW)); keys m Space      # spin for a while, then stop
+    settle m; sleep 0.3
+    local s0 s1 s2
+    s0=$(stat -c %s "$log"); sleep 1; s1=$(stat -c %s "$log")
+    echo "bytes written while idle for 1 s: $((s1 - s0))"
+    [ "$s1" -eq "$s0" ] || return 1
+    keys m w; sleep 0.5
+    s2=$(stat -c %s "$log")
+    echo "bytes after a key: $((s2 - s1))"
+    [ "$s2" -gt "$s1" ]
+}
+check idle_viewer_writes_nothing idle
+
+extremes() {
+    tm new-session -d -s tiny -x 10 -y 3 "$(printf '%q ' "$BIN" --colors truecolor); echo EXIT=\$? > $OUT/tiny.exit; sleep 60"
+    sleep $((1 * SLOW)); keys tiny q
+    wait_for 10 test -s "$OUT/tiny.exit" || return 1
+    grep -q EXIT=0 "$OUT/tiny.exit" || { cat "$OUT/tiny.exit"; return 1; }
+    start huge 300 100 || return 1
+    keys huge Space; settle huge
+    set -- $(picture huge huge)
+    echo "300x100 terminal: $*"
+    [ "$1x$2" = 300x198 ] && [ "$3" -eq $((300 * 198)) ]
+}
+check tiny_and_huge_terminals extremes
+
+# every way out: run under a non-interactive sh (which, unlike an interactive bash, does not
+# repair the terminal after its child dies), then ask for the terminal modes
+quit_ways() {
+    local how rc=0
+    for how in q Escape C-c TERM HUP KILL; do
+        local s=q$RANDOM f=$OUT/stty-$how.txt tag=$OUT/quit-$how-$$.rsc
+        echo "model $PWD/assets/cube.obj" > "$tag"   # a unique name to find the process by
+        tm new-session -d -s $s -x 80 -y 24 \
+            "sh -c 'trap \"\" INT; $(printf '%q ' "$BIN" --colors truecolor "$tag") 2>/dev/null; echo \$? > $f.rc; stty -a > $f; sleep 60'"
+        wait_for 15 hud_has $s " fps " || { echo "$how: viewer did not start"; rc=1; continue; }
+        case $how in
+            TERM|HUP|KILL) pkill -$how -f -- "^$BIN .*$tag" ;;   # rastty, not the sh around it
+            *) tm send-keys -t $s $how ;;
+        esac
+        wait_for 10 test -s "$f" || { echo "$how: no terminal modes recorded"; rc=1; continue; }
+        local broken=0
+        if grep -qE '(^| )-echo( |$)|(^| )-icanon( |$)' "$f" || ! grep -qE '(^| )echo( |$)' "$f" || ! grep -qE '(^| )icanon( |$)' "$f"; then
+            broken=1
+        fi
+        if [ $how = KILL ]; then
+            # nothing can restore after SIGKILL: this proves the check sees a broken terminal
+            [ $broken = 1 ] || { echo "KILL: the check did not notice the unrestored terminal"; rc=1; }
+        elif [ $broken = 1 ]; then
+            echo "$how: terminal modes not restored:"; grep -oE -- '-?(echo|icanon)( |$)' "$f" | tr '\n' ' '; echo; rc=1
+        else
+            local want_rc
+            case $how in q|Escape) want_rc=0 ;; C-c) want_rc=130 ;; HUP) want_rc=129 ;; TERM) want_rc=143 ;; esac
+            if [ "$(cat $f.rc)" != "$want_rc" ]; then   # 134 = abort: a sanitizer report at exit
+                echo "$how: exit status $(cat $f.rc), want $want_rc"; rc=1
+            fi
+            # the alternate screen is gone: no half blocks left on the screen
+            if tm capture-pane -t $s -p | grep -q '▀'; then echo "$how: picture still on screen"; rc=1; fi
+        fi
+        tm kill-session -t $s
+    done
+    return $rc
+}
+check quit_restores_terminal quit_ways
+
+finish
