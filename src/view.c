@@ -117,8 +117,9 @@ static void set_message(struct view *v, const char *msg)
 
 /* ---- scenes ---- */
 
-/* demo.rsc: $RASTTY_ASSETS, else assets/ next to the binary (a build tree), else ./assets
- * (running from the source tree), else the installed RASTTY_DATADIR. */
+/* demo.rsc: $RASTTY_ASSETS, else assets/ next to the binary (a build tree), else
+ * ../share/rastty from the binary (an installed tree, wherever PREFIX was), else ./assets
+ * (running from the source tree), else the compiled-in RASTTY_DATADIR. */
 static int find_demo(char *out, size_t n)
 {
     const char *env = getenv("RASTTY_ASSETS");
@@ -132,6 +133,9 @@ static int find_demo(char *out, size_t n)
     if (slash) {
         *slash = '\0';
         snprintf(out, n, "%s/assets/demo.rsc", exe);
+        if (access(out, R_OK) == 0)
+            return 0;
+        snprintf(out, n, "%s/../share/rastty/demo.rsc", exe);
         if (access(out, R_OK) == 0)
             return 0;
     }
