@@ -179,8 +179,10 @@ int cmd_dump(const struct options *o, struct err *e)
     }
     rc = 0;
 done:
-    if (out && out != stdout && fclose(out) != 0 && rc == 0)
-        rc = err_set(e, "rastty dump: %s: write failed", o->out) ? 1 : 1;
+    if (out && out != stdout && fclose(out) != 0 && rc == 0) {
+        err_set(e, "rastty dump: %s: write failed", o->out);
+        rc = 1;
+    }
     encode_screen_free(&es);
     fb_free(&fb);
     pipeline_destroy(p);

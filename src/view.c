@@ -258,26 +258,33 @@ static void hud_draw(struct view *v)
     v->hud_dirty = false;
 }
 
-static void help_draw(struct view *v, int *x0, int *y0, int *w, int *h)
+/* Where the help box goes: centred on the picture, clipped to it. */
+static void help_rect(const struct view *v, int *x0, int *y0, int *w, int *h, int *text_w)
 {
     int lines = 0, width = 0;
     while (input_help_line(lines)) {
-        int l = (int)strlen(input_help_line(lines));
+        int l = (int)strlen(input_help_line(lines++));
         width = l > width ? l : width;
-        lines++;
     }
+    *text_w = width;
     *w = width + 4;
     *h = lines + 2;
     *x0 = (v->fb_cols - *w) / 2;
     *y0 = (v->fb_rows - *h) / 2;
     *x0 = *x0 < 0 ? 0 : *x0;
     *y0 = *y0 < 0 ? 0 : *y0;
+}
+
+static void help_draw(struct view *v)
+{
+    int x0, y0, w, h, width;
+    help_rect(v, &x0, &y0, &w, &h, &width);
     char buf[256];
     const char *sgr = v->eo.mode == PALETTE_NONE ? "" : "\033[0;97;44m";
-    for (int i = 0; i < *h && *y0 + i < v->fb_rows; i++) {
-        const char *text = i == 0 || i == *h - 1 ? "" : input_help_line(i - 1);
-        int avail = v->fb_cols - *x0;
-        int k = snprintf(buf, sizeof buf, "\033[%d;%dH%s  %-*.*s  ", *y0 + i + 1, *x0 + 1, sgr,
+    for (int i = 0; i < h && y0 + i < v->fb_rows; i++) {
+        const char *text = i == 0 || i == h - 1 ? "" : input_help_line(i - 1);
+        int avail = v->fb_cols - x0;
+        int k = snprintf(buf, sizeof buf, "\033[%d;%dH%s  %-*.*s  ", y0 + i + 1, x0 + 1, sgr,
                          width, width, text);
         if (k > 0)
             out_add(v, buf, (size_t)(k < avail + 16 ? k : avail + 16));
@@ -300,10 +307,8 @@ static int draw_frame(struct view *v, struct err *e)
     v->encode_ms = (now_s() - t0) * 1e3;
     v->last_bytes = n;
     out_add(v, bytes, n);
-    if (v->help) {
-        int x, y, w, h;
-        help_draw(v, &x, &y, &w, &h);
-    }
+    if (v->help)
+        help_draw(v);
     double t = now_s();
     if (v->last_frame_at > 0) {
         double inst = 1.0 / (t - v->last_frame_at > 1e-4 ? t - v->last_frame_at : 1e-4);
@@ -375,14 +380,9 @@ static void command(struct view *v, enum input_cmd c, double t, bool *quit)
     case IN_HELP:
         v->help = !v->help;
         if (!v->help) { /* uncover the picture: those cells must be drawn again */
-            int x, y, w, h, lines = 0, width = 0;
-            while (input_help_line(lines)) {
-                int l = (int)strlen(input_help_line(lines++));
-                width = l > width ? l : width;
-            }
-            w = width + 4, h = lines + 2;
-            x = (v->fb_cols - w) / 2, y = (v->fb_rows - h) / 2;
-            encode_screen_damage(&v->es, x < 0 ? 0 : x, y < 0 ? 0 : y, w, h);
+            int x, y, w, h, width;
+            help_rect(v, &x, &y, &w, &h, &width);
+            encode_screen_damage(&v->es, x, y, w, h);
         }
         break;
     case IN_QUIT: *quit = true; break;

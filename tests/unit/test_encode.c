@@ -98,68 +98,47 @@ static int compare_grid(struct test *t, const struct decode_state *d, const uint
 
 /* ---- golden bytes: glyph and SGR choice on a 2x2 frame (2 cells) ------------------------ */
 
-TEST(golden_equal_pixels_emit_space_then_upper_half)
-{
-    /* cell 0: red over red -> bg red + ' '; cell 1: blue over green, no colour known ->
-     * U+2580 with fg and bg in one SGR; the frame ends with a reset. */
-    uint8_t rgb[2 * 2 * 3];
-    set_px(rgb, 2, 0, 0, 0xff0000);
-    set_px(rgb, 2, 0, 1, 0xff0000);
-    set_px(rgb, 2, 1, 0, 0x0000ff);
-    set_px(rgb, 2, 1, 1, 0x00ff00);
-    struct encode_screen s;
-    REQUIRE(encode_screen_init(&s, 2, 1, NULL) == 0);
-    size_t n;
-    const char *out = encode_frame(&s, rgb, 2, 2, &TRUE_FULL, &n, NULL);
-    CHECK_BYTES(out, n, "\x1b[H\x1b[48;2;255;0;0m \x1b[38;2;0;0;255;48;2;0;255;0m" UP "\x1b[0m");
-    encode_screen_free(&s);
-}
+/* Truecolor goldens, one row per rule: cells 0 and 1 of a 2x1-cell frame, each given as
+ * (top, bottom) pixel colours, and the exact bytes of the full frame. */
+static const struct {
+    const char *rule;
+    uint32_t px[4]; /* cell 0 top, cell 0 bottom, cell 1 top, cell 1 bottom */
+    const char *want;
+} goldens[] = {
+    /* equal pixels: bg + ' '; no colour known yet: U+2580 with fg and bg in one SGR;
+     * every frame ends with a reset */
+    {"equal pixels emit space, then upper half",
+     {0xff0000, 0xff0000, 0x0000ff, 0x00ff00},
+     "\x1b[H\x1b[48;2;255;0;0m \x1b[38;2;0;0;255;48;2;0;255;0m" UP "\x1b[0m"},
+    /* bg is red after cell 0; red over green: U+2584 needs only fg = green */
+    {"lower half saves a colour change",
+     {0xff0000, 0xff0000, 0xff0000, 0x00ff00},
+     "\x1b[H\x1b[48;2;255;0;0m \x1b[38;2;0;255;0m" LO "\x1b[0m"},
+    /* fg is red after cell 0 (red over green); cell 1 all red: U+2588, no SGR */
+    {"full block reuses fg",
+     {0xff0000, 0x00ff00, 0xff0000, 0xff0000},
+     "\x1b[H\x1b[38;2;255;0;0;48;2;0;255;0m" UP FULL "\x1b[0m"},
+    /* identical cells: the second needs no SGR at all */
+    {"same colours need no second SGR",
+     {0x0a0b0c, 0x010203, 0x0a0b0c, 0x010203},
+     "\x1b[H\x1b[38;2;10;11;12;48;2;1;2;3m" UP UP "\x1b[0m"},
+};
 
-TEST(golden_lower_half_saves_a_colour_change)
+TEST(golden_truecolor_glyph_and_sgr_choice)
 {
-    /* bg is red after cell 0; cell 1 red over green: U+2584 needs only fg=green. */
-    uint8_t rgb[12];
-    set_px(rgb, 2, 0, 0, 0xff0000);
-    set_px(rgb, 2, 0, 1, 0xff0000);
-    set_px(rgb, 2, 1, 0, 0xff0000);
-    set_px(rgb, 2, 1, 1, 0x00ff00);
-    struct encode_screen s;
-    REQUIRE(encode_screen_init(&s, 2, 1, NULL) == 0);
-    size_t n;
-    const char *out = encode_frame(&s, rgb, 2, 2, &TRUE_FULL, &n, NULL);
-    CHECK_BYTES(out, n, "\x1b[H\x1b[48;2;255;0;0m \x1b[38;2;0;255;0m" LO "\x1b[0m");
-    encode_screen_free(&s);
-}
-
-TEST(golden_full_block_reuses_fg)
-{
-    /* cell 0 red over green sets fg red; cell 1 all red: U+2588 with no SGR. */
-    uint8_t rgb[12];
-    set_px(rgb, 2, 0, 0, 0xff0000);
-    set_px(rgb, 2, 0, 1, 0x00ff00);
-    set_px(rgb, 2, 1, 0, 0xff0000);
-    set_px(rgb, 2, 1, 1, 0xff0000);
-    struct encode_screen s;
-    REQUIRE(encode_screen_init(&s, 2, 1, NULL) == 0);
-    size_t n;
-    const char *out = encode_frame(&s, rgb, 2, 2, &TRUE_FULL, &n, NULL);
-    CHECK_BYTES(out, n, "\x1b[H\x1b[38;2;255;0;0;48;2;0;255;0m" UP FULL "\x1b[0m");
-    encode_screen_free(&s);
-}
-
-TEST(golden_same_colours_need_no_second_sgr)
-{
-    uint8_t rgb[12];
-    set_px(rgb, 2, 0, 0, 0x0a0b0c);
-    set_px(rgb, 2, 0, 1, 0x010203);
-    set_px(rgb, 2, 1, 0, 0x0a0b0c);
-    set_px(rgb, 2, 1, 1, 0x010203);
-    struct encode_screen s;
-    REQUIRE(encode_screen_init(&s, 2, 1, NULL) == 0);
-    size_t n;
-    const char *out = encode_frame(&s, rgb, 2, 2, &TRUE_FULL, &n, NULL);
-    CHECK_BYTES(out, n, "\x1b[H\x1b[38;2;10;11;12;48;2;1;2;3m" UP UP "\x1b[0m");
-    encode_screen_free(&s);
+    for (unsigned i = 0; i < sizeof goldens / sizeof goldens[0]; i++) {
+        uint8_t rgb[2 * 2 * 3];
+        for (int k = 0; k < 4; k++)
+            set_px(rgb, 2, k / 2, k % 2, goldens[i].px[k]);
+        struct encode_screen s;
+        REQUIRE(encode_screen_init(&s, 2, 1, NULL) == 0);
+        size_t n;
+        const char *out = encode_frame(&s, rgb, 2, 2, &TRUE_FULL, &n, NULL);
+        if (n != strlen(goldens[i].want) || memcmp(out, goldens[i].want, n) != 0)
+            fprintf(stderr, "    rule: %s\n", goldens[i].rule);
+        CHECK_BYTES(out, n, goldens[i].want);
+        encode_screen_free(&s);
+    }
 }
 
 TEST(golden_256_16_and_none_modes)
