@@ -45,7 +45,7 @@ struct options {
     int tolerance;            /* -1 = not given */
     bool diff;
     const char *ppm_dir;
-    int frame_index;          /* ansi2ppm --frame */
+    int frame_index;          /* ansi2ppm --frame K; -1 = the last */
     double fps;
     bool no_hud;
 };

@@ -63,7 +63,7 @@ static const struct flag flags[] = {
     {"--tolerance", F_TOLERANCE, ARG_VALUE, C_VIEW | C_DUMP, "N", "treat colour changes <= N per channel as unchanged"},
     {"--diff", F_DIFF, ARG_NONE, C_DUMP, NULL, "frames after the first are diffs"},
     {"--ppm-dir", F_PPM_DIR, ARG_VALUE, C_DUMP, "DIR", "also write each framebuffer as DIR/frame-NNNN.ppm"},
-    {"--frame-index", F_FRAME_INDEX, ARG_VALUE, C_A2P, "K", "which frame to decode (default: last)"},
+    {"--frame", F_FRAME_INDEX, ARG_VALUE, C_A2P, "K", "which frame to decode, 0-based (default: the last)"},
     {"--fps", F_FPS, ARG_VALUE, C_VIEW, "N", "cap the frame rate (default 60)"},
     {"--no-hud", F_NO_HUD, ARG_NONE, C_VIEW, NULL, "hide the status line"},
     {"--help", F_HELP, ARG_NONE, ~0u, NULL, "show this help"},
@@ -337,17 +337,22 @@ int options_parse(int argc, char **argv, struct options *o, struct err *e)
         }
         const char *eq = strchr(a, '=');
         size_t len = eq ? (size_t)(eq - a) : strlen(a);
-        const struct flag *f = NULL;
+        /* a name may mean different things to different subcommands (--frame): take the
+         * entry for this subcommand, else report the name as not applying here */
+        const struct flag *f = NULL, *named = NULL;
         for (size_t k = 0; k < sizeof flags / sizeof flags[0]; k++)
-            if (strlen(flags[k].name) == len && strncmp(flags[k].name, a, len) == 0)
-                f = &flags[k];
+            if (strlen(flags[k].name) == len && strncmp(flags[k].name, a, len) == 0) {
+                named = &flags[k];
+                if (flags[k].cmds & (1u << cmd))
+                    f = &flags[k];
+            }
         char q[80];
-        if (!f)
+        if (!named)
             return err_set(e, "rastty: unknown option '%s' (see rastty --help)",
                            err_quote(a, len, 60, q, sizeof q));
-        if (!(f->cmds & (1u << cmd)))
+        if (!f)
             return err_set(e, "rastty %s: %s does not apply here (see rastty --help)",
-                           cmd_names[cmd], f->name);
+                           cmd_names[cmd], named->name);
         const char *v = NULL;
         if (f->arg == ARG_VALUE) {
             if (eq)
@@ -373,7 +378,7 @@ void options_usage(FILE *out)
             "usage: rastty [view] [MODEL.obj|SCENE.rsc ...]   interactive viewer (no file: demo)\n"
             "       rastty render MODEL.obj --out FILE.ppm|FILE.png [options]\n"
             "       rastty dump MODEL.obj [--out FILE.ans] [options]\n"
-            "       rastty ansi2ppm FILE.ans --out FILE.ppm [--frame-index K]\n"
+            "       rastty ansi2ppm FILE.ans --out FILE.ppm [--frame K]\n"
             "       rastty bench [options]\n\noptions:\n");
     for (size_t k = 0; k < sizeof flags / sizeof flags[0]; k++) {
         const struct flag *f = &flags[k];

@@ -44,7 +44,7 @@ replay() {
     cmp "$OUT/replay/frame-0011.ppm" "$OUT/replay/screen.ppm" || return 1
     # and the file itself decodes to every frame
     for k in 0 5 11; do
-        "$BIN" ansi2ppm "$OUT/replay/spin.ans" --frame-index $k --out "$OUT/replay/dec$k.ppm" &&
+        "$BIN" ansi2ppm "$OUT/replay/spin.ans" --frame $k --out "$OUT/replay/dec$k.ppm" &&
             cmp "$OUT/replay/dec$k.ppm" "$(printf '%s/frame-%04d.ppm' "$OUT/replay" $k)" || return 1
     done
 }
