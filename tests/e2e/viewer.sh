@@ -124,18 +124,18 @@ extremes() {
 }
 check tiny_and_huge_terminals extremes
 
-# every way out: run under a non-interactive sh (which, unlike an interactive bash, does not
+# every way out (a crash signal included): run under a non-interactive sh (which, unlike an interactive bash, does not
 # repair the terminal after its child dies), then ask for the terminal modes
 quit_ways() {
     local how rc=0
-    for how in q Escape C-c TERM HUP KILL; do
+    for how in q Escape C-c TERM HUP SEGV KILL; do
         local s=q$RANDOM f=$OUT/stty-$how.txt tag=$OUT/quit-$how-$$.rsc
         echo "model $PWD/assets/cube.obj" > "$tag"   # a unique name to find the process by
         tm new-session -d -s $s -x 80 -y 24 \
             "sh -c 'trap \"\" INT; $(printf '%q ' "$BIN" --colors truecolor "$tag") 2>/dev/null; echo \$? > $f.rc; stty -a > $f; sleep 60'"
         wait_for 15 hud_has $s " fps " || { echo "$how: viewer did not start"; rc=1; continue; }
         case $how in
-            TERM|HUP|KILL) pkill -$how -f -- "^$BIN .*$tag" ;;   # rastty, not the sh around it
+            TERM|HUP|SEGV|KILL) pkill -$how -f -- "^$BIN .*$tag" ;;   # rastty, not the sh around it
             *) tm send-keys -t $s $how ;;
         esac
         wait_for 10 test -s "$f" || { echo "$how: no terminal modes recorded"; rc=1; continue; }
@@ -150,7 +150,8 @@ quit_ways() {
             echo "$how: terminal modes not restored:"; grep -oE -- '-?(echo|icanon)( |$)' "$f" | tr '\n' ' '; echo; rc=1
         else
             local want_rc
-            case $how in q|Escape) want_rc=0 ;; C-c) want_rc=130 ;; HUP) want_rc=129 ;; TERM) want_rc=143 ;; esac
+            # SEGV: the crash handler restores the terminal, then dies by the signal (128 + 11)
+            case $how in q|Escape) want_rc=0 ;; C-c) want_rc=130 ;; HUP) want_rc=129 ;; TERM) want_rc=143 ;; SEGV) want_rc=139 ;; esac
             if [ "$(cat $f.rc)" != "$want_rc" ]; then   # 134 = abort: a sanitizer report at exit
                 echo "$how: exit status $(cat $f.rc), want $want_rc"; rc=1
             fi
