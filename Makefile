@@ -17,8 +17,10 @@ MAINOBJ := $(BUILD)/obj/main.o
 UNITSRC := $(wildcard tests/unit/*.c)
 UNITOBJ := $(patsubst tests/unit/%.c,$(BUILD)/tests/%.o,$(UNITSRC))
 
+# build: the first four; tests: OSMesa (the oracle), tmux and procps (pkill) for the
+# end-to-end tests, ncurses-term (xterm-direct terminfo), python3 (asset checks)
 DEBIAN_PKGS := build-essential pkg-config libncurses-dev libstb-dev libosmesa6-dev tmux \
-               ncurses-term
+               ncurses-term procps python3
 
 .PHONY: all test unit check-asan asan-build bench deps install uninstall clean help fuzz
 
