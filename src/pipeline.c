@@ -147,31 +147,51 @@ static int front_facing_clip(const double *a, const double *b, const double *c)
     return det > 0; /* counter-clockwise in GL window coordinates */
 }
 
+/* Triangle edges as lines. `overlay` edges decorate a shaded frame: they are not counted
+ * as the frame's triangles. */
 static void draw_edges(const struct mesh *m, const struct vertex_out *vo,
-                       const struct render_opts *o, int depth_test, struct fb *fb,
+                       const struct render_opts *o, bool depth_test, bool overlay, struct fb *fb,
                        struct frame_stats *stats)
 {
     for (uint32_t i = 0; i < m->n_tris; i++) {
         const struct vertex_out *v[3] = {&vo[m->tris[i][0]], &vo[m->tris[i][1]],
                                          &vo[m->tris[i][2]]};
-        if (o->view != VIEW_WIRE_OVERLAY)
-            stats->tris_in++;
+        stats->tris_in += !overlay;
         if (v[0]->outcode & v[1]->outcode & v[2]->outcode & VERTEX_OUT_FRUSTUM) {
-            stats->tris_rejected += o->view != VIEW_WIRE_OVERLAY;
+            stats->tris_rejected += !overlay;
             continue;
         }
         if (o->cull != CULL_NONE) {
             int front = front_facing_clip(v[0]->clip, v[1]->clip, v[2]->clip);
             if ((o->cull == CULL_BACK && !front) || (o->cull == CULL_FRONT && front)) {
-                stats->tris_culled += o->view != VIEW_WIRE_OVERLAY;
+                stats->tris_culled += !overlay;
                 continue;
             }
         }
         for (int k = 0; k < 3; k++)
             line_draw_clip(fb, v[k]->clip, v[(k + 1) % 3]->clip, o->wire_color, depth_test);
-        if (o->view != VIEW_WIRE_OVERLAY)
-            stats->tris_drawn++;
+        stats->tris_drawn += !overlay;
     }
+}
+
+static void set_item(struct vertex_uniforms *u, const struct draw_item *item, mat4 pv)
+{
+    u->model = item->model;
+    u->normal_matrix = m4_normal_matrix(item->model);
+    u->mvp = m4_mul(pv, item->model);
+}
+
+/* grow the vertex-output scratch to n (kept across frames) */
+static int reserve(struct pipeline *p, uint32_t n, struct err *e)
+{
+    if (n <= p->cap)
+        return 0;
+    struct vertex_out *nv = realloc(p->verts, (size_t)n * sizeof *nv);
+    if (!nv)
+        return err_set(e, "out of memory for %u vertices", n);
+    p->verts = nv;
+    p->cap = n;
+    return 0;
 }
 
 int pipeline_draw(struct pipeline *p, const struct draw_item *items, int n_items,
@@ -209,51 +229,60 @@ int pipeline_draw(struct pipeline *p, const struct draw_item *items, int n_items
     enum shade_mode mode = o->view == VIEW_NORMALS ? SHADE_PHONG : o->shade;
     int n_var = vertex_varying_count(o->shade, o->view);
 
+    bool show_sky = sky && (o->view == VIEW_COLOR || o->view == VIEW_WIRE_OVERLAY);
+    bool wire = mode == SHADE_WIRE;
+    /* wire frames have no surface colour: the sky goes everywhere, before anything else */
+    if (show_sky && wire)
+        skybox_draw(sky, cam, fb);
+    /* pass 1: surfaces (wire: depth only, for hidden lines) */
     for (int it = 0; it < n_items; it++) {
         const struct draw_item *item = &items[it];
         const struct mesh *m = item->mesh;
-        u.model = item->model;
-        u.normal_matrix = m4_normal_matrix(item->model);
-        u.mvp = m4_mul(pv, item->model);
+        if (wire && !o->hidden_lines)
+            break;
         if (m->n_tris == 0)
             continue;
+        set_item(&u, item, pv);
         if (sphere_outside(m, u.mvp, max_scale(item->model))) {
             stats->meshes_culled++;
             stats->tris_in += m->n_tris;
             stats->tris_culled += m->n_tris;
             continue;
         }
-        if (m->n_verts > p->cap) {
-            struct vertex_out *nv = realloc(p->verts, (size_t)m->n_verts * sizeof *nv);
-            if (!nv)
-                return err_set(e, "out of memory for %u vertices", m->n_verts);
-            p->verts = nv;
-            p->cap = m->n_verts;
-        }
+        if (reserve(p, m->n_verts, e))
+            return -1;
         vertex_run(m, &u, p->verts);
-        if (mode == SHADE_WIRE) {
-            if (o->hidden_lines) { /* depth-only pre-pass; its counts are not the frame's */
-                struct frame_stats pre = {0};
-                draw_filled(m, p->verts, &u, item, SHADE_WIRE, 0, o, &sc, fb, &pre);
-            }
-            draw_edges(m, p->verts, o, o->hidden_lines, fb, stats);
+        if (wire) { /* depth-only pre-pass; its counts are not the frame's */
+            struct frame_stats pre = {0};
+            draw_filled(m, p->verts, &u, item, SHADE_WIRE, 0, o, &sc, fb, &pre);
         } else {
             draw_filled(m, p->verts, &u, item, mode, n_var, o, &sc, fb, stats);
         }
     }
-    if (o->view == VIEW_WIRE_OVERLAY && mode != SHADE_WIRE) {
+    if (show_sky && !wire) /* only where no surface was drawn */
+        skybox_draw(sky, cam, fb);
+    /* pass 2: edges, depth-tested against every item's surfaces when asked */
+    if (wire || o->view == VIEW_WIRE_OVERLAY) {
+        bool overlay = !wire;
         for (int it = 0; it < n_items; it++) {
             const struct mesh *m = items[it].mesh;
-            u.mvp = m4_mul(pv, items[it].model);
-            if (m->n_tris == 0 || sphere_outside(m, u.mvp, max_scale(items[it].model)))
+            set_item(&u, &items[it], pv);
+            if (m->n_tris == 0)
                 continue;
+            if (sphere_outside(m, u.mvp, max_scale(items[it].model))) {
+                if (!overlay && !o->hidden_lines) { /* pass 1 did not count it */
+                    stats->meshes_culled++;
+                    stats->tris_in += m->n_tris;
+                    stats->tris_culled += m->n_tris;
+                }
+                continue;
+            }
+            if (reserve(p, m->n_verts, e))
+                return -1;
             vertex_run(m, &u, p->verts);
-            draw_edges(m, p->verts, o, 1, fb, stats);
+            draw_edges(m, p->verts, o, overlay || o->hidden_lines, overlay, fb, stats);
         }
     }
-    if (sky && (o->view == VIEW_COLOR || o->view == VIEW_WIRE_OVERLAY) &&
-        !(mode == SHADE_WIRE && !o->hidden_lines))
-        skybox_draw(sky, cam, fb);
     if (o->view == VIEW_DEPTH)
         fb_show_depth(fb);
     else if (o->view == VIEW_OVERDRAW)
