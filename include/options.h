@@ -43,6 +43,7 @@ struct options {
     const char *camera_path;
     const char *colors;       /* NULL = auto */
     int tolerance;            /* -1 = not given */
+    bool dither;              /* ordered dithering in 256/16 colours */
     bool diff;
     const char *ppm_dir;
     int frame_index;          /* ansi2ppm --frame K; -1 = the last */

@@ -125,7 +125,9 @@ int cmd_dump(const struct options *o, struct err *e)
     struct camera cam;
     struct render_opts ro;
     cmd_view_setup(o, &scene, (double)cols / (2.0 * rows), o->frame, &cam, &ro);
-    struct encode_opts eo = {.mode = color_mode(o), .diff = false, .tolerance = o->tolerance > 0 ? o->tolerance : 0,
+    struct encode_opts eo = {.mode = color_mode(o),
+                             .tolerance = o->tolerance > 0 ? o->tolerance : 0,
+                             .dither = o->dither,
                              .mark_frames = true};
     FILE *out = stdout;
     int rc = 1;

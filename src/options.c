@@ -21,7 +21,7 @@ enum flag_id {
     F_SIZE, F_EYE, F_TARGET, F_UP, F_FOV, F_NEAR, F_FAR, F_ORTHO, F_FRAME, F_LIGHT, F_SHADE,
     F_TEXTURE, F_NO_TEXTURE, F_FILTER, F_BACKGROUND, F_CULL, F_HIDDEN_LINES, F_VIEW, F_OUT,
     F_DEPTH_OUT, F_STATS, F_COLS, F_ROWS, F_FRAMES, F_ORBIT, F_CAMERA_PATH, F_COLORS,
-    F_TOLERANCE, F_DIFF, F_PPM_DIR, F_FRAME_INDEX, F_FPS, F_NO_HUD, F_HELP, F_VERSION,
+    F_TOLERANCE, F_DITHER, F_DIFF, F_PPM_DIR, F_FRAME_INDEX, F_FPS, F_NO_HUD, F_HELP, F_VERSION,
 };
 
 struct flag {
@@ -61,6 +61,7 @@ static const struct flag flags[] = {
     {"--camera-path", F_CAMERA_PATH, ARG_VALUE, C_DUMP, "FILE", "camera per frame: lines 'ex ey ez tx ty tz'"},
     {"--colors", F_COLORS, ARG_VALUE, C_VIEW | C_DUMP, "MODE", "truecolor|256|16|none (default: detect)"},
     {"--tolerance", F_TOLERANCE, ARG_VALUE, C_VIEW | C_DUMP, "N", "treat colour changes <= N per channel as unchanged"},
+    {"--dither", F_DITHER, ARG_NONE, C_VIEW | C_DUMP, NULL, "256/16 colours: 4x4 ordered dithering (default off)"},
     {"--diff", F_DIFF, ARG_NONE, C_DUMP, NULL, "frames after the first are diffs"},
     {"--ppm-dir", F_PPM_DIR, ARG_VALUE, C_DUMP, "DIR", "also write each framebuffer as DIR/frame-NNNN.ppm"},
     {"--frame", F_FRAME_INDEX, ARG_VALUE, C_A2P, "K", "which frame to decode, 0-based (default: the last)"},
@@ -260,6 +261,7 @@ static int apply(struct options *o, const struct flag *f, const char *v, struct 
         if (parse_int(v, 0, 255, &o->tolerance))
             return bad(e, f->name, "expected 0..255", v);
         return 0;
+    case F_DITHER: o->dither = true; return 0;
     case F_DIFF: o->diff = true; return 0;
     case F_PPM_DIR: o->ppm_dir = v; return 0;
     case F_FRAME_INDEX:

@@ -564,6 +564,7 @@ int view_run(const struct options *o, struct err *e)
     /* over ssh, default to a small tolerance: far fewer bytes, invisible change */
     bool ssh = getenv("SSH_CONNECTION") || getenv("SSH_TTY");
     v->eo.tolerance = o->tolerance >= 0 ? o->tolerance : ssh ? 3 : 0;
+    v->eo.dither = o->dither;
     rc = 1;
     if (!(v->pipe = pipeline_new())) {
         err_set(e, "out of memory");
