@@ -88,7 +88,7 @@ bench: rastty assets
 
 # libFuzzer targets for every parser (clang); FUZZ_SECONDS each. See tests/fuzz/README.
 FUZZ_SECONDS ?= 60
-FUZZ_TARGETS := obj mtl decode
+FUZZ_TARGETS := obj mtl decode scene
 FUZZ_CFLAGS  := -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
                 -std=c11 $(DEFS) -Iinclude $(shell pkg-config --cflags stb)
 build/fuzz_%: tests/fuzz/fuzz_%.c $(SRCS)
