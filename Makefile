@@ -71,7 +71,7 @@ unit: $(BUILD)/unit-tests
 	$(BUILD)/unit-tests
 
 # Same sources, separate build tree, sanitizers on; tests/run.sh --asan runs what applies.
-SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+SAN := -fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recover=all -fno-omit-frame-pointer
 asan-build:
 	@$(MAKE) --no-print-directory BUILD=build/asan OPT="-O1 -g $(SAN)" LDFLAGS="$(SAN)" \
 	    build/asan/unit-tests build/asan/rastty

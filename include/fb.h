@@ -34,7 +34,7 @@ void fb_show_overdraw(struct fb *fb); /* 0 black, 1 blue, 2 green, 3 yellow, 4+ 
 
 static inline uint8_t fb_quantize(float c)
 {
-    c = c < 0 ? 0 : c > 1 ? 1 : c;
+    c = c > 0 ? (c < 1 ? c : 1) : 0; /* NaN -> 0: converting NaN to an integer is undefined */
     return (uint8_t)(c * 255.0f + 0.5f);
 }
 

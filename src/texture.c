@@ -111,6 +111,10 @@ void texture_sample(const struct texture *t, enum tex_filter f, float u, float v
         return;
     }
     float x = u * (float)t->w - 0.5f, y = v * (float)t->h - 0.5f;
+    if (!isfinite(x) || !isfinite(y)) { /* u*W overflowed: as nearest does, texel 0 */
+        x = 0;
+        y = 0;
+    }
     float fx = floorf(x), fy = floorf(y);
     float ax = x - fx, ay = y - fy;
     int i0 = wrap(fx, t->w), j0 = wrap(fy, t->h);

@@ -46,6 +46,11 @@ check bad_output_extension expect 2 "\\.ppm or \\.png" "$BIN" render assets/cube
 check eye_equals_target expect 2 "differ" "$BIN" render assets/cube.obj --eye 0,0,0 --out $OUT/x.png
 check dump_bad_camera_path expect 2 "path.txt:2:" sh -c "printf '0 0 3 0 0 0\nnot numbers\n' > $D/path.txt; exec $BIN dump assets/cube.obj --camera-path $D/path.txt --out $OUT/x.ans"
 check ansi2ppm_rejects_garbage expect 2 "byte" sh -c "printf '\033[H\033[38;2;1;2;3mX' > $D/g.ans; exec $BIN ansi2ppm $D/g.ans --out $OUT/x.ppm"
+# valid but extreme: UVs of 1e38 overflow u*width to inf; must render, not hit undefined
+# behaviour (the sanitizer run checks float-to-int conversions)
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 1e38 1e38\nvt 1e38 0\nvt 0 1e38\nf 1/1 2/2 3/3\n' > $D/huge_uv.obj
+huge_uv() { "$BIN" render $D/huge_uv.obj --texture assets/checker.png --filter bilinear --out $OUT/huge.ppm; }
+check huge_uvs_render_cleanly huge_uv
 check viewer_bad_file_before_terminal expect 2 "bad_index.obj:4:" "$BIN" $D/bad_index.obj
 
 finish
