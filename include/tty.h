@@ -7,8 +7,11 @@
  *
  * Restoring the terminal, on every exit path:
  *   normal exit, q/Esc      tty_close(): endwin() plus our own resets
- *   Ctrl-C, SIGTERM, SIGHUP tty_signalled() turns true; blocking input returns at once;
- *                           the caller leaves its loop and calls tty_close()
+ *   Ctrl-C, SIGTERM, SIGHUP tty_signalled() turns true; blocking input and blocked writes
+ *                           return at once; the caller leaves its loop and calls
+ *                           tty_close(), which first drops output the terminal never read
+ *   Ctrl-Z, fg              the handler only sets a flag; tty_suspend() (called by the
+ *                           loop) restores the terminal, stops, and takes it back on fg
  *   crash signals           (SEGV, BUS, FPE, ILL, ABRT) an async-signal-safe handler restores
  *                           the saved termios with tcsetattr, writes fixed xterm reset bytes
  *                           (leave alternate screen, show cursor, mouse off, SGR reset), then
@@ -44,8 +47,13 @@ void tty_refresh_size(struct tty *t);
 /* Wait up to timeout_ms (-1 = forever) for one event; returns its kind (TTY_NONE on
  * timeout or when a quit signal arrived). */
 enum tty_event_kind tty_next_event(struct tty *t, int timeout_ms, struct tty_event *ev);
-/* Write all of buf to the terminal (retrying short writes); 0 or -1. */
+/* Write all of buf to the terminal (retrying short writes); 0, or -1 on an error or when a
+ * quit signal arrived meanwhile. */
 int tty_write(const char *buf, size_t n);
+/* If Ctrl-Z was pressed: restore the terminal, stop the process, and when it is continued
+ * (fg) take the terminal back. Returns true then: the screen is blank and must be drawn
+ * again. */
+bool tty_suspend(struct tty *t);
 /* A request whose answer (TTY_SYNC_REPLY) tells the caller the terminal has processed
  * everything written before it: append it to a frame to count frames in flight. */
 #define TTY_SYNC_REQUEST "\033[5n" /* DSR; the terminal answers ESC [ 0 n */

@@ -44,7 +44,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "rastty: this subcommand is not built yet\n");
         return 2;
     }
-    if (rc != 0)
+    if (rc == 1 || rc == 2) /* >= 128: stopped by a signal, nothing went wrong */
         fprintf(stderr, "%s\n", e.msg[0] ? e.msg : "rastty: failed");
     return rc;
 }

@@ -14,7 +14,7 @@
  * mutable globals in rastty, written before the handlers are installed (saved termios) or
  * only as sig_atomic_t flags. */
 static struct termios saved_termios;
-static volatile sig_atomic_t have_saved, quit_signal;
+static volatile sig_atomic_t have_saved, quit_signal, stop_requested;
 static SCREEN *screen_handle;
 
 static const char RESET_BYTES[] = "\033[?2026l\033[0m\033[?1000l\033[?1002l\033[?1003l"
@@ -23,6 +23,14 @@ static const char RESET_BYTES[] = "\033[?2026l\033[0m\033[?1000l\033[?1002l\033[
 static void on_quit(int sig)
 {
     quit_signal = sig;
+}
+
+/* Ctrl-Z: only note it. Installed without SA_RESTART (and before newterm, so ncurses keeps
+ * out), it also interrupts the blocking read; the loop then calls tty_suspend(). */
+static void on_stop(int sig)
+{
+    (void)sig;
+    stop_requested = 1;
 }
 
 static void on_crash(int sig)
@@ -55,6 +63,8 @@ static void install_handlers(void)
     sigaction(SIGTERM, &sa, NULL);
     sigaction(SIGHUP, &sa, NULL);
     sigaction(SIGQUIT, &sa, NULL);
+    sa.sa_handler = on_stop;
+    sigaction(SIGTSTP, &sa, NULL);
     sa.sa_handler = on_crash;
     sa.sa_flags = SA_RESETHAND;
     static const int crash[] = {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT};
@@ -98,6 +108,12 @@ int tty_open(struct tty *t, struct err *e)
 
 void tty_close(struct tty *t)
 {
+    if (quit_signal) {
+        /* the terminal may have stopped reading (a stalled link, Ctrl-S): drop the frame bytes
+         * still queued and restart output, so the restore below cannot block forever */
+        tcflush(STDOUT_FILENO, TCOFLUSH);
+        tcflow(STDOUT_FILENO, TCOON);
+    }
     if (screen_handle) {
         if (t->mouse)
             tty_write("\033[?1002l", 8);
@@ -122,31 +138,60 @@ void tty_refresh_size(struct tty *t)
 
 int tty_write(const char *buf, size_t n)
 {
-    while (n > 0) {
+    /* a quit signal interrupts a blocked write (stalled link, Ctrl-S) as EINTR or as a short
+     * count; either way stop writing, or the viewer could never be stopped */
+    while (n > 0 && !quit_signal) {
         ssize_t w = write(STDOUT_FILENO, buf, n);
         if (w < 0) {
-            if (errno == EINTR && !quit_signal)
+            if (errno == EINTR)
                 continue;
             return -1;
         }
         buf += w;
         n -= (size_t)w;
     }
-    return 0;
+    return n ? -1 : 0;
+}
+
+bool tty_suspend(struct tty *t)
+{
+    if (!stop_requested)
+        return false;
+    stop_requested = 0;
+    /* give the shell a normal terminal, stop, and take it back when continued */
+    if (t->mouse)
+        tty_write("\033[?1002l", 8);
+    tty_write("\033[0m", 4);
+    endwin();
+    kill(getpid(), SIGSTOP);
+    /* continued (fg): ncurses re-enters its modes and the alternate screen, cleared */
+    refresh();
+    curs_set(0);
+    if (t->mouse)
+        tty_write("\033[?1002h", 8);
+    tty_refresh_size(t);
+    return true;
 }
 
 /* After an Esc: a CSI sequence ncurses did not recognise (our DSR answer), or the Esc key. */
+/* After an ESC ncurses did not turn into a key: a lone ESC is the Esc key; ESC [ ... is a
+ * CSI sequence (our DSR answer "0n", or a key this terminfo does not know: ignored); ESC O x
+ * an unknown SS3 key (ignored); ESC x is Alt+x (ignored, so Alt never quits). */
 static enum tty_event_kind after_escape(struct tty_event *ev)
 {
     timeout(0);
     int c = getch();
-    if (c != '[') {
-        if (c != ERR)
-            ungetch(c);
+    if (c == ERR) {
         ev->kind = TTY_KEY;
         ev->key = 27;
         return ev->kind;
     }
+    if (c == 'O') {
+        getch();
+        return TTY_NONE;
+    }
+    if (c != '[')
+        return TTY_NONE;
     char seq[16];
     size_t n = 0;
     for (;;) {
@@ -165,7 +210,7 @@ static enum tty_event_kind after_escape(struct tty_event *ev)
 enum tty_event_kind tty_next_event(struct tty *t, int timeout_ms, struct tty_event *ev)
 {
     memset(ev, 0, sizeof *ev);
-    if (quit_signal)
+    if (quit_signal || stop_requested)
         return TTY_NONE;
     timeout(timeout_ms);
     int c = getch();

@@ -239,22 +239,24 @@ static void hud_draw(struct view *v)
 {
     if (!v->hud || v->tty.rows < 1)
         return;
-    char text[512], buf[700];
+    char text[512], pos[32];
     hud_compose(v, text, sizeof text);
     if (!v->hud_dirty && strcmp(text, v->hud_text) == 0)
         return;
     snprintf(v->hud_text, sizeof v->hud_text, "%s", text);
-    int cols = v->tty.cols, len = (int)strlen(text);
-    if (len > cols)
-        len = cols;
-    const char *sgr = v->eo.mode == PALETTE_NONE ? "\033[0m" : "\033[0;30;47m";
-    /* pad to the full width so an older, longer text is erased; never write the last cell
-     * of the last row (some terminals scroll) */
-    int width = cols - 1 > len ? cols - 1 : len;
-    int k = snprintf(buf, sizeof buf, "\033[%d;1H%s%.*s%*s\033[0m", v->tty.rows, sgr, len, text,
-                     width - len > 0 && width < 600 ? width - len : 0, "");
-    if (k > 0)
-        out_add(v, buf, (size_t)(k < (int)sizeof buf ? k : (int)sizeof buf - 1));
+    /* exactly cols-1 characters: padded so a longer old text is erased, and the last cell of
+     * the last row is never written (some terminals scroll when it is) */
+    int width = v->tty.cols - 1, len = (int)strlen(text);
+    len = len > width ? width : len;
+    int k = snprintf(pos, sizeof pos, "\033[%d;1H", v->tty.rows);
+    out_add(v, pos, (size_t)k);
+    out_add(v, v->eo.mode == PALETTE_NONE ? "\033[0m" : "\033[0;30;47m",
+            v->eo.mode == PALETTE_NONE ? 4 : 10);
+    out_add(v, text, (size_t)(len > 0 ? len : 0));
+    static const char spaces[64] = "                                                                ";
+    for (int pad = width - len; pad > 0; pad -= 64)
+        out_add(v, spaces, (size_t)(pad < 64 ? pad : 64));
+    out_add(v, "\033[0m", 4);
     v->hud_dirty = false;
 }
 
@@ -279,23 +281,28 @@ static void help_draw(struct view *v)
 {
     int x0, y0, w, h, width;
     help_rect(v, &x0, &y0, &w, &h, &width);
-    char buf[256];
+    int visible = v->fb_cols - x0 < w ? v->fb_cols - x0 : w; /* never wrap a line */
     const char *sgr = v->eo.mode == PALETTE_NONE ? "" : "\033[0;97;44m";
     for (int i = 0; i < h && y0 + i < v->fb_rows; i++) {
         const char *text = i == 0 || i == h - 1 ? "" : input_help_line(i - 1);
-        int avail = v->fb_cols - x0;
-        int k = snprintf(buf, sizeof buf, "\033[%d;%dH%s  %-*.*s  ", y0 + i + 1, x0 + 1, sgr,
-                         width, width, text);
-        if (k > 0)
-            out_add(v, buf, (size_t)(k < avail + 16 ? k : avail + 16));
+        char pos[32], line[256];
+        int k = snprintf(pos, sizeof pos, "\033[%d;%dH", y0 + i + 1, x0 + 1);
+        snprintf(line, sizeof line, "  %-*.*s  ", width, width, text);
+        out_add(v, pos, (size_t)k);
+        out_add(v, sgr, strlen(sgr));
+        out_add(v, line, (size_t)visible);
     }
     out_add(v, "\033[0m", 4);
 }
 
 static int draw_frame(struct view *v, struct err *e)
 {
-    if (v->fb_cols == 0)
-        return 0;
+    if (v->fb_cols == 0) { /* no room for a picture (one row and a HUD): only the HUD */
+        v->dirty = false;
+        v->last_frame_at = now_s();
+        hud_draw(v);
+        return out_flush(v) ? err_set(e, "rastty: cannot write to the terminal") : 0;
+    }
     const struct scene *s = v->scenes[v->cur];
     if (pipeline_draw(v->pipe, s->items, s->n_items, scene_sky(v), &v->cam, &v->ro, &v->fb,
                       &v->st, e))
@@ -498,6 +505,8 @@ static int loop(struct view *v, struct err *e)
             else if (k == TTY_SYNC_REPLY && v->inflight > 0)
                 v->inflight--;
         }
+        if (tty_suspend(&v->tty) && resize(v, e)) /* back from Ctrl-Z: repaint everything */
+            return -1;
         t = now_s();
         advance(v, last, t);
         last = t;
@@ -505,7 +514,7 @@ static int loop(struct view *v, struct err *e)
             break;
         if (v->dirty && t >= v->last_frame_at + frame_gap && !(v->sync_ok && v->inflight >= 2)) {
             if (draw_frame(v, e))
-                return -1;
+                return tty_signalled() ? 0 : -1; /* a quit signal cut the write short */
         } else if (v->hud_dirty && !v->dirty) {
             hud_draw(v);
             out_flush(v);

@@ -4,7 +4,7 @@
 # out (q, Esc, Ctrl-C, SIGTERM, SIGHUP) leaves the shell with echo and canonical mode on.
 source "$(dirname "$0")/lib/common.sh"
 
-NAMES=(demo_scene_starts_and_fills_window zoom_in_grows_the_model strafe_right_moves_model_left
+NAMES=(suspend_and_resume_repaints demo_scene_starts_and_fills_window zoom_in_grows_the_model strafe_right_moves_model_left
        fly_yaw_left_moves_model_right resize_refills_the_window idle_viewer_writes_nothing
        tiny_and_huge_terminals quit_restores_terminal)
 if ! have_tmux; then
@@ -123,6 +123,28 @@ extremes() {
     [ "$1x$2" = 300x198 ] && [ "$3" -eq $((300 * 198)) ]
 }
 check tiny_and_huge_terminals extremes
+
+# Ctrl-Z gives the shell a sane terminal; fg takes it back and repaints at once
+suspend_resume() {
+    local s=z$RANDOM f=$OUT/stty-suspended.txt
+    tm new-session -d -s $s -x 80 -y 24 bash --norc --noprofile
+    tm send-keys -t $s "$(printf '%q ' "$BIN" --colors truecolor --background 40,40,40 assets/sphere.obj)" Enter
+    wait_for 15 hud_has $s " fps " || { echo "viewer did not start"; return 1; }
+    keys $s Space; settle $s
+    tm send-keys -t $s C-z
+    wait_for 10 sh -c "tmux -L $SOCK capture-pane -t $s -p | grep -q Stopped" || { echo "not stopped"; return 1; }
+    tm send-keys -t $s "stty -a > $f" Enter
+    wait_for 10 test -s $f || return 1
+    grep -qE '(^| )icanon( |$)' $f && grep -qE '(^| )echo( |$)' $f || { echo "suspended with a raw terminal"; return 1; }
+    tm send-keys -t $s "clear; fg" Enter
+    wait_for 10 hud_has $s " fps " || { echo "no status line after fg"; return 1; }
+    settle $s
+    set -- $(picture $s resumed 40,40,40)
+    echo "after fg: $*"
+    [ "$1x$2" = 80x46 ] && [ "$3" -gt 200 ] || { echo "not repainted"; return 1; }
+    keys $s q
+}
+check suspend_and_resume_repaints suspend_resume
 
 # every way out (a crash signal included): run under a non-interactive sh (which, unlike an interactive bash, does not
 # repair the terminal after its child dies), then ask for the terminal modes
