@@ -180,7 +180,7 @@ done:
 int cmd_bench(const struct options *o, struct err *e)
 {
     int cols = o->cols ? o->cols : 160, rows = o->rows ? o->rows : 48;
-    int frames = o->frames > 1 ? o->frames : 180;
+    int frames = o->frames ? o->frames : 180;
     if (o->n_inputs == 0)
         return err_set(e, "rastty bench: give one or more MODEL.obj or SCENE.rsc "
                           "(make bench supplies the standard set)"), 2;

@@ -7,6 +7,7 @@
 #include "cmd.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -50,8 +51,19 @@ static int path_load(const char *path, struct camera_path *cp, struct err *e)
             rc = err_set(e, "%s:%d: expected 'ex ey ez tx ty tz'", q, lineno);
             break;
         }
+        int finite = 1;
+        for (int k = 0; k < 6; k++)
+            finite &= isfinite(v[k]) != 0;
+        if (!finite) {
+            rc = err_set(e, "%s:%d: coordinates must be finite numbers", q, lineno);
+            break;
+        }
         if (v[0] == v[3] && v[1] == v[4] && v[2] == v[5]) {
             rc = err_set(e, "%s:%d: eye and target are the same point", q, lineno);
+            break;
+        }
+        if (v[0] == v[3] && v[2] == v[5]) { /* straight up or down: the up vector is +Y */
+            rc = err_set(e, "%s:%d: the camera must not look straight up or down", q, lineno);
             break;
         }
         if (cp->n == cap) {
@@ -118,9 +130,8 @@ int cmd_dump(const struct options *o, struct err *e)
         path_free(&cp);
         return 2;
     }
-    int frames = o->frames;
-    if (o->camera_path && frames == 1)
-        frames = cp.n; /* the path's length unless --frames says otherwise */
+    /* default: one frame, or one per camera-path line */
+    int frames = o->frames ? o->frames : o->camera_path ? cp.n : 1;
 
     struct camera cam;
     struct render_opts ro;
@@ -195,6 +206,8 @@ done:
 
 int cmd_ansi2ppm(const struct options *o, struct err *e)
 {
+    if (!image_color_ext_ok(o->out))
+        return err_set(e, "rastty ansi2ppm: --out %s: use a .ppm or .png file name", o->out), 2;
     const char *path = o->inputs[0];
     char q[200];
     err_quote(path, strlen(path), 160, q, sizeof q);

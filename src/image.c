@@ -3,10 +3,15 @@
 
 #include <errno.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <strings.h>
 
 #include <stb_image_write.h>
+
+/* not declared in stb_image_write.h unless STBIW_... is set, but libstb exports it */
+unsigned char *stbi_write_png_to_mem(const unsigned char *pixels, int stride_bytes, int x, int y,
+                                     int n, int *out_len);
 
 static int has_ext(const char *path, const char *ext)
 {
@@ -39,9 +44,20 @@ int image_write_ppm(const char *path, const struct fb *fb, struct err *e)
 
 int image_write_png(const char *path, const struct fb *fb, struct err *e)
 {
-    if (!stbi_write_png(path, fb->w, fb->h, 3, fb->rgb, fb->w * 3))
-        return err_set(e, "%s: cannot write PNG", path);
-    return 0;
+    /* stbi_write_png ignores fwrite/fclose errors (a full disk would "succeed"): encode to
+     * memory with stb, write and check here */
+    int len;
+    unsigned char *png = stbi_write_png_to_mem(fb->rgb, fb->w * 3, fb->w, fb->h, 3, &len);
+    if (!png)
+        return err_set(e, "%s: cannot encode PNG", path);
+    FILE *f = fopen(path, "wb");
+    if (!f) {
+        free(png);
+        return err_set(e, "%s: cannot create: %s", path, strerror(errno));
+    }
+    fwrite(png, 1, (size_t)len, f);
+    free(png);
+    return finish(f, path, e);
 }
 
 int image_write_color(const char *path, const struct fb *fb, struct err *e)

@@ -33,11 +33,11 @@ struct flag {
 };
 
 static const struct flag flags[] = {
-    {"--size", F_SIZE, ARG_VALUE, C_RENDER | C_BENCH, "WxH", "framebuffer size in pixels (render: 160x96)"},
+    {"--size", F_SIZE, ARG_VALUE, C_RENDER, "WxH", "framebuffer size in pixels (default 160x96)"},
     {"--eye", F_EYE, ARG_VALUE, C_DRAW, "X,Y,Z", "camera position (default 0,0,3)"},
     {"--target", F_TARGET, ARG_VALUE, C_DRAW, "X,Y,Z", "point looked at (default 0,0,0)"},
     {"--up", F_UP, ARG_VALUE, C_DRAW, "X,Y,Z", "up direction (default 0,1,0)"},
-    {"--fov", F_FOV, ARG_VALUE, C_DRAW, "DEG", "vertical field of view, 0<DEG<180 (default 50)"},
+    {"--fov", F_FOV, ARG_VALUE, C_DRAW, "DEG", "vertical field of view, 0.01..179.99 (default 50)"},
     {"--near", F_NEAR, ARG_VALUE, C_DRAW, "N", "near plane distance > 0 (default 0.1)"},
     {"--far", F_FAR, ARG_VALUE, C_DRAW, "F", "far plane distance > near (default 100)"},
     {"--ortho", F_ORTHO, ARG_VALUE, C_DRAW, "H", "orthographic projection, view height H"},
@@ -54,9 +54,9 @@ static const struct flag flags[] = {
     {"--out", F_OUT, ARG_VALUE, C_RENDER | C_DUMP | C_A2P, "FILE", "output file (.ppm/.png; dump: .ans)"},
     {"--depth-out", F_DEPTH_OUT, ARG_VALUE, C_RENDER, "FILE.pfm", "also write the depth buffer as PFM"},
     {"--stats", F_STATS, ARG_NONE, C_RENDER | C_DUMP, NULL, "print triangle/pixel counts and timings to stderr"},
-    {"--cols", F_COLS, ARG_VALUE, C_DUMP | C_BENCH, "C", "terminal columns (dump: 80, or the terminal's)"},
-    {"--rows", F_ROWS, ARG_VALUE, C_DUMP | C_BENCH, "R", "terminal rows (dump: 24, or the terminal's)"},
-    {"--frames", F_FRAMES, ARG_VALUE, C_DUMP | C_BENCH, "N", "number of frames (default 1)"},
+    {"--cols", F_COLS, ARG_VALUE, C_DUMP | C_BENCH, "C", "terminal columns (dump: 80 or the terminal's; bench: 160)"},
+    {"--rows", F_ROWS, ARG_VALUE, C_DUMP | C_BENCH, "R", "terminal rows (dump: 24 or the terminal's; bench: 48)"},
+    {"--frames", F_FRAMES, ARG_VALUE, C_DUMP | C_BENCH, "N", "number of frames (dump: 1 or the camera path's length; bench: 180)"},
     {"--orbit", F_ORBIT, ARG_VALUE, C_DUMP | C_BENCH, "DEG", "orbit the camera around the target DEG per frame"},
     {"--camera-path", F_CAMERA_PATH, ARG_VALUE, C_DUMP, "FILE", "camera per frame: lines 'ex ey ez tx ty tz'"},
     {"--colors", F_COLORS, ARG_VALUE, C_VIEW | C_DUMP, "MODE", "truecolor|256|16|none (default: detect)"},
@@ -124,6 +124,19 @@ static int parse_list(const char *s, double *v, int n)
     return 0;
 }
 
+static bool is_zero(vec3 a)
+{
+    return a.x == 0 && a.y == 0 && a.z == 0;
+}
+
+/* a / max|component|: same direction, length in [1, sqrt 3], so products cannot overflow
+ * or underflow (1e200 and 1e-300 are valid coordinates) */
+static vec3 unit_scale(vec3 a)
+{
+    double m = fmax(fabs(a.x), fmax(fabs(a.y), fabs(a.z)));
+    return m > 0 ? v3_scale(a, 1.0 / m) : a;
+}
+
 static int parse_vec3(const char *s, vec3 *out)
 {
     double v[3];
@@ -150,7 +163,7 @@ static void defaults(struct options *o)
     memset(o, 0, sizeof *o);
     camera_default(&o->camera);
     render_opts_default(&o->render);
-    o->frames = 1;
+    o->frames = 0; /* not given: each subcommand picks its default */
     o->frame_index = -1;
     o->tolerance = -1; /* not given: each subcommand picks its default */
     o->fps = 60;
@@ -177,8 +190,9 @@ static int apply(struct options *o, const struct flag *f, const char *v, struct 
         return 0;
     }
     case F_FOV:
-        if (parse_double(v, &d) || !(d > 0 && d < 180))
-            return bad(e, f->name, "expected degrees between 0 and 180", v);
+        /* 0.01 .. 179.99: beyond that the projection overflows double precision */
+        if (parse_double(v, &d) || !(d >= 0.01 && d <= 179.99))
+            return bad(e, f->name, "expected degrees between 0.01 and 179.99", v);
         o->camera.fov_deg = d;
         o->camera_set = true;
         return 0;
@@ -195,7 +209,7 @@ static int apply(struct options *o, const struct flag *f, const char *v, struct 
         return 0;
     case F_FRAME: o->frame = true; return 0;
     case F_LIGHT:
-        if (parse_vec3(v, &o->render.lights[0].dir) || v3_len(o->render.lights[0].dir) == 0)
+        if (parse_vec3(v, &o->render.lights[0].dir) || is_zero(o->render.lights[0].dir))
             return bad(e, f->name, "expected a non-zero direction X,Y,Z", v);
         o->light_set = true;
         return 0;
@@ -285,9 +299,9 @@ static int validate(struct options *o, struct err *e)
     if (!(c->far > c->near))
         return err_set(e, "rastty: --far (%g) must be greater than --near (%g)", c->far, c->near);
     vec3 dir = v3_sub(c->target, c->eye);
-    if (v3_len(dir) == 0)
-        return err_set(e, "rastty: --eye and --target must differ");
-    if (v3_len(v3_cross(dir, c->up)) <= 1e-12 * v3_len(dir) * v3_len(c->up))
+    if (is_zero(dir) || !isfinite(dir.x) || !isfinite(dir.y) || !isfinite(dir.z))
+        return err_set(e, "rastty: --eye and --target must differ (by a finite distance)");
+    if (is_zero(c->up) || v3_len(v3_cross(unit_scale(dir), unit_scale(c->up))) <= 1e-9)
         return err_set(e, "rastty: --up must not be parallel to the view direction (or zero)");
     switch (o->cmd) {
     case CMD_RENDER:
