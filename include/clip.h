@@ -10,7 +10,8 @@
  *      Near is clipped first, so every later vertex has w > 0.
  * A vertex exactly on a plane is inside. A new vertex on an edge is always interpolated from
  * the edge's inside endpoint, so two triangles sharing that edge create bit-identical vertices
- * (no cracks along clipped shared edges). */
+ * (no cracks along clipped shared edges). Should interpolation overflow (coordinates near
+ * the double range) the polygon is dropped: 0 vertices. */
 #ifndef RASTTY_CLIP_H
 #define RASTTY_CLIP_H
 

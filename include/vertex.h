@@ -36,6 +36,7 @@ enum {
     VERTEX_GUARD_RIGHT = 1 << 7,
     VERTEX_GUARD_BOTTOM = 1 << 8,
     VERTEX_GUARD_TOP = 1 << 9,
+    VERTEX_INVALID = 1 << 10, /* a non-finite coordinate: its triangles are dropped */
     VERTEX_OUT_FRUSTUM = 0x3f,
     VERTEX_NEEDS_CLIP = VERTEX_OUT_NEAR | VERTEX_OUT_FAR | 0x3c0,
 };
@@ -87,10 +88,10 @@ static inline uint32_t vertex_outcode(const double c[4], double gx, double gy)
     oc |= (x > gx * w) ? VERTEX_GUARD_RIGHT : 0;
     oc |= (y < -gy * w) ? VERTEX_GUARD_BOTTOM : 0;
     oc |= (y > gy * w) ? VERTEX_GUARD_TOP : 0;
-    /* NaN coordinates (from degenerate input) compare false everywhere: treat as outside
-     * every plane so the triangle is rejected instead of reaching the rasterizer */
-    if (!(x == x && y == y && z == z && w == w))
-        oc = VERTEX_OUT_FRUSTUM | VERTEX_NEEDS_CLIP;
+    /* inf or NaN (a model scaled by 1e300, say): no clipping or snapping can use it, so
+     * every triangle touching it is dropped (x - x is 0 only for finite x) */
+    if (!(x - x == 0 && y - y == 0 && z - z == 0 && w - w == 0))
+        oc = VERTEX_OUT_FRUSTUM | VERTEX_NEEDS_CLIP | VERTEX_INVALID;
     return oc;
 }
 /* Perspective divide and viewport: window x = (x/w + 1) W/2, y = (1 - y/w) H/2 (row 0 at the

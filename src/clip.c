@@ -64,6 +64,8 @@ int clip_triangle(const struct vertex_out *const in[3], uint32_t planes, int n_v
                     lerp(&src[j], &src[i], d[j] / (d[j] - d[i]), n_var, &dst[m]);
                 dst[m].outcode = vertex_outcode(dst[m].clip, gx, gy);
                 dst[m].projected = 0;
+                if (dst[m].outcode & VERTEX_INVALID) /* huge inputs overflowed the lerp */
+                    return 0;
                 m++;
             }
         }

@@ -128,6 +128,10 @@ int line_draw_clip(struct fb *fb, const double a[4], const double b[4], const ui
     double p[2][3];
     vertex_window(ca, fb->w, fb->h, p[0]);
     vertex_window(cb, fb->w, fb->h, p[1]);
+    for (int i = 0; i < 2; i++)
+        for (int k = 0; k < 3; k++)
+            if (!isfinite(p[i][k])) /* overflowed: Cohen-Sutherland would see NaN as inside */
+                return 0;
     if (!cohen_sutherland(p, fb->w, fb->h))
         return 0;
     return line_draw_px(fb, to_pixel(p[0][0], fb->w), to_pixel(p[0][1], fb->h), (float)p[0][2],

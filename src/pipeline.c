@@ -113,7 +113,7 @@ static void draw_filled(const struct mesh *m, const struct vertex_out *vo,
         uint32_t all = v[0]->outcode & v[1]->outcode & v[2]->outcode;
         uint32_t any = v[0]->outcode | v[1]->outcode | v[2]->outcode;
         stats->tris_in++;
-        if (all & VERTEX_OUT_FRUSTUM) {
+        if ((all & VERTEX_OUT_FRUSTUM) || (any & VERTEX_INVALID)) {
             stats->tris_rejected++;
             continue;
         }
@@ -157,7 +157,8 @@ static void draw_edges(const struct mesh *m, const struct vertex_out *vo,
         const struct vertex_out *v[3] = {&vo[m->tris[i][0]], &vo[m->tris[i][1]],
                                          &vo[m->tris[i][2]]};
         stats->tris_in += !overlay;
-        if (v[0]->outcode & v[1]->outcode & v[2]->outcode & VERTEX_OUT_FRUSTUM) {
+        if ((v[0]->outcode & v[1]->outcode & v[2]->outcode & VERTEX_OUT_FRUSTUM) ||
+            ((v[0]->outcode | v[1]->outcode | v[2]->outcode) & VERTEX_INVALID)) {
             stats->tris_rejected += !overlay;
             continue;
         }

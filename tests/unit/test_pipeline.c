@@ -130,3 +130,24 @@ TEST(failed_depth_test_changes_nothing)
     CHECK(f.st.pixels_shaded < f.st.pixels_tested);
     frame_free(&f);
 }
+
+TEST(non_finite_vertices_drop_their_triangles)
+{
+    /* 1e10 * a scale of 1e300 overflows to inf in clip space: such triangles can be neither
+     * clipped nor snapped, so they are dropped, in every mode, without undefined behaviour
+     * (the sanitizer build checks float-to-int conversions) */
+    struct frame f;
+    REQUIRE(frame_init(&f, "v 0 0 0\nv 1e10 0 0\nv 0 1 0\nv -1 -1 0\nf 1 2 3\nf 1 3 4\n", 32,
+                       32) == 0);
+    f.item.model = m4_scale(v3(1e300, 1, 1));
+    const enum shade_mode modes[] = {SHADE_PHONG, SHADE_WIRE};
+    for (int i = 0; i < 2; i++) {
+        f.ro.shade = modes[i];
+        REQUIRE(draw(&f) == 0);
+        CHECK(f.st.tris_rejected >= 1);
+    }
+    f.ro.shade = SHADE_FLAT;
+    f.ro.view = VIEW_WIRE_OVERLAY;
+    REQUIRE(draw(&f) == 0);
+    frame_free(&f);
+}
