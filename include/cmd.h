@@ -13,10 +13,13 @@ int cmd_ansi2ppm(const struct options *o, struct err *e);
 int cmd_bench(const struct options *o, struct err *e);
 
 /* Shared by the subcommands: the camera and render options for a scene. The command line
- * wins over the scene file (camera, lights, background); `frame` fits the camera to the
- * scene's bounding sphere when neither gives a camera. */
+ * wins over the scene file (camera, near/far, lights, background); `frame` fits the camera
+ * to the scene's bounding box, keeping the view direction, when the scene gives none (or
+ * --eye/--target/--up/--fov override it). */
 void cmd_view_setup(const struct options *o, const struct scene *s, double aspect, bool frame,
                     struct camera *cam_out, struct render_opts *ro_out);
 void cmd_print_stats(const struct frame_stats *st);
+/* scene_load, then --texture over every item; on failure nothing is left allocated. */
+int cmd_load_scene(const struct options *o, const char *path, struct scene *s, struct err *e);
 
 #endif

@@ -29,6 +29,7 @@ struct options {
     int width, height;        /* --size; 0 = subcommand default */
     struct camera camera;
     bool camera_set;          /* any of --eye/--target/--up/--fov given */
+    bool near_far_set;        /* --near or --far given */
     bool light_set, background_set;
     bool frame;               /* --frame: fit the camera to the model's bounding sphere */
     struct render_opts render;

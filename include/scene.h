@@ -35,6 +35,7 @@ struct scene {
     struct mesh meshes[SCENE_MAX_ITEMS]; /* distinct OBJ files, n_meshes of them */
     int n_meshes;
     struct texture overrides[SCENE_MAX_ITEMS]; /* per item, for `texture` */
+    struct texture texture_all;         /* scene_set_texture (--texture): every item */
     float kd_override[SCENE_MAX_ITEMS][3];     /* per item, for `kd` */
     struct draw_item items[SCENE_MAX_ITEMS];
     int n_items;
@@ -49,13 +50,14 @@ struct scene {
     vec3 bound_lo, bound_hi;            /* world-space box around every item */
 };
 
-/* One OBJ drawn as given (identity model matrix); texture (may be NULL) overrides map_Kd. */
-int scene_load_model(const char *obj_path, const char *texture, struct scene *out,
-                     struct err *e);
+/* One OBJ drawn as given (identity model matrix). */
+int scene_load_model(const char *obj_path, struct scene *out, struct err *e);
 /* A scene file (format above). */
 int scene_load_file(const char *path, struct scene *out, struct err *e);
 /* By extension: .rsc -> scene file, anything else -> model. */
 int scene_load(const char *path, struct scene *out, struct err *e);
+/* Draw every item with this texture instead of its own (--texture). */
+int scene_set_texture(struct scene *s, const char *path, struct err *e);
 void scene_free(struct scene *s);
 
 #endif

@@ -125,8 +125,7 @@ int cmd_dump(const struct options *o, struct err *e)
         return 2;
     }
     struct scene scene;
-    if (o->texture ? scene_load_model(o->inputs[0], o->texture, &scene, e)
-                   : scene_load(o->inputs[0], &scene, e)) {
+    if (cmd_load_scene(o, o->inputs[0], &scene, e)) {
         path_free(&cp);
         return 2;
     }

@@ -13,13 +13,14 @@ void cmd_view_setup(const struct options *o, const struct scene *s, double aspec
     *cam = o->camera;
     *ro = o->render;
     if (s->has_camera && !o->camera_set) {
-        struct camera keep = *cam;
         *cam = s->camera;
-        cam->ortho_height = keep.ortho_height;
-        if (keep.near != 0.1 || keep.far != 100) /* --near/--far still apply */
-            cam->near = keep.near, cam->far = keep.far;
+        cam->ortho_height = o->camera.ortho_height;
     } else if (frame) {
         camera_frame_box(cam, s->bound_lo, s->bound_hi, aspect);
+    }
+    if (o->near_far_set) { /* --near/--far win over the scene's and the framing's */
+        cam->near = o->camera.near;
+        cam->far = o->camera.far;
     }
     if (s->n_lights && !o->light_set) {
         ro->n_lights = s->n_lights;
@@ -29,6 +30,17 @@ void cmd_view_setup(const struct options *o, const struct scene *s, double aspec
     if (s->has_background && !o->background_set)
         for (int k = 0; k < 3; k++)
             ro->background[k] = s->background[k];
+}
+
+int cmd_load_scene(const struct options *o, const char *path, struct scene *s, struct err *e)
+{
+    if (scene_load(path, s, e))
+        return -1;
+    if (o->texture && scene_set_texture(s, o->texture, e)) {
+        scene_free(s);
+        return -1;
+    }
+    return 0;
 }
 
 void cmd_print_stats(const struct frame_stats *st)
@@ -47,8 +59,7 @@ int cmd_render(const struct options *o, struct err *e)
     if (!image_color_ext_ok(o->out))
         return err_set(e, "rastty render: --out %s: use a .ppm or .png file name", o->out), 2;
     struct scene scene;
-    if (o->texture ? scene_load_model(o->inputs[0], o->texture, &scene, e)
-                   : scene_load(o->inputs[0], &scene, e))
+    if (cmd_load_scene(o, o->inputs[0], &scene, e))
         return 2;
     struct camera cam;
     struct render_opts ro;

@@ -201,6 +201,7 @@ static int apply(struct options *o, const struct flag *f, const char *v, struct 
         if (parse_double(v, &d) || !(d > 0))
             return bad(e, f->name, "expected a positive distance", v);
         *(f->id == F_NEAR ? &o->camera.near : &o->camera.far) = d;
+        o->near_far_set = true;
         return 0;
     case F_ORTHO:
         if (parse_double(v, &d) || !(d > 0))

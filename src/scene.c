@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "lex.h"
 #include "obj.h"
 
 #define MAX_TOKENS 32
@@ -41,7 +42,7 @@ static void update_bounds(struct scene *s)
     s->bound_hi = hi;
 }
 
-int scene_load_model(const char *obj_path, const char *texture, struct scene *s, struct err *e)
+int scene_load_model(const char *obj_path, struct scene *s, struct err *e)
 {
     memset(s, 0, sizeof *s);
     set_name(s, obj_path);
@@ -51,14 +52,17 @@ int scene_load_model(const char *obj_path, const char *texture, struct scene *s,
     s->items[0].mesh = &s->meshes[0];
     s->items[0].model = m4_identity();
     s->n_items = 1;
-    if (texture) {
-        if (texture_load(texture, &s->overrides[0], e)) {
-            scene_free(s);
-            return -1;
-        }
-        s->items[0].texture_override = &s->overrides[0];
-    }
     update_bounds(s);
+    return 0;
+}
+
+int scene_set_texture(struct scene *s, const char *path, struct err *e)
+{
+    texture_free(&s->texture_all);
+    if (texture_load(path, &s->texture_all, e))
+        return -1;
+    for (int i = 0; i < s->n_items; i++)
+        s->items[i].texture_override = &s->texture_all;
     return 0;
 }
 
@@ -66,6 +70,7 @@ int scene_load_model(const char *obj_path, const char *texture, struct scene *s,
 
 struct parser {
     const char *path; /* quoted for messages */
+    int procedural_sky_line; /* 0, or the line of `sky procedural` */
     char dir[MAX_PATH];
     int line;
     char *tok[MAX_TOKENS];
@@ -220,7 +225,9 @@ static int st_model(struct parser *p, struct scene *s, char (*names)[MAX_PATH])
     }
     if (tex) {
         char tpath[MAX_PATH];
-        if (resolve(p, tex, tpath) || texture_load(tpath, &s->overrides[item], p->e))
+        if (resolve(p, tex, tpath))
+            return -1;
+        if (texture_load(tpath, &s->overrides[item], p->e))
             return prefix_err(p);
         it->texture_override = &s->overrides[item];
     }
@@ -298,9 +305,8 @@ static int statement(struct parser *p, struct scene *s, char (*names)[MAX_PATH])
         if (s->has_sky)
             return perr(p, "only one sky per scene", NULL);
         if (p->n == 2 && strcmp(p->tok[1], "procedural") == 0) {
-            vec3 sun = s->n_lights ? s->lights[0].dir : v3(1, 1, 1);
-            if (skybox_procedural(&s->sky, sun, p->e))
-                return prefix_err(p);
+            p->procedural_sky_line = p->line; /* built at the end: the sun follows the first
+                                                 light, wherever it is declared */
         } else if (p->n == 7) {
             char paths[6][MAX_PATH];
             const char *pp[6];
@@ -334,38 +340,41 @@ int scene_load_file(const char *path, struct scene *s, struct err *e)
         return err_set(e, "%s: path too long", qpath);
     memcpy(p.dir, path, dl);
     p.dir[dl] = '\0';
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return err_set(e, "%s: cannot open scene: %s", qpath, strerror(errno));
+    char *text;
+    size_t len;
+    int err_no = lex_read_file(path, &text, &len);
+    if (err_no)
+        return err_set(e, "%s: cannot open scene: %s", qpath, strerror(err_no));
     char(*names)[MAX_PATH] = calloc(SCENE_MAX_ITEMS, MAX_PATH); /* resolved OBJ path per mesh */
     if (!names) {
-        fclose(f);
+        free(text);
         return err_set(e, "out of memory");
     }
-    char line[8192];
     int rc = 0;
-    while (rc == 0 && fgets(line, sizeof line, f)) {
+    for (char *line = text, *end = text + len; rc == 0 && line < end;) {
+        char *eol = (char *)lex_line_end(line, end);
         p.line++;
-        size_t n = strlen(line);
-        if (n == sizeof line - 1 && line[n - 1] != '\n') {
-            rc = perr(&p, "line too long (limit 8191 bytes)", NULL);
-            break;
-        }
-        if (memchr(line, '\0', n) != NULL || strlen(line) != n) {
+        if (memchr(line, '\0', (size_t)(eol - line))) {
             rc = perr(&p, "binary data in scene file", NULL);
             break;
         }
-        if (n && line[n - 1] == '\n')
-            line[--n] = '\0';
+        *eol = '\0'; /* the buffer is ours: lines become C strings in place */
         if (tokenize(&p, line)) {
             rc = -1;
             break;
         }
         if (p.n)
             rc = statement(&p, s, names);
+        line = eol + 1;
     }
-    fclose(f);
+    free(text);
     free(names);
+    if (rc == 0 && p.procedural_sky_line) {
+        p.line = p.procedural_sky_line;
+        vec3 sun = s->n_lights ? s->lights[0].dir : v3(1, 1, 1);
+        if (skybox_procedural(&s->sky, sun, e))
+            rc = prefix_err(&p);
+    }
     if (rc == 0 && s->n_items == 0)
         rc = err_set(e, "%s: no model statements: nothing to draw", qpath);
     if (rc) {
@@ -381,7 +390,7 @@ int scene_load(const char *path, struct scene *s, struct err *e)
     size_t n = strlen(path);
     if (n > 4 && strcmp(path + n - 4, ".rsc") == 0)
         return scene_load_file(path, s, e);
-    return scene_load_model(path, NULL, s, e);
+    return scene_load_model(path, s, e);
 }
 
 void scene_free(struct scene *s)
@@ -390,6 +399,7 @@ void scene_free(struct scene *s)
         mesh_free(&s->meshes[i]);
         texture_free(&s->overrides[i]);
     }
+    texture_free(&s->texture_all);
     skybox_free(&s->sky);
     memset(s, 0, sizeof *s);
 }

@@ -175,7 +175,8 @@ static void enter_scene(struct view *v)
     const struct scene *s = v->scenes[v->cur];
     struct render_opts keep = v->ro;
     double aspect = v->fb.w > 0 ? (double)v->fb.w / v->fb.h : 2.0;
-    cmd_view_setup(v->o, s, aspect, true, &v->home, &v->ro);
+    /* a model alone is framed, unless the command line placed the camera */
+    cmd_view_setup(v->o, s, aspect, !v->o->camera_set, &v->home, &v->ro);
     /* modes chosen with keys survive a scene change */
     v->ro.shade = keep.shade;
     v->ro.textures = keep.textures;
@@ -542,7 +543,7 @@ static int load_scenes(struct view *v, struct err *e)
         v->scenes[i] = calloc(1, sizeof(struct scene));
         if (!v->scenes[i])
             return err_set(e, "out of memory");
-        if (scene_load(v->paths[i], v->scenes[i], e))
+        if (cmd_load_scene(v->o, v->paths[i], v->scenes[i], e))
             return -1;
     }
     return 0;

@@ -73,6 +73,9 @@ TEST(scene_errors_name_file_and_line)
     expect_error(t, DIR "empty.rsc", "no model statements", __LINE__);
     expect_error(t, DIR "bad_bg.rsc", DIR "bad_bg.rsc:2: background components", __LINE__);
     expect_error(t, DIR "nonexistent.rsc", "cannot open scene", __LINE__);
+    expect_error(t, DIR "nul.rsc", DIR "nul.rsc:1: binary data", __LINE__);
+    /* one prefix, not "longpath.rsc:1: longpath.rsc:1: ..." */
+    expect_error(t, DIR "longpath.rsc", DIR "longpath.rsc:1: path too long", __LINE__);
 }
 
 TEST(scene_load_picks_format_by_extension)
@@ -83,5 +86,19 @@ TEST(scene_load_picks_format_by_extension)
     CHECK_EQ_INT(s.n_items, 1);
     CHECK_EQ_INT(s.items[0].mesh->n_tris, 1);
     CHECK(strcmp(s.name, "tri.obj") == 0);
+    scene_free(&s);
+}
+
+TEST(procedural_sky_follows_a_light_declared_after_it)
+{
+    /* the sun sits toward the first light, wherever the light line is: toward -X here */
+    struct scene s;
+    struct err e;
+    REQUIRE(scene_load_file(DIR "late_light.rsc", &s, &e) == 0);
+    REQUIRE(s.has_sky && s.sky.n_levels > 0);
+    float toward[3], away[3];
+    skybox_sample(&s.sky, 0, v3(-1, 0.2, 0), toward);
+    skybox_sample(&s.sky, 0, v3(1, 0.2, 0), away);
+    CHECK(toward[0] + toward[1] + toward[2] > away[0] + away[1] + away[2] + 0.5);
     scene_free(&s);
 }

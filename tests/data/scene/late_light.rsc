@@ -1,0 +1,3 @@
+model tri.obj
+sky procedural
+light -1 0.2 0
