@@ -175,13 +175,6 @@ static void draw_edges(const struct mesh *m, const struct vertex_out *vo,
     }
 }
 
-static void set_item(struct vertex_uniforms *u, const struct draw_item *item, mat4 pv)
-{
-    u->model = item->model;
-    u->normal_matrix = m4_normal_matrix(item->model);
-    u->mvp = m4_mul(pv, item->model);
-}
-
 /* grow the vertex-output scratch to n (kept across frames) */
 static int reserve(struct pipeline *p, uint32_t n, struct err *e)
 {
@@ -235,43 +228,28 @@ int pipeline_draw(struct pipeline *p, const struct draw_item *items, int n_items
     /* wire frames have no surface colour: the sky goes everywhere, before anything else */
     if (show_sky && wire)
         skybox_draw(sky, cam, fb);
-    /* pass 1: surfaces (wire: depth only, for hidden lines) */
-    for (int it = 0; it < n_items; it++) {
-        const struct draw_item *item = &items[it];
-        const struct mesh *m = item->mesh;
-        if (wire && !o->hidden_lines)
-            break;
-        if (m->n_tris == 0)
+    /* pass 1: surfaces (wire: depth only, for hidden lines); pass 2: edges, depth-tested
+     * against every item's surfaces when asked. Each pass transforms an item's vertices
+     * itself (cheap next to drawing), so no pass keeps more than one item's vertices. */
+    bool pass1 = !wire || o->hidden_lines;
+    bool pass2 = wire || o->view == VIEW_WIRE_OVERLAY;
+    for (int pass = 1; pass <= 2; pass++) {
+        if ((pass == 1 && !pass1) || (pass == 2 && !pass2))
             continue;
-        set_item(&u, item, pv);
-        if (sphere_outside(m, u.mvp, max_scale(item->model))) {
-            stats->meshes_culled++;
-            stats->tris_in += m->n_tris;
-            stats->tris_culled += m->n_tris;
-            continue;
-        }
-        if (reserve(p, m->n_verts, e))
-            return -1;
-        vertex_run(m, &u, p->verts);
-        if (wire) { /* depth-only pre-pass; its counts are not the frame's */
-            struct frame_stats pre = {0};
-            draw_filled(m, p->verts, &u, item, SHADE_WIRE, 0, o, &sc, fb, &pre);
-        } else {
-            draw_filled(m, p->verts, &u, item, mode, n_var, o, &sc, fb, stats);
-        }
-    }
-    if (show_sky && !wire) /* only where no surface was drawn */
-        skybox_draw(sky, cam, fb);
-    /* pass 2: edges, depth-tested against every item's surfaces when asked */
-    if (wire || o->view == VIEW_WIRE_OVERLAY) {
-        bool overlay = !wire;
+        if (pass == 2 && show_sky && !wire) /* the sky goes where pass 1 drew nothing */
+            skybox_draw(sky, cam, fb);
+        /* a culled item is counted once: by the first pass that looks at it */
+        bool counts = pass == 1 || !pass1;
         for (int it = 0; it < n_items; it++) {
-            const struct mesh *m = items[it].mesh;
-            set_item(&u, &items[it], pv);
+            const struct draw_item *item = &items[it];
+            const struct mesh *m = item->mesh;
             if (m->n_tris == 0)
                 continue;
-            if (sphere_outside(m, u.mvp, max_scale(items[it].model))) {
-                if (!overlay && !o->hidden_lines) { /* pass 1 did not count it */
+            u.model = item->model;
+            u.normal_matrix = m4_normal_matrix(item->model);
+            u.mvp = m4_mul(pv, item->model);
+            if (sphere_outside(m, u.mvp, max_scale(item->model))) {
+                if (counts) {
                     stats->meshes_culled++;
                     stats->tris_in += m->n_tris;
                     stats->tris_culled += m->n_tris;
@@ -281,9 +259,18 @@ int pipeline_draw(struct pipeline *p, const struct draw_item *items, int n_items
             if (reserve(p, m->n_verts, e))
                 return -1;
             vertex_run(m, &u, p->verts);
-            draw_edges(m, p->verts, o, overlay || o->hidden_lines, overlay, fb, stats);
+            if (pass == 2) {
+                draw_edges(m, p->verts, o, !wire || o->hidden_lines, !wire, fb, stats);
+            } else if (wire) { /* depth-only pre-pass; its counts are not the frame's */
+                struct frame_stats pre = {0};
+                draw_filled(m, p->verts, &u, item, SHADE_WIRE, 0, o, &sc, fb, &pre);
+            } else {
+                draw_filled(m, p->verts, &u, item, mode, n_var, o, &sc, fb, stats);
+            }
         }
     }
+    if (show_sky && !wire && !pass2) /* the sky goes where the surfaces left room */
+        skybox_draw(sky, cam, fb);
     if (o->view == VIEW_DEPTH)
         fb_show_depth(fb);
     else if (o->view == VIEW_OVERDRAW)
