@@ -173,15 +173,19 @@ bool tty_suspend(struct tty *t)
     return true;
 }
 
-/* After an Esc: a CSI sequence ncurses did not recognise (our DSR answer), or the Esc key. */
 /* After an ESC ncurses did not turn into a key: a lone ESC is the Esc key; ESC [ ... is a
  * CSI sequence (our DSR answer "0n", or a key this terminfo does not know: ignored); ESC O x
- * an unknown SS3 key (ignored); ESC x is Alt+x (ignored, so Alt never quits). */
+ * an unknown SS3 key (ignored); ESC x is Alt+x (ignored, so Alt never quits); ESC ESC is the
+ * Esc key followed by another sequence. */
 static enum tty_event_kind after_escape(struct tty_event *ev)
 {
     timeout(0);
     int c = getch();
-    if (c == ERR) {
+    if (c == ERR || c == 27) {
+        /* ESC ESC: the Esc key, then another sequence that arrived within the escape delay
+         * (typically the answer to our per-frame DSR); keep the second ESC for the next call */
+        if (c == 27)
+            ungetch(27);
         ev->kind = TTY_KEY;
         ev->key = 27;
         return ev->kind;

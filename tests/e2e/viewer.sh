@@ -150,7 +150,7 @@ check suspend_and_resume_repaints suspend_resume
 # repair the terminal after its child dies), then ask for the terminal modes
 quit_ways() {
     local how rc=0
-    for how in q Escape C-c TERM HUP SEGV KILL; do
+    for how in q Escape EscDSR C-c TERM HUP SEGV KILL; do
         local s=q$RANDOM f=$OUT/stty-$how.txt tag=$OUT/quit-$how-$$.rsc
         echo "model $PWD/assets/cube.obj" > "$tag"   # a unique name to find the process by
         tm new-session -d -s $s -x 80 -y 24 \
@@ -158,6 +158,9 @@ quit_ways() {
         wait_for 15 hud_has $s " fps " || { echo "$how: viewer did not start"; rc=1; continue; }
         case $how in
             TERM|HUP|SEGV|KILL) pkill -$how -f -- "^$BIN .*$tag" ;;   # rastty, not the sh around it
+            # Esc with a DSR answer ("ESC [ 0 n") right behind it, inside the escape delay: what
+            # a slow link delivers while a frame is in flight; the Esc must not be swallowed
+            EscDSR) tm send-keys -t $s -H 1b 1b 5b 30 6e ;;
             *) tm send-keys -t $s $how ;;
         esac
         wait_for 10 test -s "$f" || { echo "$how: no terminal modes recorded"; rc=1; continue; }
@@ -173,7 +176,7 @@ quit_ways() {
         else
             local want_rc
             # SEGV: the crash handler restores the terminal, then dies by the signal (128 + 11)
-            case $how in q|Escape) want_rc=0 ;; C-c) want_rc=130 ;; HUP) want_rc=129 ;; TERM) want_rc=143 ;; SEGV) want_rc=139 ;; esac
+            case $how in q|Escape|EscDSR) want_rc=0 ;; C-c) want_rc=130 ;; HUP) want_rc=129 ;; TERM) want_rc=143 ;; SEGV) want_rc=139 ;; esac
             if [ "$(cat $f.rc)" != "$want_rc" ]; then   # 134 = abort: a sanitizer report at exit
                 echo "$how: exit status $(cat $f.rc), want $want_rc"; rc=1
             fi
