@@ -51,8 +51,8 @@ struct view {
     int shade_i;
     bool orbit, spinning, help, hud;
     double speed_scale;
-    /* held keys: each command moves until held_until */
-    double held_until[IN_HELD_COUNT], last_press[IN_HELD_COUNT];
+    /* held keys: each command moves from held_from until held_until */
+    double held_from[IN_HELD_COUNT], held_until[IN_HELD_COUNT], last_press[IN_HELD_COUNT];
     bool dragging;
     int drag_x, drag_y;
     /* output */
@@ -354,6 +354,8 @@ static void command(struct view *v, enum input_cmd c, double t, bool *quit)
         bool repeat = t - v->last_press[c] < REPEAT_GAP_S;
         v->last_press[c] = t;
         double until = t + (repeat ? REPEAT_HOLD_S : TAP_S);
+        if (v->held_until[c] <= t) /* not moving yet: start now, not at the last frame */
+            v->held_from[c] = t;
         v->held_until[c] = until > v->held_until[c] ? until : v->held_until[c];
         stop_spin(v);
         return;
@@ -431,9 +433,11 @@ static void advance(struct view *v, double from, double to)
 {
     double speed = 0.4 * scene_extent(v->scenes[v->cur]) * v->speed_scale;
     for (int c = 0; c < IN_HELD_COUNT; c++) {
-        if (v->held_until[c] <= from)
+        double start = v->held_from[c] > from ? v->held_from[c] : from;
+        double end = v->held_until[c] < to ? v->held_until[c] : to;
+        if (end <= start)
             continue;
-        double dt = (v->held_until[c] < to ? v->held_until[c] : to) - from;
+        double dt = end - start;
         double d = speed * dt, a = TURN_DEG_S * dt;
         switch ((enum input_cmd)c) {
         case IN_FORWARD: camera_move(&v->cam, v->orbit ? 0.8 * dt * camera_distance(&v->cam) : d, 0, 0, v->orbit); break;

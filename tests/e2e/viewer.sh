@@ -5,7 +5,7 @@
 source "$(dirname "$0")/lib/common.sh"
 
 NAMES=(suspend_and_resume_repaints demo_scene_starts_and_fills_window zoom_in_grows_the_model strafe_right_moves_model_left
-       fly_yaw_left_moves_model_right resize_refills_the_window idle_viewer_writes_nothing
+       fly_yaw_left_moves_model_right tap_moves_the_same_after_idle resize_refills_the_window idle_viewer_writes_nothing
        tiny_and_huge_terminals quit_restores_terminal)
 if ! have_tmux; then
     for n in "${NAMES[@]}"; do skip "$n" "tmux not installed"; done
@@ -82,6 +82,20 @@ fly_yaw() {
     awk -v a="$x0" -v b="$x1" 'BEGIN { exit !(b > a + 2) }'
 }
 check fly_yaw_left_moves_model_right fly_yaw
+
+# a tap turns by the same angle however long the viewer sat idle before it (time is
+# counted from the key press, not from the last frame)
+tap_after_idle() {
+    local idle x=()
+    for idle in 0.2 $((3 * SLOW)); do
+        keys m r; settle m; sleep "$idle"
+        keys m Left; settle m
+        set -- $(picture m tap-$idle); x+=("$4")
+    done
+    echo "centroid x after a tap: ${x[0]} (idle 0.2 s), ${x[1]} (idle $((3 * SLOW)) s)"
+    awk -v a="${x[0]}" -v b="${x[1]}" 'BEGIN { d = a - b; exit !(a > 41 && d < 1 && d > -1) }'
+}
+check tap_moves_the_same_after_idle tap_after_idle
 
 resize() {
     tm resize-window -t demo -x 70 -y 20
