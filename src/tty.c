@@ -20,6 +20,14 @@ static SCREEN *screen_handle;
 static const char RESET_BYTES[] = "\033[?2026l\033[0m\033[?1000l\033[?1002l\033[?1003l"
                                   "\033[?1006l\033[?25h\033[?1049l";
 
+/* ncurses asks for press/release reports only (?1000); ?1002 adds motion while a button is
+ * held, so a drag orbits live instead of on release. ?1006 asks for SGR reports
+ * (ESC [ < b ; x ; y M/m): unlike the X10 bytes ncurses decodes, they work past column 223
+ * and cannot be mistaken for UTF-8. Terminals without 1006 keep sending X10 reports, which
+ * ncurses decodes as before; SGR reports are decoded in after_escape(). */
+#define MOUSE_ON "\033[?1002h\033[?1006h"
+#define MOUSE_OFF "\033[?1006l\033[?1002l"
+
 static void on_quit(int sig)
 {
     quit_signal = sig;
@@ -98,10 +106,8 @@ int tty_open(struct tty *t, struct err *e)
                    BUTTON4_PRESSED | BUTTON5_PRESSED;
     t->mouse = mousemask(want, NULL) != 0;
     mouseinterval(0);
-    /* ncurses asks for press/release reports only (?1000); ?1002 adds motion while a button
-     * is held, in the same format, so a drag orbits live instead of on release */
     if (t->mouse)
-        tty_write("\033[?1002h", 8);
+        tty_write(MOUSE_ON, sizeof MOUSE_ON - 1);
     tty_refresh_size(t);
     return 0;
 }
@@ -116,7 +122,7 @@ void tty_close(struct tty *t)
     }
     if (screen_handle) {
         if (t->mouse)
-            tty_write("\033[?1002l", 8);
+            tty_write(MOUSE_OFF, sizeof MOUSE_OFF - 1);
         mousemask(0, NULL);
         tty_write("\033[?2026l\033[0m", 12);
         curs_set(1);
@@ -160,7 +166,7 @@ bool tty_suspend(struct tty *t)
     stop_requested = 0;
     /* give the shell a normal terminal, stop, and take it back when continued */
     if (t->mouse)
-        tty_write("\033[?1002l", 8);
+        tty_write(MOUSE_OFF, sizeof MOUSE_OFF - 1);
     tty_write("\033[0m", 4);
     endwin();
     kill(getpid(), SIGSTOP);
@@ -168,13 +174,43 @@ bool tty_suspend(struct tty *t)
     refresh();
     curs_set(0);
     if (t->mouse)
-        tty_write("\033[?1002h", 8);
+        tty_write(MOUSE_ON, sizeof MOUSE_ON - 1);
     tty_refresh_size(t);
     return true;
 }
 
+/* An SGR mouse report "<b;x;y" + M (press, motion) or m (release), coordinates from 1:
+ * the same event ncurses would make of the X10 report. Other buttons: TTY_NONE. */
+static enum tty_event_kind sgr_mouse(const char *seq, struct tty_event *ev)
+{
+    int b, x, y;
+    char final, end;
+    if (sscanf(seq, "<%d;%d;%d%c%c", &b, &x, &y, &final, &end) != 4 || x < 1 || y < 1 ||
+        b < 0 || (final != 'M' && final != 'm'))
+        return TTY_NONE;
+    ev->mx = x - 1;
+    ev->my = y - 1;
+    if (b & 64) { /* wheel: 64 up, 65 down; no release */
+        if ((b & 3) > 1 || final == 'm')
+            return TTY_NONE;
+        ev->button = (b & 1) ? 5 : 4;
+        ev->pressed = true;
+    } else if ((b & 3) != 0) { /* middle, right */
+        return TTY_NONE;
+    } else if (b & 32) { /* motion with the left button held */
+        ev->button = 0;
+    } else {
+        ev->button = 1;
+        ev->pressed = final == 'M';
+        ev->released = final == 'm';
+    }
+    ev->kind = TTY_MOUSE;
+    return ev->kind;
+}
+
 /* After an ESC ncurses did not turn into a key: a lone ESC is the Esc key; ESC [ ... is a
- * CSI sequence (our DSR answer "0n", or a key this terminfo does not know: ignored); ESC O x
+ * CSI sequence (our DSR answer "0n", an SGR mouse report, or a key this terminfo does not
+ * know: ignored); ESC O x
  * an unknown SS3 key (ignored); ESC x is Alt+x (ignored, so Alt never quits); ESC ESC is the
  * Esc key followed by another sequence. */
 static enum tty_event_kind after_escape(struct tty_event *ev)
@@ -196,7 +232,7 @@ static enum tty_event_kind after_escape(struct tty_event *ev)
     }
     if (c != '[')
         return TTY_NONE;
-    char seq[16];
+    char seq[32];
     size_t n = 0;
     for (;;) {
         c = getch();
@@ -207,6 +243,8 @@ static enum tty_event_kind after_escape(struct tty_event *ev)
             break;
     }
     seq[n] = '\0';
+    if (seq[0] == '<')
+        return sgr_mouse(seq, ev);
     ev->kind = strcmp(seq, "0n") == 0 ? TTY_SYNC_REPLY : TTY_NONE;
     return ev->kind;
 }

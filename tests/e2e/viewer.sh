@@ -4,7 +4,7 @@
 # out (q, Esc, Ctrl-C, SIGTERM, SIGHUP) leaves the shell with echo and canonical mode on.
 source "$(dirname "$0")/lib/common.sh"
 
-NAMES=(suspend_and_resume_repaints demo_scene_starts_and_fills_window zoom_in_grows_the_model strafe_right_moves_model_left
+NAMES=(suspend_and_resume_repaints demo_scene_starts_and_fills_window zoom_in_grows_the_model strafe_right_moves_model_left mouse_wheel_zooms_and_drag_orbits
        fly_yaw_left_moves_model_right tap_moves_the_same_after_idle resize_refills_the_window idle_viewer_writes_nothing
        tiny_and_huge_terminals quit_restores_terminal)
 if ! have_tmux; then
@@ -71,6 +71,39 @@ strafe() {
     awk -v a="$x0" -v b="$x1" 'BEGIN { exit !(b < a - 2) }'
 }
 check strafe_right_moves_model_left strafe
+
+# mouse: the wheel zooms and a left drag orbits, from SGR reports (?1006, which the viewer
+# asks for: they work past column 223) and from X10 reports (terminals without 1006)
+mouse() {
+    local s=wide
+    start $s 260 30 assets/cube.obj --background 0,0,0 || return 1
+    keys $s Space; settle $s
+    set -- $(picture $s m0); local a0=$3 x0=$4
+    tm send-keys -t $s -H 1b 5b 3c 36 34 3b 32 35 30 3b 31 35 4d; settle $s     # ESC[<64;250;15M wheel up
+    set -- $(picture $s m1); local a1=$3
+    echo "SGR wheel up at column 250: area $a0 -> $a1"
+    [ "$a1" -gt $((a0 * 11 / 10)) ] || return 1
+    tm send-keys -t $s -H 1b 5b 4d 61 3a 2f; settle $s                        # ESC[M a : / X10 wheel down at 26,15
+    set -- $(picture $s m2); local a2=$3
+    echo "X10 wheel down: area $a1 -> $a2"
+    [ "$a2" -lt $((a1 * 10 / 11)) ] || return 1
+    # drag from column 230 to 250 (press, two motions, release), all past column 223
+    tm send-keys -t $s -H 1b 5b 3c 30 3b 32 33 30 3b 31 35 4d                  # ESC[<0;230;15M
+    tm send-keys -t $s -H 1b 5b 3c 33 32 3b 32 34 30 3b 31 35 4d               # ESC[<32;240;15M
+    tm send-keys -t $s -H 1b 5b 3c 33 32 3b 32 35 30 3b 31 35 4d               # ESC[<32;250;15M
+    tm send-keys -t $s -H 1b 5b 3c 30 3b 32 35 30 3b 31 35 6d; settle $s       # ESC[<0;250;15m
+    set -- $(picture $s m3); local x3=$4
+    echo "after a 20-column drag: $(cmp -l $OUT/m2.ppm $OUT/m3.ppm | wc -l) bytes differ; centroid x $x0 -> $x3"
+    ! cmp -s $OUT/m2.ppm $OUT/m3.ppm || { echo "the drag did not orbit"; return 1; }
+    # an orbit turns the cube about its centre: it stays in the middle of the window
+    awk -v a="$x0" -v b="$x3" 'BEGIN { d = a - b; exit !(d < 8 && d > -8) }' || { echo "the model moved off centre"; return 1; }
+    # a motion report with no button pressed before it does nothing
+    tm send-keys -t $s -H 1b 5b 3c 33 32 3b 31 30 3b 31 30 4d; settle $s       # ESC[<32;10;10M
+    picture $s m4 >/dev/null
+    cmp -s $OUT/m3.ppm $OUT/m4.ppm || { echo "motion without a press moved the camera"; return 1; }
+    tm kill-session -t $s
+}
+check mouse_wheel_zooms_and_drag_orbits mouse
 
 fly_yaw() {
     keys m r o; settle m            # o: fly mode
