@@ -183,13 +183,23 @@ bool tty_suspend(struct tty *t)
  * the same event ncurses would make of the X10 report. Other buttons: TTY_NONE. */
 static enum tty_event_kind sgr_mouse(const char *seq, struct tty_event *ev)
 {
-    int b, x, y;
-    char final, end;
-    if (sscanf(seq, "<%d;%d;%d%c%c", &b, &x, &y, &final, &end) != 4 || x < 1 || y < 1 ||
-        b < 0 || (final != 'M' && final != 'm'))
+    long v[3];
+    const char *p = seq + 1;
+    for (int i = 0; i < 3; i++) { /* strtol, not sscanf: out-of-range digits stay defined */
+        char *end;
+        if (*p < '0' || *p > '9')
+            return TTY_NONE;
+        v[i] = strtol(p, &end, 10);
+        if (v[i] > 100000 || (i < 2 && *end != ';'))
+            return TTY_NONE;
+        p = i < 2 ? end + 1 : end;
+    }
+    char final = *p;
+    int b = (int)v[0];
+    if (v[1] < 1 || v[2] < 1 || (final != 'M' && final != 'm') || p[1] != '\0')
         return TTY_NONE;
-    ev->mx = x - 1;
-    ev->my = y - 1;
+    ev->mx = (int)v[1] - 1;
+    ev->my = (int)v[2] - 1;
     if (b & 64) { /* wheel: 64 up, 65 down; no release */
         if ((b & 3) > 1 || final == 'm')
             return TTY_NONE;

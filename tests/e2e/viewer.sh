@@ -101,6 +101,15 @@ mouse() {
     tm send-keys -t $s -H 1b 5b 3c 33 32 3b 31 30 3b 31 30 4d; settle $s       # ESC[<32;10;10M
     picture $s m4 >/dev/null
     cmp -s $OUT/m3.ppm $OUT/m4.ppm || { echo "motion without a press moved the camera"; return 1; }
+    # malformed or foreign reports (huge numbers, missing fields, other buttons) are ignored
+    local r
+    for r in '<99999999999999999999;1;1M' '<0;0;0M' '<;;M' '<0;5M' '<64;10;10m' '<2;5;5M' \
+             '<0;5;5;7M' '<-1;5;5M' '<32;999;999M'; do
+        tm send-keys -t $s -l $'\e['"$r"
+    done
+    settle $s; picture $s m5 >/dev/null
+    cmp -s $OUT/m4.ppm $OUT/m5.ppm || { echo "a malformed report moved the camera"; return 1; }
+    hud_has $s " fps " || { echo "the viewer is gone after malformed reports"; return 1; }
     tm kill-session -t $s
 }
 check mouse_wheel_zooms_and_drag_orbits mouse
