@@ -218,11 +218,10 @@ static enum tty_event_kind sgr_mouse(const char *seq, struct tty_event *ev)
     return ev->kind;
 }
 
-/* After an ESC ncurses did not turn into a key: a lone ESC is the Esc key; ESC [ ... is a
- * CSI sequence (our DSR answer "0n", an SGR mouse report, or a key this terminfo does not
- * know: ignored); ESC O x
- * an unknown SS3 key (ignored); ESC x is Alt+x (ignored, so Alt never quits); ESC ESC is the
- * Esc key followed by another sequence. */
+/* After an ESC ncurses did not turn into a key: a lone ESC is the Esc key; ESC ESC is the
+ * Esc key followed by another sequence; ESC [ ... is a CSI sequence (our DSR answer "0n", an
+ * SGR mouse report, or a key this terminfo does not know: ignored); ESC O x an unknown SS3
+ * key (ignored); ESC x is Alt+x (ignored, so Alt never quits). */
 static enum tty_event_kind after_escape(struct tty_event *ev)
 {
     timeout(0);
