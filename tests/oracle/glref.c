@@ -920,6 +920,15 @@ static const char *const glsl_fs =
     "    o_color = vec4(c, 1.0);\n"
     "}\n";
 
+/* a GL info log as one line of an error message */
+static const char *one_line(char *log)
+{
+    for (char *p = log; *p; p++)
+        if (*p == '\n')
+            *p = ' ';
+    return log;
+}
+
 static GLuint compile(GLenum type, int mode, const char *body, struct ref_err *e)
 {
     char head[64];
@@ -933,10 +942,7 @@ static GLuint compile(GLenum type, int mode, const char *body, struct ref_err *e
     if (!ok) {
         char log[400];
         glGetShaderInfoLog(s, sizeof log, NULL, log);
-        for (char *p = log; *p; p++)
-            if (*p == '\n')
-                *p = ' ';
-        fail(e, "glref: shader compile failed: %s", log);
+        fail(e, "glref: shader compile failed: %s", one_line(log));
         glDeleteShader(s);
         return 0;
     }
@@ -958,10 +964,7 @@ static GLuint build_program(int mode, struct ref_err *e)
     if (!ok) {
         char log[400];
         glGetProgramInfoLog(p, sizeof log, NULL, log);
-        for (char *q = log; *q; q++)
-            if (*q == '\n')
-                *q = ' ';
-        fail(e, "glref: program link failed: %s", log);
+        fail(e, "glref: program link failed: %s", one_line(log));
         return 0;
     }
     return p;
