@@ -20,14 +20,16 @@
 
 #define MESH_NAME_MAX 64
 
-/* Lighting model (conventions): c = kd*tex*(0.1 + 0.9*diffuse) + ks*specular^ns.
- * With no MTL a mesh has one default material: kd = (1,1,1), ks = 0.5, ns = 32, no texture. */
+/* How a material lights up is light.h's business. A mesh always has a material 0: the
+ * implicit one for faces that name no material (kd = (1,1,1), ks = 0.5, ns = 32, no texture;
+ * `implicit` set, so an untextured face gets light.h's default albedo 0.8 instead). */
 struct material {
     char name[MESH_NAME_MAX]; /* sanitised (printable ASCII) */
     float kd[3];              /* diffuse albedo, multiplies the texture */
     float ks[3];              /* specular colour; default 0.5 */
     float ns;                 /* Blinn-Phong exponent; default 32 */
     int texture;              /* index into mesh.textures, or -1 */
+    bool implicit;            /* no material was named: see light_base_color() */
 };
 
 struct mesh_vertex {

@@ -4,7 +4,7 @@
  * Out: one struct vertex_out per mesh vertex: clip-space position (double), world position,
  *      frustum/guard-band outcode, and the varyings the shading mode needs:
  *        unlit, flat, wire : u v
- *        gouraud           : u v, diffuse rgb, specular rgb (per-vertex lighting sums)
+ *        gouraud           : u v, light.h's D rgb, S rgb (per-vertex lighting)
  *        phong, normals    : u v, world position xyz, world normal xyz
  * Varyings are interpolated perspective-correctly downstream; clip.c interpolates all of them
  * linearly in clip space, which is exact for perspective-correct attributes.
@@ -19,6 +19,7 @@
 
 #include <stdint.h>
 
+#include "light.h"
 #include "mesh.h"
 #include "render.h"
 #include "vecmath.h"
@@ -65,8 +66,7 @@ struct vertex_uniforms {
     double guard_x, guard_y; /* guard band as multiples of w (>= 1) */
     enum shade_mode shade;
     enum debug_view view;
-    int n_lights;
-    struct light lights[RENDER_MAX_LIGHTS]; /* dir normalised */
+    struct light_env lights;
 };
 
 /* Number of varyings written for a shading mode / debug view. */
@@ -100,9 +100,9 @@ void vertex_window(const double clip[4], int fb_w, int fb_h, double win_out[3]);
 /* vertex_window plus the 1/256-pixel snap (setup.h); the vertex must be inside the guard
  * band. Sets win, fx, fy, projected. */
 void vertex_project(struct vertex_out *v, int fb_w, int fb_h);
-/* Blinn-Phong light sums at one point: diffuse_out = sum col*max(0,N.L),
- * specular_out = sum col*max(0,N.H)^ns. n and v unit length. Shared by vertex and flat. */
-void vertex_light(const struct vertex_uniforms *u, vec3 n, vec3 v, float ns, float diffuse_out[3],
-                  float specular_out[3]);
+/* light.h's D and S at a world-space point with unit normal n (Gouraud per vertex, flat per
+ * face): V toward the eye from p, or view_back for orthographic cameras. */
+void vertex_light(const struct vertex_uniforms *u, const float n[3], const float p[3], float ns,
+                  float d_out[3], float s_out[3]);
 
 #endif

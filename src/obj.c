@@ -514,6 +514,7 @@ static int resolve_materials(struct oparse *P, struct mesh *out, uint16_t *slot_
         }
 
     mtl_default(&out->materials[0], "default");
+    out->materials[0].implicit = true;
     out->n_materials = 1;
     slot_mat[0] = 0;
     for (size_t s = 1; s < P->n_slots; s++) {

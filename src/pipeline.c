@@ -73,10 +73,11 @@ static void flat_terms(const struct vertex_uniforms *u, const struct vertex_out 
     vec3 p0 = v3(a->wpos[0], a->wpos[1], a->wpos[2]);
     vec3 p1 = v3(b->wpos[0], b->wpos[1], b->wpos[2]);
     vec3 p2 = v3(c->wpos[0], c->wpos[1], c->wpos[2]);
-    vec3 n = v3_norm(v3_cross(v3_sub(p1, p0), v3_sub(p2, p0)));
+    vec3 nd = v3_norm(v3_cross(v3_sub(p1, p0), v3_sub(p2, p0)));
     vec3 centroid = v3_scale(v3_add(v3_add(p0, p1), p2), 1.0 / 3.0);
-    vec3 v = u->ortho ? u->view_back : v3_norm(v3_sub(u->eye, centroid));
-    vertex_light(u, n, v, ns, st->flat_d, st->flat_s);
+    float n[3] = {(float)nd.x, (float)nd.y, (float)nd.z};
+    float cw[3] = {(float)centroid.x, (float)centroid.y, (float)centroid.z};
+    vertex_light(u, n, cw, ns, st->flat_d, st->flat_s);
 }
 
 static void draw_setup(const struct vertex_out *a, const struct vertex_out *b,
@@ -119,12 +120,12 @@ static void draw_filled(const struct mesh *m, const struct vertex_out *vo,
         }
         struct shade_tri st;
         st.mat = &m->materials[m->tri_material[i]];
-        st.kd = item->kd_override ? item->kd_override : st.mat->kd;
         st.tex = NULL;
         if (o->textures)
             st.tex = item->texture_override ? item->texture_override
                      : st.mat->texture >= 0 ? &m->textures[st.mat->texture]
                                             : NULL;
+        light_base_color(st.mat, item->kd_override, st.tex != NULL, st.base);
         if (mode == SHADE_FLAT)
             flat_terms(u, v[0], v[1], v[2], st.mat->ns, &st);
         if (!(any & VERTEX_NEEDS_CLIP)) {
@@ -211,11 +212,7 @@ int pipeline_draw(struct pipeline *p, const struct draw_item *items, int n_items
     u.guard_y = 1.0 + 2.0 * VERTEX_GUARD_PX / fb->h;
     u.shade = o->shade;
     u.view = o->view;
-    u.n_lights = o->n_lights;
-    for (int i = 0; i < o->n_lights; i++) {
-        u.lights[i].dir = v3_norm(o->lights[i].dir);
-        u.lights[i].color = o->lights[i].color;
-    }
+    light_env_init(&u.lights, o);
     float eye[3] = {(float)cam->eye.x, (float)cam->eye.y, (float)cam->eye.z};
     float back[3] = {(float)u.view_back.x, (float)u.view_back.y, (float)u.view_back.z};
     struct shade_ctx sc;

@@ -14,14 +14,5 @@ void shade_ctx_init(struct shade_ctx *c, const struct render_opts *o, const floa
         c->eye[k] = eye[k];
         c->view_back[k] = view_back[k];
     }
-    c->n_lights = o->n_lights;
-    for (int i = 0; i < o->n_lights; i++) {
-        vec3 l = v3_norm(o->lights[i].dir);
-        c->light_dir[i][0] = (float)l.x;
-        c->light_dir[i][1] = (float)l.y;
-        c->light_dir[i][2] = (float)l.z;
-        c->light_col[i][0] = (float)o->lights[i].color.x;
-        c->light_col[i][1] = (float)o->lights[i].color.y;
-        c->light_col[i][2] = (float)o->lights[i].color.z;
-    }
+    light_env_init(&c->lights, o);
 }

@@ -2,7 +2,6 @@
 #include "vertex.h"
 
 #include "setup.h"
-#include "shade.h"
 
 int vertex_varying_count(enum shade_mode shade, enum debug_view view)
 {
@@ -30,25 +29,15 @@ void vertex_project(struct vertex_out *v, int fb_w, int fb_h)
     v->projected = 1;
 }
 
-void vertex_light(const struct vertex_uniforms *u, vec3 n, vec3 v, float ns, float d_out[3],
-                  float s_out[3])
+void vertex_light(const struct vertex_uniforms *u, const float n[3], const float p[3], float ns,
+                  float d_out[3], float s_out[3])
 {
-    d_out[0] = d_out[1] = d_out[2] = 0;
-    s_out[0] = s_out[1] = s_out[2] = 0;
-    for (int i = 0; i < u->n_lights; i++) {
-        const struct light *l = &u->lights[i];
-        float nl = (float)v3_dot(n, l->dir);
-        vec3 h = v3_norm(v3_add(l->dir, v));
-        float nh = (float)v3_dot(n, h);
-        float d = nl > 0 ? nl : 0;
-        float s = shade_pow(nh > 0 ? nh : 0, ns);
-        d_out[0] += d * (float)l->color.x;
-        d_out[1] += d * (float)l->color.y;
-        d_out[2] += d * (float)l->color.z;
-        s_out[0] += s * (float)l->color.x;
-        s_out[1] += s * (float)l->color.y;
-        s_out[2] += s * (float)l->color.z;
+    float v[3] = {(float)u->view_back.x, (float)u->view_back.y, (float)u->view_back.z};
+    if (!u->ortho) {
+        v[0] = (float)u->eye.x - p[0], v[1] = (float)u->eye.y - p[1], v[2] = (float)u->eye.z - p[2];
+        light_normalize(v);
     }
+    light_terms(&u->lights, n, v, ns, d_out, s_out);
 }
 
 void vertex_run(const struct mesh *m, const struct vertex_uniforms *u, struct vertex_out *out)
@@ -71,14 +60,14 @@ void vertex_run(const struct mesh *m, const struct vertex_uniforms *u, struct ve
         o->var[1] = mv->uv[1];
         if (!want_normals && !want_gouraud)
             continue;
-        vec3 n = v3_norm(m4_mul_dir(u->normal_matrix, v3(mv->nrm[0], mv->nrm[1], mv->nrm[2])));
+        vec3 nd = v3_norm(m4_mul_dir(u->normal_matrix, v3(mv->nrm[0], mv->nrm[1], mv->nrm[2])));
+        float n[3] = {(float)nd.x, (float)nd.y, (float)nd.z};
         if (want_normals) {
             o->var[2] = o->wpos[0], o->var[3] = o->wpos[1], o->var[4] = o->wpos[2];
-            o->var[5] = (float)n.x, o->var[6] = (float)n.y, o->var[7] = (float)n.z;
+            o->var[5] = n[0], o->var[6] = n[1], o->var[7] = n[2];
         } else {
-            vec3 v = u->ortho ? u->view_back : v3_norm(v3_sub(u->eye, wp));
             float ns = m->materials[m->vert_material ? m->vert_material[i] : 0].ns;
-            vertex_light(u, n, v, ns, &o->var[2], &o->var[5]);
+            vertex_light(u, n, o->wpos, ns, &o->var[2], &o->var[5]);
         }
     }
 }

@@ -218,6 +218,7 @@ struct ref_mat {
     char name[NAME_MAX_LEN];
     float kd[3], ks[3], ns;
     char *map_kd; /* resolved path or NULL */
+    int implicit; /* the material of faces that name none: untextured, albedo 0.8 (GL's default) */
 };
 
 struct corner {
@@ -449,6 +450,7 @@ static int obj_read(const char *path, struct objdata *d, struct ref_err *e)
     if (grow(&d->mats, &d->capmat, 1, sizeof *d->mats))
         return fail(e, "out of memory");
     mat_default(&d->mats[0], "(default)");
+    d->mats[0].implicit = 1;
     d->nmat = 1;
     size_t len;
     char *text = read_file(path, &len, e);
@@ -1198,7 +1200,9 @@ static int render(const struct opts *o, const struct objdata *d, struct ref_err 
         glActiveTexture(GL_TEXTURE0);
         glBindTexture(GL_TEXTURE_2D, t);
         glUniform1i(glGetUniformLocation(prog, "u_has_tex"), t != 0);
-        glUniform3f(glGetUniformLocation(prog, "u_kd"), m->kd[0], m->kd[1], m->kd[2]);
+        float kd = m->implicit && !t ? 0.8f : 1.0f; /* GL's default material diffuse */
+        glUniform3f(glGetUniformLocation(prog, "u_kd"), m->implicit ? kd : m->kd[0],
+                    m->implicit ? kd : m->kd[1], m->implicit ? kd : m->kd[2]);
         glUniform3f(glGetUniformLocation(prog, "u_ks"), m->ks[0], m->ks[1], m->ks[2]);
         glUniform1f(glGetUniformLocation(prog, "u_ns"), m->ns);
         glDrawArrays(GL_TRIANGLES, (GLint)first[mat], (GLsizei)(first[mat + 1] - first[mat]));

@@ -45,7 +45,7 @@ static void rig_init(struct rig *r)
     r->mat.ns = 32;
     r->mat.texture = -1;
     r->st.mat = &r->mat;
-    r->st.kd = r->mat.kd;
+    memcpy(r->st.base, r->mat.kd, sizeof r->st.base);
 }
 
 /* draw without depth test interference: every triangle gets a fresh depth buffer slot

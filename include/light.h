@@ -1,0 +1,96 @@
+/* light.h: the lighting model — the one place that says how a lit point gets its colour.
+ *
+ * Every shading mode calls these: Gouraud per vertex (vertex.c), flat once per triangle
+ * (pipeline.c), Phong per pixel (shade.h). Directional lights only: dir is the unit vector
+ * TOWARD the light, world space; col is linear rgb (1 = white).
+ *
+ * With N the unit normal, V the unit vector toward the eye and H = normalize(L + V):
+ *   D = LIGHT_AMBIENT + LIGHT_DIFFUSE * sum_l col_l * max(0, N.L)      ("diffuse term")
+ *   S = sum_l col_l * max(0, N.H)^ns                                    ("specular term")
+ *   c = albedo * D + ks * S, clamped to [0,1] by the framebuffer's quantiser
+ * albedo = base colour x texel (texel = 1 without a texture); the base colour is the material's
+ * Kd, except for a mesh's implicit material (no material named by the file) without a texture,
+ * whose albedo is LIGHT_DEFAULT_ALBEDO — OpenGL's default material diffuse. At 1.0 the
+ * highlight saturated a third of an untextured sphere to flat white. ks and ns come from the
+ * material (defaults 0.5 and 32). Everything is float, as a GPU shader computes it; x^32 is
+ * five squarings, as the reference shader writes it. Normals are never flipped for back faces. */
+#ifndef RASTTY_LIGHT_H
+#define RASTTY_LIGHT_H
+
+#include <math.h>
+
+#include "mesh.h"
+#include "render.h"
+
+#define LIGHT_AMBIENT 0.1f
+#define LIGHT_DIFFUSE 0.9f
+#define LIGHT_DEFAULT_ALBEDO 0.8f
+
+/* The frame's lights, normalised and converted once per frame. */
+struct light_env {
+    int n;
+    float dir[RENDER_MAX_LIGHTS][3]; /* unit, toward the light */
+    float col[RENDER_MAX_LIGHTS][3];
+};
+
+void light_env_init(struct light_env *env, const struct render_opts *o);
+
+/* The base colour a texel multiplies: kd_override (a scene's colour) if given, else the
+ * material's Kd, else (implicit material, untextured) LIGHT_DEFAULT_ALBEDO. */
+void light_base_color(const struct material *m, const float *kd_override, int textured,
+                      float base_out[3]);
+
+static inline float light_pow(float x, float n)
+{
+    if (n == 32.0f) { /* five squarings, exactly as the reference shader */
+        x *= x;
+        x *= x;
+        x *= x;
+        x *= x;
+        return x * x;
+    }
+    return powf(x, n);
+}
+
+/* D and S (see above) at one point; n and v unit length. */
+static inline void light_terms(const struct light_env *env, const float n[3], const float v[3],
+                               float ns, float d_out[3], float s_out[3])
+{
+    float d[3] = {0, 0, 0}, s[3] = {0, 0, 0};
+    for (int i = 0; i < env->n; i++) {
+        const float *l = env->dir[i], *col = env->col[i];
+        float h[3] = {l[0] + v[0], l[1] + v[1], l[2] + v[2]};
+        float hl = sqrtf(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+        float ih = hl > 0 ? 1.0f / hl : 0;
+        float ndl = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];
+        float ndh = (n[0] * h[0] + n[1] * h[1] + n[2] * h[2]) * ih;
+        float dd = ndl > 0 ? ndl : 0;
+        float ss = light_pow(ndh > 0 ? ndh : 0, ns);
+        for (int k = 0; k < 3; k++) {
+            d[k] += dd * col[k];
+            s[k] += ss * col[k];
+        }
+    }
+    for (int k = 0; k < 3; k++) {
+        d_out[k] = LIGHT_AMBIENT + LIGHT_DIFFUSE * d[k];
+        s_out[k] = s[k];
+    }
+}
+
+/* c = albedo * D + ks * S (unclamped) */
+static inline void light_combine(const float albedo[3], const float d[3], const float s[3],
+                                 const float ks[3], float rgb_out[3])
+{
+    for (int k = 0; k < 3; k++)
+        rgb_out[k] = albedo[k] * d[k] + ks[k] * s[k];
+}
+
+/* v / |v| in float; the zero vector stays zero */
+static inline void light_normalize(float v[3])
+{
+    float l = sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    float il = l > 0 ? 1.0f / l : 0;
+    v[0] *= il, v[1] *= il, v[2] *= il;
+}
+
+#endif
