@@ -2,14 +2,16 @@
  *
  * In:  a segment in clip space (two x,y,z,w), a colour, whether to depth-test.
  * Steps: clip in 3D against near (z >= -w) and far (z <= w), so geometry behind the eye never
- *        projects; perspective divide and viewport (vertex_window); Cohen-Sutherland against
+ *        projects; perspective divide and viewport (viewport.h); Cohen-Sutherland against
  *        the viewport rectangle [0,W] x [0,H] in window coordinates; endpoints become the pixels
  *        containing them; integer Bresenham, all 8 octants, both endpoints drawn.
  * A segment is always walked from the endpoint with the smaller (y, x), so an edge shared by
  * two triangles (given in opposite directions) lights exactly the same pixels.
  * Depth (window depth, linear along the line in screen space) is tested, not written:
- * a line pixel shows when depth <= stored depth + LINE_DEPTH_BIAS(depth), which keeps edges
- * lying on a surface visible while hiding those behind it. */
+ * a line pixel shows unless the stored surface is strictly nearer than the line's depth
+ * moved toward the eye by a small bias (1% of 1 - depth, at least 1e-5), compared in the
+ * depth method's own measure (fb.h); edges lying on a surface stay visible while those behind
+ * it are hidden. */
 #ifndef RASTTY_LINE_H
 #define RASTTY_LINE_H
 

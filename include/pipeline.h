@@ -1,18 +1,24 @@
 /* pipeline.h: draw one frame — the only entry point from the application into rendering.
  *
- *   for each draw item (a mesh placed by a model matrix):
+ *   front end, for each draw item (a mesh placed by a model matrix):
  *       whole-mesh frustum cull by bounding sphere
- *       vertex.c  : each unique vertex once -> clip position, outcode, varyings
+ *       vertex.c  : each unique vertex once -> clip position, outcode, window position
+ *                   snapped to 1/256 px (viewport.h), varyings
  *       for each triangle:
  *           trivial reject (all corners outside one frustum plane)
+ *           setup.c  : facing and culling, once per source triangle
  *           clip.c   : polygon clipping, only when outcodes say a corner is outside the
  *                      near/far planes or the x/y guard band
- *           setup.c  : perspective divide, viewport, 1/256-pixel snap, cull, edge equations
- *           raster.c : pixels inside (tie rule), depth test, shade.c colour, write
- *   wire mode: line.c instead of setup/raster.
+ *           setup.c  : edge equations and the tie rule, per triangle or clipped piece
+ *           -> batch.h: the array of set-up triangles
+ *   back end, when the batch is full and at the end of the surfaces (batch_draw):
+ *       raster*.c : the chosen rasterizer finds each triangle's covered pixels as runs
+ *       span.c    : per run — interpolation setup on a triangle's first run, then per pixel
+ *                   depth test, interpolation (perspective method), shade.h colour, write
  *   skybox.c: the sky fills the pixels no triangle covered (cheaper than drawing it first)
+ *   wire mode, and the wire-overlay view: line.c draws the edges after the surfaces.
  *
- * Owns: per-frame scratch (vertex outputs), grown as needed and reused across frames, so a
+ * Owns: per-item vertex outputs and the batch, allocated once and reused across frames, so a
  * frame performs no allocation once the largest mesh has been seen. Not thread-safe: one
  * struct pipeline per thread of drawing. */
 #ifndef RASTTY_PIPELINE_H
@@ -35,6 +41,8 @@ struct draw_item {
 struct pipeline;
 
 struct pipeline *pipeline_new(void);
+/* The same with a batch of the given capacity (tests: the picture must not depend on it). */
+struct pipeline *pipeline_new_batch(uint32_t batch_capacity);
 void pipeline_destroy(struct pipeline *p);
 
 /* Clear fb to the background, draw the items, then the sky (if any) where nothing was

@@ -25,6 +25,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "fb.h"
 #include "texture.h"
 #include "vecmath.h"
 
@@ -32,6 +33,13 @@
 
 enum shade_mode { SHADE_UNLIT, SHADE_FLAT, SHADE_GOURAUD, SHADE_PHONG, SHADE_WIRE, SHADE_COUNT };
 enum cull_mode { CULL_NONE, CULL_BACK, CULL_FRONT, CULL_COUNT };
+/* Methods: each axis picks one way to do a stage; every combination draws the same scene.
+ * What each costs and where it fails is documented beside its code: rasterizers in raster.h,
+ * perspective methods in span.h, depth buffers in fb.h (enum depth_mode). */
+enum raster_method { RASTER_EDGE, RASTER_SCANLINE, RASTER_TILED, RASTER_COUNT };
+enum persp_method { PERSP_CORRECT, PERSP_AFFINE, PERSP_SPAN8, PERSP_SPAN16, PERSP_SPAN32,
+                    PERSP_COUNT };
+
 /* What the framebuffer's colour shows after the frame (the viewer's `v` key). */
 enum debug_view { VIEW_COLOR, VIEW_DEPTH, VIEW_NORMALS, VIEW_OVERDRAW, VIEW_WIRE_OVERLAY,
                   VIEW_COUNT };
@@ -44,6 +52,9 @@ struct light {
 struct render_opts {
     enum shade_mode shade;
     enum tex_filter filter;
+    enum raster_method raster;  /* --raster: which pixels a triangle covers */
+    enum persp_method persp;    /* --persp: how varyings are interpolated */
+    enum depth_mode depth;      /* --depth: what the depth buffer stores */
     enum cull_mode cull;
     enum debug_view view;
     bool textures;       /* sample material / override textures (else albedo = kd) */
@@ -60,21 +71,36 @@ struct frame_stats {
     uint64_t tris_rejected; /* trivially outside one frustum plane */
     uint64_t tris_clipped;  /* needed polygon clipping */
     uint64_t tris_drawn;    /* reached the rasterizer (after clipping, fan pieces counted) */
+    uint64_t tris_empty;    /* reached the rasterizer but covered no pixel centre */
     uint64_t pixels_tested; /* fragments inside a triangle */
     uint64_t pixels_shaded; /* fragments that passed the depth test */
     uint64_t meshes_culled; /* whole meshes outside the frustum (bounding sphere) */
     double render_ms;
 };
 
-/* Defaults from the conventions: phong, nearest, no culling, textures on, black
- * background, white wire colour, one white light toward (1,1,1). */
+/* Defaults from the conventions: phong, nearest, edge rasterizer, perspective-correct, float
+ * window depth, no culling, textures on, black background, white wire colour, one white
+ * light toward (1,1,1). */
 void render_opts_default(struct render_opts *o);
+
+/* Every enum-valued option by name: the flag parser, --help, the HUD and the viewer's cycle
+ * keys all read these tables. names[v] is the spelling of value v; n is the count. */
+struct render_enum {
+    const char *const *names;
+    int n;
+};
+extern const struct render_enum render_shade_names, render_cull_names, render_filter_names,
+    render_view_names, render_raster_names, render_persp_names, render_depth_names;
 
 const char *render_shade_name(enum shade_mode m);
 const char *render_cull_name(enum cull_mode m);
 const char *render_filter_name(enum tex_filter f);
 const char *render_view_name(enum debug_view v);
+const char *render_raster_name(enum raster_method m);
+const char *render_persp_name(enum persp_method m);
+const char *render_depth_name(enum depth_mode m);
 /* Parse a name back; -1 if unknown. */
+int render_enum_parse(const struct render_enum *t, const char *s);
 int render_shade_parse(const char *s);
 int render_cull_parse(const char *s);
 int render_filter_parse(const char *s);

@@ -1,61 +1,95 @@
-/* setup.h: triangle setup — once per triangle, everything the per-pixel loop needs.
+/* setup.h: triangle setup — the last step of the front end, and interpolation setup for the
+ * back end.
  *
- * In:  3 clip-space vertices with w > 0 (unclipped triangles inside the guard band, or pieces
- *      of a clipped polygon), the framebuffer size, the cull mode.
- * Out: struct setup_tri: integer edge functions stepped per pixel, the pixel bounding box
- *      clipped to the framebuffer, and interpolation planes for depth, 1/w and varyings/w.
+ * Front end, once per SOURCE triangle: setup_face() decides its facing from clip space and
+ * whether culling drops it. This is the only place culling happens, and it happens before
+ * clipping, so a clipped piece whose snapped orientation flips is never dropped on its own.
  *
- * Conventions:
- *   window x = (x/w + 1) * W/2, window y = (1 - y/w) * H/2 (row 0 at the top), depth =
- *   0.5*z/w + 0.5. Positions snap to 1/256 pixel (SETUP_SUBPIX_BITS) with round-to-nearest-even,
- *   as Mesa's llvmpipe does (FIXED_ORDER 8). Pixel (px,py) has its centre at (px+.5, py+.5).
+ * Front end, once per triangle that reaches the rasterizer (a source triangle, or a piece of
+ * its clipped polygon): setup_triangle() turns three projected corners (vertex.h: window
+ * position snapped to 1/256 pixel, see viewport.h) into struct setup_tri — integer edge
+ * functions, the tie rule, the pixel box clipped to the framebuffer. It is what every
+ * rasterizer (raster.h) reads: coverage only.
  *   Edge functions are exact 64-bit integers: |coordinate| < 2^23 units (guard band + 8192 px
  *   framebuffer), so every product is < 2^47.
  *   Tie rule: a centre exactly on an edge belongs to the triangle when, in image coordinates
  *   (y down), the edge is a LEFT edge (interior to its right) or a BOTTOM edge (horizontal,
  *   interior above). This is GL's top-left rule with y up, as llvmpipe applies it; two triangles
- *   sharing an edge therefore never both draw, and never both miss, a centre on it.
+ *   sharing an edge therefore never both draw, and never both miss, a centre on it. The rule is
+ *   folded into the edge values: an edge that does not own its centres is biased by -1, so
+ *   "inside" is simply e >= 0 for all three edges.
  *   Front face = counter-clockwise as displayed (GL's default, glFrontFace(GL_CCW)); in
  *   y-down image coordinates that is a negative signed area.
- *   Zero-area triangles and triangles whose box holds no pixel centre produce nothing.
- *   Attributes: snapping decides coverage only. Barycentrics l_k come from the UNSNAPPED
- *   window positions, in double (as llvmpipe builds its planes from unsnapped positions): near
- *   the horizon of a ground plane one pixel row spans several world units, so a 1/512-pixel
- *   snap of a far vertex moved u by 16 texels when barycentrics came from snapped positions
- *   (measured against an exact ray cast; Mesa stays within 1). Depth is linear in screen
- *   space (z = sum l_k z_k); varyings are perspective-correct through
- *   b_k = (l_k/w_k) / sum_j(l_j/w_j), a = sum b_k a_k, a convex combination with no
- *   cancellation (the plane form a_0 + l_1 (a_1 - a_0) + ... loses digits when one corner
- *   is near the eye). */
+ *   Zero-area triangles (after snapping) and triangles whose box holds no pixel centre
+ *   produce nothing.
+ *
+ * Back end, once per triangle that covers at least one pixel (the rasterizer finds out):
+ * setup_interp() builds the interpolation planes. A quarter of a typical mesh's triangles
+ * reach setup at terminal sizes and cover no pixel centre; they never pay for this.
+ *   Barycentrics l_k are the same edge functions on the UNSNAPPED window positions, in double
+ *   (as llvmpipe builds its planes from unsnapped positions): near the horizon of a ground
+ *   plane one pixel row spans several world units, so a 1/512-pixel snap of a far vertex moved
+ *   u by 16 texels when barycentrics came from snapped positions (measured against an exact
+ *   ray cast; Mesa stays within 1).
+ *   Slivers: a covered pixel centre lies inside the SNAPPED triangle, where the unsnapped
+ *   barycentrics may extrapolate — without bound when the unsnapped height is below the snap
+ *   error (a sliver with corners at depth 0.90..0.95 wrote depth 0.036 and punched through
+ *   nearer surfaces). Since l is affine, its range over the snapped triangle is its range over
+ *   the snapped corners: when that leaves [-1/4, 1 + 1/4] the planes come from the snapped
+ *   positions instead (which keep every covered centre's l_k in [0,1]). span.c also clamps
+ *   the depth to the corners' range, so no pixel's depth ever leaves it.
+ *   Depth is linear in screen space (sum l_k d_k); varyings are perspective-correct through
+ *   b_k = (l_k/w_k) / sum_j(l_j/w_j), a = sum b_k a_k (span.h has the other methods). */
 #ifndef RASTTY_SETUP_H
 #define RASTTY_SETUP_H
 
 #include <stdint.h>
 
+#include "fb.h"
 #include "render.h"
 #include "vertex.h"
 
-#define SETUP_SUBPIX_BITS 8
-#define SETUP_SUBPIX_ONE (1 << SETUP_SUBPIX_BITS)
-
+/* Everything a rasterizer needs, and what interpolation setup starts from. */
 struct setup_tri {
     int x0, y0, x1, y1;       /* pixel box, inclusive, inside the framebuffer */
-    int64_t e[3];             /* edge k (opposite vertex k) at the centre of pixel (x0,y0),
-                                 minus 1 when the edge does not own centres on it */
+    int64_t e[3];             /* edge k at the centre of pixel (x0,y0), tie-biased */
     int64_t e_dx[3], e_dy[3]; /* change of e[k] per pixel step in x / in y */
-    double lam[3];            /* barycentric of vertex k at the centre of pixel (x0,y0) */
-    double lam_dx[3], lam_dy[3]; /* its change per pixel step in x / in y */
-    double z[3];              /* window depth per vertex */
-    double rw[3];             /* 1/w per vertex */
-    float var[3][VARY_MAX];   /* varyings per vertex (not divided by w) */
-    int n_var;
-    int front;                /* 1 if front-facing */
+    int64_t X[3], Y[3];       /* snapped corners (1/256 px); edge k runs from corner k+1 to
+                                 corner k+2 with the interior on its positive side */
+    const struct vertex_out *v[3]; /* the projected corners, in the source order */
+    uint32_t shade;           /* index of the source triangle's shading constants (batch.h) */
 };
 
-enum setup_result { SETUP_DRAW, SETUP_CULLED, SETUP_EMPTY };
+/* Interpolation planes of one triangle (setup_interp). */
+struct setup_interp {
+    double lam[3];               /* barycentric of corner k at the centre of pixel (x0,y0) */
+    double lam_dx[3], lam_dy[3]; /* its change per pixel step in x / in y */
+    double rw[3];                /* 1/w of corner k */
+    double d[3];                 /* corner k's depth in the depth method's plane: window z
+                                    (z, z16), (w - z)/2w (rz), eye depth (w) */
+    double d_lo, d_hi;           /* the corners' range of d: no pixel leaves it */
+    const float *var[3];         /* varyings of corner k */
+};
 
+enum setup_result { SETUP_DRAW, SETUP_EMPTY };
+
+/* Facing of a source triangle from its clip-space corners (valid even when a corner is
+ * behind the eye): 1 if front-facing. */
+int setup_front_facing(const struct vertex_out *a, const struct vertex_out *b,
+                       const struct vertex_out *c);
+/* Does `cull` drop a triangle of this facing? */
+static inline int setup_culled(enum cull_mode cull, int front)
+{
+    return (cull == CULL_BACK && !front) || (cull == CULL_FRONT && front);
+}
+
+/* Coverage setup of one triangle whose corners are projected (vertex_out.projected). */
 enum setup_result setup_triangle(const struct vertex_out *v0, const struct vertex_out *v1,
                                  const struct vertex_out *v2, int fb_w, int fb_h,
-                                 enum cull_mode cull, int n_var, struct setup_tri *out);
+                                 struct setup_tri *out);
+
+/* Interpolation setup (see above); proj is the depth method's camera data (fb.h). */
+void setup_interp(const struct setup_tri *t, enum depth_mode depth,
+                  const struct fb_depth_proj *proj, struct setup_interp *out);
 
 #endif

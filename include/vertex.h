@@ -50,7 +50,7 @@ enum {
 struct vertex_out {
     double clip[4];  /* x, y, z, w in clip space */
     double win[3];   /* window x, y (pixels, y down) and depth; valid when `projected` */
-    int64_t fx, fy;  /* win x, y snapped to 1/256 pixel; valid when `projected` */
+    int64_t fx, fy;  /* win x, y snapped to 1/256 pixel (viewport.h); valid when `projected` */
     int projected;   /* set by vertex_project (the vertex stage does it for every w > 0) */
     uint32_t outcode;
     float wpos[3];   /* world position (flat shading, centroid and face normal) */
@@ -94,11 +94,8 @@ static inline uint32_t vertex_outcode(const double c[4], double gx, double gy)
         oc = VERTEX_OUT_FRUSTUM | VERTEX_NEEDS_CLIP | VERTEX_INVALID;
     return oc;
 }
-/* Perspective divide and viewport: window x = (x/w + 1) W/2, y = (1 - y/w) H/2 (row 0 at the
- * top), depth = z/(2w) + 1/2. w must be > 0. (Used here and by line.c.) */
-void vertex_window(const double clip[4], int fb_w, int fb_h, double win_out[3]);
-/* vertex_window plus the 1/256-pixel snap (setup.h); the vertex must be inside the guard
- * band. Sets win, fx, fy, projected. */
+/* Perspective divide, viewport and the 1/256-pixel snap (viewport.h) of a vertex inside the
+ * guard band with w > 0. Sets win, fx, fy, projected. */
 void vertex_project(struct vertex_out *v, int fb_w, int fb_h);
 /* light.h's D and S at a world-space point with unit normal n (Gouraud per vertex, flat per
  * face): V toward the eye from p, or view_back for orthographic cameras. */

@@ -46,11 +46,12 @@ int cmd_load_scene(const struct options *o, const char *path, struct scene *s, s
 void cmd_print_stats(const struct frame_stats *st)
 {
     fprintf(stderr,
-            "tris in %llu, rejected %llu, culled %llu, clipped %llu, drawn %llu; "
+            "tris in %llu, rejected %llu, culled %llu, clipped %llu, drawn %llu (no pixel %llu); "
             "pixels tested %llu, shaded %llu; %.3f ms\n",
             (unsigned long long)st->tris_in, (unsigned long long)st->tris_rejected,
             (unsigned long long)st->tris_culled, (unsigned long long)st->tris_clipped,
-            (unsigned long long)st->tris_drawn, (unsigned long long)st->pixels_tested,
+            (unsigned long long)st->tris_drawn, (unsigned long long)st->tris_empty,
+            (unsigned long long)st->pixels_tested,
             (unsigned long long)st->pixels_shaded, st->render_ms);
 }
 

@@ -34,14 +34,57 @@ void fb_free(struct fb *fb)
 void fb_clear(struct fb *fb, const uint8_t bg[3])
 {
     size_t n = (size_t)fb->w * (size_t)fb->h;
+    float clear = fb_depth_clear_value(fb->depth_mode);
     for (size_t i = 0; i < n; i++) {
         fb->rgb[3 * i + 0] = bg[0];
         fb->rgb[3 * i + 1] = bg[1];
         fb->rgb[3 * i + 2] = bg[2];
-        fb->depth[i] = 1.0f;
+        fb->depth[i] = clear;
     }
     if (fb->overdraw)
         memset(fb->overdraw, 0, n * sizeof *fb->overdraw);
+}
+
+float fb_depth_encode(const struct fb *fb, double z01)
+{
+    const struct fb_depth_proj *p = &fb->proj;
+    switch (fb->depth_mode) {
+    case DEPTH_W: {
+        double zn = 2 * z01 - 1, f = p->far, n = p->near;
+        if (p->ortho) /* z_ndc = (2e - (f + n)) / (f - n) */
+            return (float)(0.5 * (zn * (f - n) + (f + n)));
+        /* z_ndc = (f + n)/(f - n) - 2fn / ((f - n) e) */
+        double den = (f + n) - zn * (f - n);
+        return den > 0 ? (float)(2 * f * n / den) : INFINITY;
+    }
+    case DEPTH_Z16: {
+        double q = floor(z01 * 65535.0 + 0.5);
+        return (float)(q < 0 ? 0 : q > 65535 ? 65535 : q);
+    }
+    case DEPTH_RZ: return (float)(1.0 - z01);
+    default: return (float)z01;
+    }
+}
+
+double fb_depth_window(const struct fb *fb, size_t i)
+{
+    if (!fb_covered(fb, i))
+        return 1.0;
+    double d = fb->depth[i];
+    const struct fb_depth_proj *p = &fb->proj;
+    switch (fb->depth_mode) {
+    case DEPTH_W: {
+        double f = p->far, n = p->near, zn;
+        if (p->ortho)
+            zn = (2 * d - (f + n)) / (f - n);
+        else
+            zn = (f + n) / (f - n) - 2 * f * n / ((f - n) * d);
+        return 0.5 * zn + 0.5;
+    }
+    case DEPTH_Z16: return d / 65535.0;
+    case DEPTH_RZ: return 1.0 - d;
+    default: return d;
+    }
 }
 
 void fb_show_depth(struct fb *fb)
@@ -49,16 +92,17 @@ void fb_show_depth(struct fb *fb)
     size_t n = (size_t)fb->w * (size_t)fb->h;
     float lo = 1, hi = 0;
     for (size_t i = 0; i < n; i++)
-        if (fb->depth[i] < 1) {
-            lo = fb->depth[i] < lo ? fb->depth[i] : lo;
-            hi = fb->depth[i] > hi ? fb->depth[i] : hi;
+        if (fb_covered(fb, i)) {
+            float z = (float)fb_depth_window(fb, i);
+            lo = z < lo ? z : lo;
+            hi = z > hi ? z : hi;
         }
     /* stretch the used range: perspective depth crowds near 1, so a fixed map is all white */
     float scale = hi > lo ? 1.0f / (hi - lo) : 0;
     for (size_t i = 0; i < n; i++) {
         uint8_t g = 0;
-        if (fb->depth[i] < 1)
-            g = fb_quantize(0.15f + 0.85f * (1.0f - (fb->depth[i] - lo) * scale));
+        if (fb_covered(fb, i))
+            g = fb_quantize(0.15f + 0.85f * (1.0f - ((float)fb_depth_window(fb, i) - lo) * scale));
         fb->rgb[3 * i] = fb->rgb[3 * i + 1] = fb->rgb[3 * i + 2] = g;
     }
 }

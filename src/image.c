@@ -76,9 +76,9 @@ int image_write_pfm(const char *path, const struct fb *fb, struct err *e)
         return err_set(e, "%s: cannot create: %s", path, strerror(errno));
     fprintf(f, "Pf\n%d %d\n-1.0\n", fb->w, fb->h);
     for (int y = fb->h - 1; y >= 0; y--) {
-        const float *row = fb->depth + (size_t)y * (size_t)fb->w;
         for (int x = 0; x < fb->w; x++) {
-            float d = row[x];
+            /* window depth whatever the depth method (--depth) stored */
+            float d = (float)fb_depth_window(fb, (size_t)y * (size_t)fb->w + (size_t)x);
             unsigned char b[4];
             uint32_t u;
             memcpy(&u, &d, 4);

@@ -4,7 +4,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "vertex.h"
+#include "viewport.h"
 
 /* surfaces store the depth of the pixel centre; a line on that surface differs by a little */
 static inline float depth_bias(float z)
@@ -31,7 +31,10 @@ int line_draw_px(struct fb *fb, int x0, int y0, float z0, int x1, int y1, float 
         if (x >= 0 && y >= 0 && x < fb->w && y < fb->h) {
             size_t i = (size_t)y * (size_t)fb->w + (size_t)x;
             float z = z0 + dz * (float)step;
-            if (!depth_test || z <= fb->depth[i] + depth_bias(z)) {
+            /* biased toward the eye, then in the depth method's measure: shown unless the
+             * stored surface is strictly nearer */
+            if (!depth_test || !fb_depth_passes(fb->depth_mode, fb->depth[i],
+                                                fb_depth_encode(fb, (double)z - depth_bias(z)))) {
                 fb->rgb[3 * i + 0] = rgb[0];
                 fb->rgb[3 * i + 1] = rgb[1];
                 fb->rgb[3 * i + 2] = rgb[2];
@@ -126,8 +129,8 @@ int line_draw_clip(struct fb *fb, const double a[4], const double b[4], const ui
     if (!(ca[3] > 0 && cb[3] > 0))
         return 0; /* degenerate: a point at the eye */
     double p[2][3];
-    vertex_window(ca, fb->w, fb->h, p[0]);
-    vertex_window(cb, fb->w, fb->h, p[1]);
+    viewport_window(ca, fb->w, fb->h, p[0]);
+    viewport_window(cb, fb->w, fb->h, p[1]);
     for (int i = 0; i < 2; i++)
         for (int k = 0; k < 3; k++)
             if (!isfinite(p[i][k])) /* overflowed: Cohen-Sutherland would see NaN as inside */

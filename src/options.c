@@ -2,12 +2,15 @@
 #include "options.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "fb.h"
 
-enum arg { ARG_NONE, ARG_VALUE };
+/* ARG_ENUM: the value is one of a render_enum's names, stored as an int at `field` (offset
+ * into struct options); its --help line lists the names and the default from the table. */
+enum arg { ARG_NONE, ARG_VALUE, ARG_ENUM };
 
 /* which subcommands accept a flag */
 #define C_VIEW (1u << CMD_VIEW)
@@ -18,8 +21,8 @@ enum arg { ARG_NONE, ARG_VALUE };
 #define C_DRAW (C_VIEW | C_RENDER | C_DUMP) /* everything that renders a scene */
 
 enum flag_id {
-    F_SIZE, F_EYE, F_TARGET, F_UP, F_FOV, F_NEAR, F_FAR, F_ORTHO, F_FRAME, F_LIGHT, F_SHADE,
-    F_TEXTURE, F_NO_TEXTURE, F_FILTER, F_BACKGROUND, F_CULL, F_HIDDEN_LINES, F_VIEW, F_OUT,
+    F_SIZE, F_EYE, F_TARGET, F_UP, F_FOV, F_NEAR, F_FAR, F_ORTHO, F_FRAME, F_LIGHT, F_ENUM,
+    F_TEXTURE, F_NO_TEXTURE, F_BACKGROUND, F_HIDDEN_LINES, F_OUT,
     F_DEPTH_OUT, F_STATS, F_COLS, F_ROWS, F_FRAMES, F_ORBIT, F_CAMERA_PATH, F_COLORS,
     F_TOLERANCE, F_DITHER, F_DIFF, F_PPM_DIR, F_FRAME_INDEX, F_FPS, F_NO_HUD, F_HELP, F_VERSION,
 };
@@ -30,49 +33,73 @@ struct flag {
     enum arg arg;
     unsigned cmds;
     const char *metavar, *help;
+    const struct render_enum *values; /* ARG_ENUM */
+    size_t field;                     /* ARG_ENUM: offsetof(struct options, ...) */
 };
 
+/* every enum field is an int underneath (the flag table writes them as ints) */
+_Static_assert(sizeof(enum shade_mode) == sizeof(int) && sizeof(enum raster_method) == sizeof(int),
+               "enums are ints");
+#define ENUM_FLAG(flag, cmds, what, table, member)                                         \
+    {flag, F_ENUM, ARG_ENUM, cmds, "M", what, &table, offsetof(struct options, member)}
+
 static const struct flag flags[] = {
-    {"--size", F_SIZE, ARG_VALUE, C_RENDER, "WxH", "framebuffer size in pixels (default 160x96)"},
-    {"--eye", F_EYE, ARG_VALUE, C_DRAW, "X,Y,Z", "camera position (default 0,0,3)"},
-    {"--target", F_TARGET, ARG_VALUE, C_DRAW, "X,Y,Z", "point looked at (default 0,0,0)"},
-    {"--up", F_UP, ARG_VALUE, C_DRAW, "X,Y,Z", "up direction (default 0,1,0)"},
-    {"--fov", F_FOV, ARG_VALUE, C_DRAW, "DEG", "vertical field of view, 0.01..179.99 (default 50)"},
-    {"--near", F_NEAR, ARG_VALUE, C_DRAW, "N", "near plane distance > 0 (default 0.1)"},
-    {"--far", F_FAR, ARG_VALUE, C_DRAW, "F", "far plane distance > near (default 100)"},
-    {"--ortho", F_ORTHO, ARG_VALUE, C_DRAW, "H", "orthographic projection, view height H"},
-    {"--frame", F_FRAME, ARG_NONE, C_RENDER | C_DUMP, NULL, "move the camera to fit the model (keeps the view direction)"},
-    {"--light", F_LIGHT, ARG_VALUE, C_DRAW, "X,Y,Z", "direction toward the light (default 1,1,1)"},
-    {"--shade", F_SHADE, ARG_VALUE, C_DRAW | C_BENCH, "MODE", "unlit|flat|gouraud|phong|wire (default phong)"},
-    {"--texture", F_TEXTURE, ARG_VALUE, C_DRAW, "FILE", "diffuse texture replacing the MTL's map_Kd"},
-    {"--no-texture", F_NO_TEXTURE, ARG_NONE, C_DRAW, NULL, "ignore all textures (albedo = Kd)"},
-    {"--filter", F_FILTER, ARG_VALUE, C_DRAW | C_BENCH, "F", "texture filter nearest|bilinear (default nearest)"},
-    {"--background", F_BACKGROUND, ARG_VALUE, C_DRAW, "R,G,B", "background colour, 0..255 each (default 0,0,0)"},
-    {"--cull", F_CULL, ARG_VALUE, C_DRAW | C_BENCH, "MODE", "face culling none|back|front (default none)"},
-    {"--hidden-lines", F_HIDDEN_LINES, ARG_NONE, C_DRAW, NULL, "wire: hide edges behind the model's surfaces"},
-    {"--view", F_VIEW, ARG_VALUE, C_DRAW, "V", "color|depth|normals|overdraw|wire-overlay (default color)"},
-    {"--out", F_OUT, ARG_VALUE, C_RENDER | C_DUMP | C_A2P, "FILE", "output file (.ppm/.png; dump: .ans)"},
-    {"--depth-out", F_DEPTH_OUT, ARG_VALUE, C_RENDER, "FILE.pfm", "also write the depth buffer as PFM"},
-    {"--stats", F_STATS, ARG_NONE, C_RENDER | C_DUMP, NULL, "print triangle/pixel counts and timings to stderr"},
-    {"--cols", F_COLS, ARG_VALUE, C_DUMP | C_BENCH, "C", "terminal columns (dump: 80 or the terminal's; bench: 160)"},
-    {"--rows", F_ROWS, ARG_VALUE, C_DUMP | C_BENCH, "R", "terminal rows (dump: 24 or the terminal's; bench: 48)"},
-    {"--frames", F_FRAMES, ARG_VALUE, C_DUMP | C_BENCH, "N", "number of frames (dump: 1 or the camera path's length; bench: 180)"},
-    {"--orbit", F_ORBIT, ARG_VALUE, C_DUMP | C_BENCH, "DEG", "orbit the camera around the target DEG per frame"},
-    {"--camera-path", F_CAMERA_PATH, ARG_VALUE, C_DUMP, "FILE", "camera per frame: lines 'ex ey ez tx ty tz'"},
-    {"--colors", F_COLORS, ARG_VALUE, C_VIEW | C_DUMP, "MODE", "truecolor|256|16|none (default: detect)"},
-    {"--tolerance", F_TOLERANCE, ARG_VALUE, C_VIEW | C_DUMP, "N", "treat colour changes <= N per channel as unchanged"},
-    {"--dither", F_DITHER, ARG_NONE, C_VIEW | C_DUMP, NULL, "256/16 colours: 4x4 ordered dithering (default off)"},
-    {"--diff", F_DIFF, ARG_NONE, C_DUMP, NULL, "frames after the first are diffs"},
-    {"--ppm-dir", F_PPM_DIR, ARG_VALUE, C_DUMP, "DIR", "also write each framebuffer as DIR/frame-NNNN.ppm"},
-    {"--frame", F_FRAME_INDEX, ARG_VALUE, C_A2P, "K", "which frame to decode, 0-based (default: the last)"},
-    {"--fps", F_FPS, ARG_VALUE, C_VIEW, "N", "cap the frame rate (default 60)"},
-    {"--no-hud", F_NO_HUD, ARG_NONE, C_VIEW, NULL, "hide the status line"},
-    {"--help", F_HELP, ARG_NONE, ~0u, NULL, "show this help"},
-    {"--version", F_VERSION, ARG_NONE, ~0u, NULL, "show the version"},
+    {"--size", F_SIZE, ARG_VALUE, C_RENDER, "WxH", "framebuffer size in pixels (default 160x96)", NULL, 0},
+    {"--eye", F_EYE, ARG_VALUE, C_DRAW, "X,Y,Z", "camera position (default 0,0,3)", NULL, 0},
+    {"--target", F_TARGET, ARG_VALUE, C_DRAW, "X,Y,Z", "point looked at (default 0,0,0)", NULL, 0},
+    {"--up", F_UP, ARG_VALUE, C_DRAW, "X,Y,Z", "up direction (default 0,1,0)", NULL, 0},
+    {"--fov", F_FOV, ARG_VALUE, C_DRAW, "DEG", "vertical field of view, 0.01..179.99 (default 50)", NULL, 0},
+    {"--near", F_NEAR, ARG_VALUE, C_DRAW, "N", "near plane distance > 0 (default 0.1)", NULL, 0},
+    {"--far", F_FAR, ARG_VALUE, C_DRAW, "F", "far plane distance > near (default 100)", NULL, 0},
+    {"--ortho", F_ORTHO, ARG_VALUE, C_DRAW, "H", "orthographic projection, view height H", NULL, 0},
+    {"--frame", F_FRAME, ARG_NONE, C_RENDER | C_DUMP, NULL, "move the camera to fit the model (keeps the view direction)", NULL, 0},
+    {"--light", F_LIGHT, ARG_VALUE, C_DRAW, "X,Y,Z", "direction toward the light (default 1,1,1)", NULL, 0},
+    ENUM_FLAG("--shade", C_DRAW | C_BENCH, "shading", render_shade_names, render.shade),
+    {"--texture", F_TEXTURE, ARG_VALUE, C_DRAW, "FILE", "diffuse texture replacing the MTL's map_Kd", NULL, 0},
+    {"--no-texture", F_NO_TEXTURE, ARG_NONE, C_DRAW, NULL, "ignore all textures (albedo = Kd)", NULL, 0},
+    ENUM_FLAG("--filter", C_DRAW | C_BENCH, "texture filter", render_filter_names, render.filter),
+    ENUM_FLAG("--raster", C_DRAW | C_BENCH, "rasterizer", render_raster_names, render.raster),
+    ENUM_FLAG("--persp", C_DRAW | C_BENCH, "varying interpolation", render_persp_names, render.persp),
+    ENUM_FLAG("--depth", C_DRAW | C_BENCH, "depth buffer", render_depth_names, render.depth),
+    {"--background", F_BACKGROUND, ARG_VALUE, C_DRAW, "R,G,B", "background colour, 0..255 each (default 0,0,0)", NULL, 0},
+    ENUM_FLAG("--cull", C_DRAW | C_BENCH, "face culling", render_cull_names, render.cull),
+    {"--hidden-lines", F_HIDDEN_LINES, ARG_NONE, C_DRAW, NULL, "wire: hide edges behind the model's surfaces", NULL, 0},
+    ENUM_FLAG("--view", C_DRAW, "what the picture shows", render_view_names, render.view),
+    {"--out", F_OUT, ARG_VALUE, C_RENDER | C_DUMP | C_A2P, "FILE", "output file (.ppm/.png; dump: .ans)", NULL, 0},
+    {"--depth-out", F_DEPTH_OUT, ARG_VALUE, C_RENDER, "FILE.pfm", "also write the depth buffer as PFM", NULL, 0},
+    {"--stats", F_STATS, ARG_NONE, C_RENDER | C_DUMP, NULL, "print triangle/pixel counts and timings to stderr", NULL, 0},
+    {"--cols", F_COLS, ARG_VALUE, C_DUMP | C_BENCH, "C", "terminal columns (dump: 80 or the terminal's; bench: 160)", NULL, 0},
+    {"--rows", F_ROWS, ARG_VALUE, C_DUMP | C_BENCH, "R", "terminal rows (dump: 24 or the terminal's; bench: 48)", NULL, 0},
+    {"--frames", F_FRAMES, ARG_VALUE, C_DUMP | C_BENCH, "N", "number of frames (dump: 1 or the camera path's length; bench: 180)", NULL, 0},
+    {"--orbit", F_ORBIT, ARG_VALUE, C_DUMP | C_BENCH, "DEG", "orbit the camera around the target DEG per frame", NULL, 0},
+    {"--camera-path", F_CAMERA_PATH, ARG_VALUE, C_DUMP, "FILE", "camera per frame: lines 'ex ey ez tx ty tz'", NULL, 0},
+    {"--colors", F_COLORS, ARG_VALUE, C_VIEW | C_DUMP, "MODE", "truecolor|256|16|none (default: detect)", NULL, 0},
+    {"--tolerance", F_TOLERANCE, ARG_VALUE, C_VIEW | C_DUMP, "N", "treat colour changes <= N per channel as unchanged", NULL, 0},
+    {"--dither", F_DITHER, ARG_NONE, C_VIEW | C_DUMP, NULL, "256/16 colours: 4x4 ordered dithering (default off)", NULL, 0},
+    {"--diff", F_DIFF, ARG_NONE, C_DUMP, NULL, "frames after the first are diffs", NULL, 0},
+    {"--ppm-dir", F_PPM_DIR, ARG_VALUE, C_DUMP, "DIR", "also write each framebuffer as DIR/frame-NNNN.ppm", NULL, 0},
+    {"--frame", F_FRAME_INDEX, ARG_VALUE, C_A2P, "K", "which frame to decode, 0-based (default: the last)", NULL, 0},
+    {"--fps", F_FPS, ARG_VALUE, C_VIEW, "N", "cap the frame rate (default 60)", NULL, 0},
+    {"--no-hud", F_NO_HUD, ARG_NONE, C_VIEW, NULL, "hide the status line", NULL, 0},
+    {"--help", F_HELP, ARG_NONE, ~0u, NULL, "show this help", NULL, 0},
+    {"--version", F_VERSION, ARG_NONE, ~0u, NULL, "show the version", NULL, 0},
 };
 
 static const char *const cmd_names[CMD_COUNT] = {"view", "render", "dump", "ansi2ppm", "bench",
                                                  "help", "version"};
+
+/* "a, b or c" (sep = ", ", last = " or ") or "a|b|c" (both "|") */
+static void enum_list(const struct render_enum *t, const char *sep, const char *last, char *out,
+                      size_t n)
+{
+    size_t len = 0;
+    out[0] = '\0';
+    for (int i = 0; i < t->n && len < n; i++) {
+        const char *s = i == 0 ? "" : i == t->n - 1 ? last : sep;
+        int w = snprintf(out + len, n - len, "%s%s", s, t->names[i]);
+        len += w > 0 ? (size_t)w : 0;
+    }
+}
 
 static int bad(struct err *e, const char *flag, const char *why, const char *val)
 {
@@ -214,18 +241,18 @@ static int apply(struct options *o, const struct flag *f, const char *v, struct 
             return bad(e, f->name, "expected a non-zero direction X,Y,Z", v);
         o->light_set = true;
         return 0;
-    case F_SHADE:
-        if ((k = render_shade_parse(v)) < 0)
-            return bad(e, f->name, "expected unlit, flat, gouraud, phong or wire", v);
-        o->render.shade = (enum shade_mode)k;
+    case F_ENUM:
+        if ((k = render_enum_parse(f->values, v)) < 0) {
+            char want[160];
+            enum_list(f->values, ", ", " or ", want, sizeof want);
+            char why[192];
+            snprintf(why, sizeof why, "expected %s", want);
+            return bad(e, f->name, why, v);
+        }
+        memcpy((char *)o + f->field, &k, sizeof k);
         return 0;
     case F_TEXTURE: o->texture = v; return 0;
     case F_NO_TEXTURE: o->render.textures = false; return 0;
-    case F_FILTER:
-        if ((k = render_filter_parse(v)) < 0)
-            return bad(e, f->name, "expected nearest or bilinear", v);
-        o->render.filter = (enum tex_filter)k;
-        return 0;
     case F_BACKGROUND:
         if (parse_list(v, rgb, 3))
             return bad(e, f->name, "expected R,G,B in 0..255", v);
@@ -236,20 +263,7 @@ static int apply(struct options *o, const struct flag *f, const char *v, struct 
         }
         o->background_set = true;
         return 0;
-    case F_CULL:
-        if ((k = render_cull_parse(v)) < 0)
-            return bad(e, f->name, "expected none, back or front", v);
-        o->render.cull = (enum cull_mode)k;
-        return 0;
     case F_HIDDEN_LINES: o->render.hidden_lines = true; return 0;
-    case F_VIEW:
-        for (k = 0; k < VIEW_COUNT; k++)
-            if (strcmp(v, render_view_name((enum debug_view)k)) == 0)
-                break;
-        if (k == VIEW_COUNT)
-            return bad(e, f->name, "expected color, depth, normals, overdraw or wire-overlay", v);
-        o->render.view = (enum debug_view)k;
-        return 0;
     case F_OUT: o->out = v; return 0;
     case F_DEPTH_OUT: o->depth_out = v; return 0;
     case F_STATS: o->stats = true; return 0;
@@ -371,7 +385,7 @@ int options_parse(int argc, char **argv, struct options *o, struct err *e)
             return err_set(e, "rastty %s: %s does not apply here (see rastty --help)",
                            cmd_names[cmd], named->name);
         const char *v = NULL;
-        if (f->arg == ARG_VALUE) {
+        if (f->arg != ARG_NONE) {
             if (eq)
                 v = eq + 1;
             else if (i + 1 < argc)
@@ -391,6 +405,8 @@ int options_parse(int argc, char **argv, struct options *o, struct err *e)
 
 void options_usage(FILE *out)
 {
+    struct options dflt;
+    defaults(&dflt);
     fprintf(out,
             "usage: rastty [view] [MODEL.obj|SCENE.rsc ...]   interactive viewer (no file: demo)\n"
             "       rastty render MODEL.obj --out FILE.ppm|FILE.png [options]\n"
@@ -402,7 +418,16 @@ void options_usage(FILE *out)
         char left[48];
         snprintf(left, sizeof left, "%s%s%s", f->name, f->metavar ? " " : "",
                  f->metavar ? f->metavar : "");
-        fprintf(out, "  %-24s %s [", left, f->help);
+        if (f->arg == ARG_ENUM) {
+            char names[160];
+            int def;
+            memcpy(&def, (const char *)&dflt + f->field, sizeof def);
+            enum_list(f->values, "|", "|", names, sizeof names);
+            fprintf(out, "  %-24s %s: %s (default %s) [", left, f->help, names,
+                    f->values->names[def]);
+        } else {
+            fprintf(out, "  %-24s %s [", left, f->help);
+        }
         const char *sep = "";
         for (int c = 0; c < CMD_HELP; c++)
             if (f->cmds & (1u << c) && f->cmds != ~0u) {

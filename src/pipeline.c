@@ -5,27 +5,59 @@
 #include <string.h>
 #include <time.h>
 
+#include "batch.h"
 #include "clip.h"
 #include "line.h"
 #include "raster.h"
 #include "setup.h"
 #include "shade.h"
+#include "span.h"
 #include "vertex.h"
 
-struct pipeline {
-    struct vertex_out *verts; /* vertex-stage output, reused across frames */
+struct item_verts {
+    struct vertex_out *v;
     uint32_t cap;
 };
 
+struct pipeline {
+    struct item_verts *items; /* vertex-stage output per draw item, reused across frames */
+    int n_items;
+    struct batch batch;       /* set-up triangles: front end -> back end */
+};
+
+/* What one frame's front end and back end share. */
+struct frame {
+    const struct render_opts *o;
+    struct vertex_uniforms u;
+    struct shade_ctx sc;
+    struct span_ctx span;
+    struct fb *fb;
+    struct frame_stats *stats;
+};
+
+struct pipeline *pipeline_new_batch(uint32_t batch_capacity)
+{
+    struct pipeline *p = calloc(1, sizeof *p);
+    if (p && batch_init(&p->batch, batch_capacity, NULL)) {
+        free(p);
+        return NULL;
+    }
+    return p;
+}
+
 struct pipeline *pipeline_new(void)
 {
-    return calloc(1, sizeof(struct pipeline));
+    return pipeline_new_batch(BATCH_DEFAULT_CAPACITY);
 }
 
 void pipeline_destroy(struct pipeline *p)
 {
-    if (p)
-        free(p->verts);
+    if (!p)
+        return;
+    for (int i = 0; i < p->n_items; i++)
+        free(p->items[i].v);
+    free(p->items);
+    batch_free(&p->batch);
     free(p);
 }
 
@@ -66,6 +98,8 @@ static double max_scale(mat4 m)
     return best;
 }
 
+/* flat shading: light.h's terms once per triangle, face normal from the file's winding, V
+ * from the centroid */
 static void flat_terms(const struct vertex_uniforms *u, const struct vertex_out *a,
                        const struct vertex_out *b, const struct vertex_out *c, float ns,
                        struct shade_tri *st)
@@ -80,34 +114,36 @@ static void flat_terms(const struct vertex_uniforms *u, const struct vertex_out 
     vertex_light(u, n, cw, ns, st->flat_d, st->flat_s);
 }
 
-static void draw_setup(const struct vertex_out *a, const struct vertex_out *b,
-                       const struct vertex_out *c, int n_var, enum shade_mode mode,
-                       const struct render_opts *o, const struct shade_ctx *sc,
-                       const struct shade_tri *st, struct fb *fb, struct frame_stats *stats)
+/* the back end: rasterize what the front end has set up, then start a new batch */
+static void flush(struct pipeline *p, struct frame *f)
 {
-    struct setup_tri t;
-    /* the depth pre-pass of hidden-line wireframe draws every face, whatever the culling */
-    enum cull_mode cull = mode == SHADE_WIRE ? CULL_NONE : o->cull;
-    switch (setup_triangle(a, b, c, fb->w, fb->h, cull, n_var, &t)) {
-    case SETUP_DRAW:
-        stats->tris_drawn++;
-        raster_triangle(&t, sc, st, fb, stats);
-        break;
-    case SETUP_CULLED:
-        stats->tris_culled++;
-        break;
-    default:
-        break;
-    }
+    struct raster_rect all = {0, 0, f->fb->w - 1, f->fb->h - 1};
+    batch_draw(&p->batch, raster_methods[f->o->raster], all, &f->span);
+    batch_reset(&p->batch);
 }
 
-/* Filled triangles of one item; mode SHADE_WIRE = depth only. */
-static void draw_filled(const struct mesh *m, const struct vertex_out *vo,
-                        const struct vertex_uniforms *u, const struct draw_item *item,
-                        enum shade_mode mode, int n_var, const struct render_opts *o,
-                        const struct shade_ctx *sc, struct fb *fb, struct frame_stats *stats)
+/* append one triangle (a source triangle or a piece of one) to the batch */
+static void add_setup(struct pipeline *p, struct frame *f, const struct vertex_out *a,
+                      const struct vertex_out *b, const struct vertex_out *c, uint32_t shade)
 {
-    struct vertex_out poly[CLIP_MAX_VERTS];
+    struct setup_tri *t = &p->batch.tris[p->batch.n_tris];
+    if (setup_triangle(a, b, c, f->fb->w, f->fb->h, t) != SETUP_DRAW)
+        return;
+    t->shade = shade;
+    p->batch.n_tris++;
+    f->stats->tris_drawn++;
+}
+
+/* The front end for one item's filled triangles; depth_only: the hidden-line pre-pass
+ * (every face, whatever the culling; no shading records). */
+static void front_end(struct pipeline *p, struct frame *f, const struct draw_item *item,
+                      const struct vertex_out *vo, bool depth_only)
+{
+    const struct mesh *m = item->mesh;
+    const struct render_opts *o = f->o;
+    struct frame_stats *stats = f->stats;
+    struct batch *bt = &p->batch;
+    int n_var = depth_only ? 0 : vertex_varying_count(o->shade, o->view);
     for (uint32_t i = 0; i < m->n_tris; i++) {
         const struct vertex_out *v[3] = {&vo[m->tris[i][0]], &vo[m->tris[i][1]],
                                          &vo[m->tris[i][2]]};
@@ -118,34 +154,42 @@ static void draw_filled(const struct mesh *m, const struct vertex_out *vo,
             stats->tris_rejected++;
             continue;
         }
-        struct shade_tri st;
-        st.mat = &m->materials[m->tri_material[i]];
-        st.tex = NULL;
-        if (o->textures)
-            st.tex = item->texture_override ? item->texture_override
-                     : st.mat->texture >= 0 ? &m->textures[st.mat->texture]
-                                            : NULL;
-        light_base_color(st.mat, item->kd_override, st.tex != NULL, st.base);
-        if (mode == SHADE_FLAT)
-            flat_terms(u, v[0], v[1], v[2], st.mat->ns, &st);
+        /* culling: once per source triangle, never per clipped piece */
+        if (!depth_only && o->cull != CULL_NONE &&
+            setup_culled(o->cull, setup_front_facing(v[0], v[1], v[2]))) {
+            stats->tris_culled++;
+            continue;
+        }
+        if (!batch_has_room(bt))
+            flush(p, f);
+        uint32_t shade = bt->n_shades;
+        if (!depth_only) {
+            struct shade_tri *st = &bt->shades[bt->n_shades++];
+            st->mat = &m->materials[m->tri_material[i]];
+            st->tex = NULL;
+            if (o->textures)
+                st->tex = item->texture_override ? item->texture_override
+                          : st->mat->texture >= 0 ? &m->textures[st->mat->texture]
+                                                  : NULL;
+            light_base_color(st->mat, item->kd_override, st->tex != NULL, st->base);
+            if (f->span.mode == SHADE_FLAT)
+                flat_terms(&f->u, v[0], v[1], v[2], st->mat->ns, st);
+        }
         if (!(any & VERTEX_NEEDS_CLIP)) {
-            draw_setup(v[0], v[1], v[2], n_var, mode, o, sc, &st, fb, stats);
+            add_setup(p, f, v[0], v[1], v[2], shade);
             continue;
         }
         stats->tris_clipped++;
-        int n = clip_triangle(v, any & VERTEX_NEEDS_CLIP, n_var, u->guard_x, u->guard_y, poly);
+        struct vertex_out *poly = &bt->verts[bt->n_verts];
+        int n = clip_triangle(v, any & VERTEX_NEEDS_CLIP, n_var, f->u.guard_x, f->u.guard_y,
+                              poly);
+        for (int k = 0; k < n; k++)
+            if (!poly[k].projected) /* a vertex made by clipping */
+                vertex_project(&poly[k], f->fb->w, f->fb->h);
+        bt->n_verts += (uint32_t)n;
         for (int k = 1; k + 1 < n; k++)
-            draw_setup(&poly[0], &poly[k], &poly[k + 1], n_var, mode, o, sc, &st, fb, stats);
+            add_setup(p, f, &poly[0], &poly[k], &poly[k + 1], shade);
     }
-}
-
-/* Sign of the triangle's screen-space orientation from clip coordinates, valid even when a
- * corner is behind the eye: det[x y w] has the sign of the window-space area times w0 w1 w2. */
-static int front_facing_clip(const double *a, const double *b, const double *c)
-{
-    double det = a[0] * (b[1] * c[3] - c[1] * b[3]) - b[0] * (a[1] * c[3] - c[1] * a[3]) +
-                 c[0] * (a[1] * b[3] - b[1] * a[3]);
-    return det > 0; /* counter-clockwise in GL window coordinates */
 }
 
 /* Triangle edges as lines. `overlay` edges decorate a shaded frame: they are not counted
@@ -163,12 +207,9 @@ static void draw_edges(const struct mesh *m, const struct vertex_out *vo,
             stats->tris_rejected += !overlay;
             continue;
         }
-        if (o->cull != CULL_NONE) {
-            int front = front_facing_clip(v[0]->clip, v[1]->clip, v[2]->clip);
-            if ((o->cull == CULL_BACK && !front) || (o->cull == CULL_FRONT && front)) {
-                stats->tris_culled += !overlay;
-                continue;
-            }
+        if (o->cull != CULL_NONE && setup_culled(o->cull, setup_front_facing(v[0], v[1], v[2]))) {
+            stats->tris_culled += !overlay;
+            continue;
         }
         for (int k = 0; k < 3; k++)
             line_draw_clip(fb, v[k]->clip, v[(k + 1) % 3]->clip, o->wire_color, depth_test);
@@ -176,17 +217,55 @@ static void draw_edges(const struct mesh *m, const struct vertex_out *vo,
     }
 }
 
-/* grow the vertex-output scratch to n (kept across frames) */
-static int reserve(struct pipeline *p, uint32_t n, struct err *e)
+/* item it's vertex-stage output array, grown to n (kept across frames) */
+static struct vertex_out *item_verts(struct pipeline *p, int it, uint32_t n, struct err *e)
 {
-    if (n <= p->cap)
-        return 0;
-    struct vertex_out *nv = realloc(p->verts, (size_t)n * sizeof *nv);
-    if (!nv)
-        return err_set(e, "out of memory for %u vertices", n);
-    p->verts = nv;
-    p->cap = n;
-    return 0;
+    if (it >= p->n_items) {
+        struct item_verts *ni = realloc(p->items, (size_t)(it + 1) * sizeof *ni);
+        if (!ni)
+            return err_set(e, "out of memory for %d draw items", it + 1), NULL;
+        memset(ni + p->n_items, 0, (size_t)(it + 1 - p->n_items) * sizeof *ni);
+        p->items = ni;
+        p->n_items = it + 1;
+    }
+    struct item_verts *iv = &p->items[it];
+    if (n > iv->cap) {
+        struct vertex_out *nv = realloc(iv->v, (size_t)n * sizeof *nv);
+        if (!nv)
+            return err_set(e, "out of memory for %u vertices", n), NULL;
+        iv->v = nv;
+        iv->cap = n;
+    }
+    return iv->v;
+}
+
+/* the frame's constants: camera, lights, methods */
+static void frame_init(struct frame *f, const struct camera *cam, const struct render_opts *o,
+                       struct fb *fb, struct frame_stats *stats)
+{
+    memset(f, 0, sizeof *f);
+    f->o = o;
+    f->fb = fb;
+    f->stats = stats;
+    struct vertex_uniforms *u = &f->u;
+    u->eye = cam->eye;
+    u->ortho = cam->ortho_height > 0;
+    u->view_back = camera_back(cam);
+    u->fb_w = fb->w;
+    u->fb_h = fb->h;
+    u->guard_x = 1.0 + 2.0 * VERTEX_GUARD_PX / fb->w;
+    u->guard_y = 1.0 + 2.0 * VERTEX_GUARD_PX / fb->h;
+    u->shade = o->shade;
+    u->view = o->view;
+    light_env_init(&u->lights, o);
+    float eye[3] = {(float)cam->eye.x, (float)cam->eye.y, (float)cam->eye.z};
+    float back[3] = {(float)u->view_back.x, (float)u->view_back.y, (float)u->view_back.z};
+    shade_ctx_init(&f->sc, o, eye, u->ortho, back);
+    f->span.fb = fb;
+    f->span.shade = &f->sc;
+    f->span.mode = o->view == VIEW_NORMALS ? SHADE_PHONG : o->shade;
+    f->span.persp = o->persp;
+    f->span.depth = o->depth;
 }
 
 int pipeline_draw(struct pipeline *p, const struct draw_item *items, int n_items,
@@ -196,45 +275,30 @@ int pipeline_draw(struct pipeline *p, const struct draw_item *items, int n_items
 {
     double t0 = now_ms();
     memset(stats, 0, sizeof *stats);
+    fb->depth_mode = o->depth;
+    fb->proj = (struct fb_depth_proj){cam->ortho_height > 0, cam->near, cam->far};
     fb_clear(fb, o->background);
     double aspect = (double)fb->w / fb->h;
-    mat4 view = camera_view(cam), proj = camera_proj(cam, aspect);
-    mat4 pv = m4_mul(proj, view);
-
-    struct vertex_uniforms u;
-    memset(&u, 0, sizeof u);
-    u.eye = cam->eye;
-    u.ortho = cam->ortho_height > 0;
-    u.view_back = camera_back(cam);
-    u.fb_w = fb->w;
-    u.fb_h = fb->h;
-    u.guard_x = 1.0 + 2.0 * VERTEX_GUARD_PX / fb->w;
-    u.guard_y = 1.0 + 2.0 * VERTEX_GUARD_PX / fb->h;
-    u.shade = o->shade;
-    u.view = o->view;
-    light_env_init(&u.lights, o);
-    float eye[3] = {(float)cam->eye.x, (float)cam->eye.y, (float)cam->eye.z};
-    float back[3] = {(float)u.view_back.x, (float)u.view_back.y, (float)u.view_back.z};
-    struct shade_ctx sc;
-    shade_ctx_init(&sc, o, eye, u.ortho, back);
-    enum shade_mode mode = o->view == VIEW_NORMALS ? SHADE_PHONG : o->shade;
-    int n_var = vertex_varying_count(o->shade, o->view);
+    mat4 pv = m4_mul(camera_proj(cam, aspect), camera_view(cam));
+    struct frame f;
+    frame_init(&f, cam, o, fb, stats);
+    batch_reset(&p->batch);
 
     bool show_sky = sky && (o->view == VIEW_COLOR || o->view == VIEW_WIRE_OVERLAY);
-    bool wire = mode == SHADE_WIRE;
+    bool wire = f.span.mode == SHADE_WIRE;
     /* wire frames have no surface colour: the sky goes everywhere, before anything else */
     if (show_sky && wire)
         skybox_draw(sky, cam, fb);
-    /* pass 1: surfaces (wire: depth only, for hidden lines); pass 2: edges, depth-tested
-     * against every item's surfaces when asked. Each pass transforms an item's vertices
-     * itself (cheap next to drawing), so no pass keeps more than one item's vertices. */
+    /* pass 1: surfaces (wire: depth only, for hidden lines), through the batch; pass 2:
+     * edges, depth-tested against every item's surfaces when asked */
     bool pass1 = !wire || o->hidden_lines;
     bool pass2 = wire || o->view == VIEW_WIRE_OVERLAY;
+    struct frame_stats pre = {0}; /* the hidden-line pre-pass: its counts are not the frame's */
+    if (wire)
+        f.stats = &pre;
     for (int pass = 1; pass <= 2; pass++) {
         if ((pass == 1 && !pass1) || (pass == 2 && !pass2))
             continue;
-        if (pass == 2 && show_sky && !wire) /* the sky goes where pass 1 drew nothing */
-            skybox_draw(sky, cam, fb);
         /* a culled item is counted once: by the first pass that looks at it */
         bool counts = pass == 1 || !pass1;
         for (int it = 0; it < n_items; it++) {
@@ -242,10 +306,10 @@ int pipeline_draw(struct pipeline *p, const struct draw_item *items, int n_items
             const struct mesh *m = item->mesh;
             if (m->n_tris == 0)
                 continue;
-            u.model = item->model;
-            u.normal_matrix = m4_normal_matrix(item->model);
-            u.mvp = m4_mul(pv, item->model);
-            if (sphere_outside(m, u.mvp, max_scale(item->model))) {
+            f.u.model = item->model;
+            f.u.normal_matrix = m4_normal_matrix(item->model);
+            f.u.mvp = m4_mul(pv, item->model);
+            if (sphere_outside(m, f.u.mvp, max_scale(item->model))) {
                 if (counts) {
                     stats->meshes_culled++;
                     stats->tris_in += m->n_tris;
@@ -253,21 +317,27 @@ int pipeline_draw(struct pipeline *p, const struct draw_item *items, int n_items
                 }
                 continue;
             }
-            if (reserve(p, m->n_verts, e))
+            struct vertex_out *vo = item_verts(p, it, m->n_verts, e);
+            if (!vo)
                 return -1;
-            vertex_run(m, &u, p->verts);
-            if (pass == 2) {
-                draw_edges(m, p->verts, o, !wire || o->hidden_lines, !wire, fb, stats);
-            } else if (wire) { /* depth-only pre-pass; its counts are not the frame's */
-                struct frame_stats pre = {0};
-                draw_filled(m, p->verts, &u, item, SHADE_WIRE, 0, o, &sc, fb, &pre);
-            } else {
-                draw_filled(m, p->verts, &u, item, mode, n_var, o, &sc, fb, stats);
+            if (pass == 1 || !pass1) /* pass 2 reuses pass 1's vertices */
+                vertex_run(m, &f.u, vo);
+            if (pass == 1)
+                front_end(p, &f, item, vo, wire);
+            else
+                draw_edges(m, vo, o, !wire || o->hidden_lines, !wire, fb, stats);
+        }
+        if (pass == 1) {
+            flush(p, &f); /* the surfaces are complete */
+            if (!wire) {
+                stats->pixels_tested = f.span.tested;
+                stats->pixels_shaded = f.span.shaded;
+                stats->tris_empty = f.span.tris_empty;
             }
+            if (show_sky && !wire) /* the sky goes where the surfaces left room */
+                skybox_draw(sky, cam, fb);
         }
     }
-    if (show_sky && !wire && !pass2) /* the sky goes where the surfaces left room */
-        skybox_draw(sky, cam, fb);
     if (o->view == VIEW_DEPTH)
         fb_show_depth(fb);
     else if (o->view == VIEW_OVERDRAW)

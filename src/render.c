@@ -7,16 +7,34 @@ static const char *const shade_names[] = {"unlit", "flat", "gouraud", "phong", "
 static const char *const cull_names[] = {"none", "back", "front"};
 static const char *const filter_names[] = {"nearest", "bilinear"};
 static const char *const view_names[] = {"color", "depth", "normals", "overdraw", "wire-overlay"};
-_Static_assert(sizeof shade_names / sizeof *shade_names == SHADE_COUNT, "shade names");
-_Static_assert(sizeof cull_names / sizeof *cull_names == CULL_COUNT, "cull names");
-_Static_assert(sizeof filter_names / sizeof *filter_names == TEX_FILTER_COUNT, "filter names");
-_Static_assert(sizeof view_names / sizeof *view_names == VIEW_COUNT, "view names");
+static const char *const raster_names[] = {"edge", "scanline", "tiled"};
+static const char *const persp_names[] = {"correct", "affine", "span8", "span16", "span32"};
+static const char *const depth_names[] = {"z", "w", "z16", "rz"};
+#define COUNT(a) ((int)(sizeof a / sizeof *a))
+_Static_assert(COUNT(shade_names) == SHADE_COUNT, "shade names");
+_Static_assert(COUNT(cull_names) == CULL_COUNT, "cull names");
+_Static_assert(COUNT(filter_names) == TEX_FILTER_COUNT, "filter names");
+_Static_assert(COUNT(view_names) == VIEW_COUNT, "view names");
+_Static_assert(COUNT(raster_names) == RASTER_COUNT, "raster names");
+_Static_assert(COUNT(persp_names) == PERSP_COUNT, "persp names");
+_Static_assert(COUNT(depth_names) == DEPTH_COUNT, "depth names");
+
+const struct render_enum render_shade_names = {shade_names, SHADE_COUNT};
+const struct render_enum render_cull_names = {cull_names, CULL_COUNT};
+const struct render_enum render_filter_names = {filter_names, TEX_FILTER_COUNT};
+const struct render_enum render_view_names = {view_names, VIEW_COUNT};
+const struct render_enum render_raster_names = {raster_names, RASTER_COUNT};
+const struct render_enum render_persp_names = {persp_names, PERSP_COUNT};
+const struct render_enum render_depth_names = {depth_names, DEPTH_COUNT};
 
 void render_opts_default(struct render_opts *o)
 {
     memset(o, 0, sizeof *o);
     o->shade = SHADE_PHONG;
     o->filter = TEX_NEAREST;
+    o->raster = RASTER_EDGE;
+    o->persp = PERSP_CORRECT;
+    o->depth = DEPTH_Z;
     o->cull = CULL_NONE;
     o->view = VIEW_COLOR;
     o->textures = true;
@@ -30,15 +48,18 @@ const char *render_shade_name(enum shade_mode m) { return shade_names[m]; }
 const char *render_cull_name(enum cull_mode m) { return cull_names[m]; }
 const char *render_filter_name(enum tex_filter f) { return filter_names[f]; }
 const char *render_view_name(enum debug_view v) { return view_names[v]; }
+const char *render_raster_name(enum raster_method m) { return raster_names[m]; }
+const char *render_persp_name(enum persp_method m) { return persp_names[m]; }
+const char *render_depth_name(enum depth_mode m) { return depth_names[m]; }
 
-static int lookup(const char *const *names, int n, const char *s)
+int render_enum_parse(const struct render_enum *t, const char *s)
 {
-    for (int i = 0; i < n; i++)
-        if (strcmp(names[i], s) == 0)
+    for (int i = 0; i < t->n; i++)
+        if (strcmp(t->names[i], s) == 0)
             return i;
     return -1;
 }
 
-int render_shade_parse(const char *s) { return lookup(shade_names, SHADE_COUNT, s); }
-int render_cull_parse(const char *s) { return lookup(cull_names, CULL_COUNT, s); }
-int render_filter_parse(const char *s) { return lookup(filter_names, TEX_FILTER_COUNT, s); }
+int render_shade_parse(const char *s) { return render_enum_parse(&render_shade_names, s); }
+int render_cull_parse(const char *s) { return render_enum_parse(&render_cull_names, s); }
+int render_filter_parse(const char *s) { return render_enum_parse(&render_filter_names, s); }

@@ -1,42 +1,48 @@
-/* setup.c: viewport, snapping, edge equations, culling, interpolation planes (see setup.h). */
+/* setup.c: facing and culling, edge equations and the tie rule, interpolation planes
+ * (see setup.h). */
 #include "setup.h"
 
 #include <math.h>
 
-static inline int64_t floor_div256(int64_t a)
+#include "viewport.h"
+
+/* a tolerance on barycentrics at the snapped corners (setup.h, "Slivers"): 1/64 and 1/16
+ * moved texels on the head scenes of the Mesa oracle (llvmpipe extrapolates its planes);
+ * 1/4 matches Mesa on every oracle scene and still bounds the extrapolation */
+#define SETUP_SLIVER_EPS (1.0 / 4)
+
+int setup_front_facing(const struct vertex_out *va, const struct vertex_out *vb,
+                       const struct vertex_out *vc)
 {
-    return a >> SETUP_SUBPIX_BITS; /* arithmetic shift: floor for negatives too */
+    /* det[x y w] has the sign of the window-space area times w0 w1 w2 */
+    const double *a = va->clip, *b = vb->clip, *c = vc->clip;
+    double det = a[0] * (b[1] * c[3] - c[1] * b[3]) - b[0] * (a[1] * c[3] - c[1] * a[3]) +
+                 c[0] * (a[1] * b[3] - b[1] * a[3]);
+    return det > 0; /* counter-clockwise in GL window coordinates */
+}
+
+static inline int64_t floor_px(int64_t a)
+{
+    return a >> VIEWPORT_SUBPIX_BITS; /* arithmetic shift: floor for negatives too */
 }
 
 enum setup_result setup_triangle(const struct vertex_out *v0, const struct vertex_out *v1,
                                  const struct vertex_out *v2, int fb_w, int fb_h,
-                                 enum cull_mode cull, int n_var, struct setup_tri *t)
+                                 struct setup_tri *t)
 {
     const struct vertex_out *v[3] = {v0, v1, v2};
-    struct vertex_out tmp[3];
-    double wx[3], wy[3], wz[3];
     int64_t X[3], Y[3];
     for (int i = 0; i < 3; i++) {
-        if (!v[i]->projected) { /* a vertex made by clipping */
-            tmp[i] = *v[i];
-            vertex_project(&tmp[i], fb_w, fb_h);
-            v[i] = &tmp[i];
-        }
-        wx[i] = v[i]->win[0], wy[i] = v[i]->win[1], wz[i] = v[i]->win[2];
         X[i] = v[i]->fx, Y[i] = v[i]->fy;
+        t->v[i] = v[i];
     }
     int64_t area = (X[1] - X[0]) * (Y[2] - Y[0]) - (Y[1] - Y[0]) * (X[2] - X[0]);
     if (area == 0)
         return SETUP_EMPTY;
-    t->front = area < 0;
-    if ((cull == CULL_BACK && !t->front) || (cull == CULL_FRONT && t->front))
-        return SETUP_CULLED;
-    int i1 = 1, i2 = 2;
-    if (area < 0) { /* make the interior the positive side of every edge */
-        i1 = 2, i2 = 1;
-        area = -area;
-    }
-    int idx[3] = {0, i1, i2};
+    /* edge order: the interior on the positive side of every edge */
+    int idx[3] = {0, 1, 2};
+    if (area < 0)
+        idx[1] = 2, idx[2] = 1;
 
     int64_t minx = X[0], maxx = X[0], miny = Y[0], maxy = Y[0];
     for (int i = 1; i < 3; i++) {
@@ -45,11 +51,9 @@ enum setup_result setup_triangle(const struct vertex_out *v0, const struct verte
         miny = Y[i] < miny ? Y[i] : miny;
         maxy = Y[i] > maxy ? Y[i] : maxy;
     }
-    const int64_t half = SETUP_SUBPIX_ONE / 2;
-    int64_t px0 = floor_div256(minx - half + SETUP_SUBPIX_ONE - 1);
-    int64_t px1 = floor_div256(maxx - half);
-    int64_t py0 = floor_div256(miny - half + SETUP_SUBPIX_ONE - 1);
-    int64_t py1 = floor_div256(maxy - half);
+    const int64_t one = VIEWPORT_SUBPIX_ONE, half = one / 2;
+    int64_t px0 = floor_px(minx - half + one - 1), px1 = floor_px(maxx - half);
+    int64_t py0 = floor_px(miny - half + one - 1), py1 = floor_px(maxy - half);
     px0 = px0 < 0 ? 0 : px0;
     py0 = py0 < 0 ? 0 : py0;
     px1 = px1 > fb_w - 1 ? fb_w - 1 : px1;
@@ -58,44 +62,87 @@ enum setup_result setup_triangle(const struct vertex_out *v0, const struct verte
         return SETUP_EMPTY;
     t->x0 = (int)px0, t->y0 = (int)py0, t->x1 = (int)px1, t->y1 = (int)py1;
 
-    int64_t cx = px0 * SETUP_SUBPIX_ONE + half, cy = py0 * SETUP_SUBPIX_ONE + half;
+    for (int i = 0; i < 3; i++)
+        t->X[i] = X[idx[i]], t->Y[i] = Y[idx[i]];
+    int64_t cx = px0 * one + half, cy = py0 * one + half;
     for (int k = 0; k < 3; k++) {
-        /* edge k runs from vertex k+1 to vertex k+2 (so it is opposite vertex k) */
-        int a = idx[(k + 1) % 3], b = idx[(k + 2) % 3];
-        int64_t dx = X[b] - X[a], dy = Y[b] - Y[a];
+        /* edge k runs from corner k+1 to corner k+2 (so it is opposite corner k) */
+        int a = (k + 1) % 3, b = (k + 2) % 3;
+        int64_t dx = t->X[b] - t->X[a], dy = t->Y[b] - t->Y[a];
         int owns = dy < 0 || (dy == 0 && dx < 0);
-        t->e[k] = dx * (cy - Y[a]) - dy * (cx - X[a]) - (owns ? 0 : 1);
-        t->e_dx[k] = -dy * SETUP_SUBPIX_ONE;
-        t->e_dy[k] = dx * SETUP_SUBPIX_ONE;
-    }
-
-    /* interpolation: the same edge functions on unsnapped positions, normalised */
-    const double *px = wx, *py = wy;
-    double sx[3], sy[3];
-    double uarea = (px[1] - px[0]) * (py[2] - py[0]) - (py[1] - py[0]) * (px[2] - px[0]);
-    if (!(uarea != 0 && (uarea < 0) == t->front)) {
-        /* snapping changed the orientation or made it non-degenerate: use snapped positions */
-        for (int i = 0; i < 3; i++) {
-            sx[i] = (double)X[i] / SETUP_SUBPIX_ONE;
-            sy[i] = (double)Y[i] / SETUP_SUBPIX_ONE;
-        }
-        px = sx, py = sy;
-        uarea = (px[1] - px[0]) * (py[2] - py[0]) - (py[1] - py[0]) * (px[2] - px[0]);
-    }
-    double inv = 1.0 / uarea, ox = px0 + 0.5, oy = py0 + 0.5;
-    for (int k = 0; k < 3; k++) {
-        int a = (k + 1) % 3, b = (k + 2) % 3; /* original vertex order: the sign is in inv */
-        double dx = px[b] - px[a], dy = py[b] - py[a];
-        t->lam[k] = (dx * (oy - py[a]) - dy * (ox - px[a])) * inv;
-        t->lam_dx[k] = -dy * inv;
-        t->lam_dy[k] = dx * inv;
-    }
-    t->n_var = n_var;
-    for (int i = 0; i < 3; i++) {
-        t->z[i] = wz[i];
-        t->rw[i] = 1.0 / v[i]->clip[3];
-        for (int k = 0; k < n_var; k++)
-            t->var[i][k] = v[i]->var[k];
+        t->e[k] = dx * (cy - t->Y[a]) - dy * (cx - t->X[a]) - (owns ? 0 : 1);
+        t->e_dx[k] = -dy * one;
+        t->e_dy[k] = dx * one;
     }
     return SETUP_DRAW;
+}
+
+/* barycentric planes of the triangle (px[k], py[k]) at pixel centre (ox, oy); 0 if degenerate */
+static int planes(const double px[3], const double py[3], double ox, double oy,
+                  struct setup_interp *in)
+{
+    double area = (px[1] - px[0]) * (py[2] - py[0]) - (py[1] - py[0]) * (px[2] - px[0]);
+    if (area == 0)
+        return 0;
+    double inv = 1.0 / area;
+    for (int k = 0; k < 3; k++) {
+        int a = (k + 1) % 3, b = (k + 2) % 3;
+        double dx = px[b] - px[a], dy = py[b] - py[a];
+        in->lam[k] = (dx * (oy - py[a]) - dy * (ox - px[a])) * inv;
+        in->lam_dx[k] = -dy * inv;
+        in->lam_dy[k] = dx * inv;
+    }
+    return 1;
+}
+
+/* do the planes stay within [-eps, 1+eps] over the snapped triangle (its corners)? */
+static int planes_bounded(const struct setup_tri *t, const struct setup_interp *in)
+{
+    for (int j = 0; j < 3; j++) {
+        double dx = (double)t->v[j]->fx / VIEWPORT_SUBPIX_ONE - (t->x0 + 0.5);
+        double dy = (double)t->v[j]->fy / VIEWPORT_SUBPIX_ONE - (t->y0 + 0.5);
+        for (int k = 0; k < 3; k++) {
+            double l = in->lam[k] + dx * in->lam_dx[k] + dy * in->lam_dy[k];
+            if (!(l >= -SETUP_SLIVER_EPS && l <= 1 + SETUP_SLIVER_EPS))
+                return 0;
+        }
+    }
+    return 1;
+}
+
+void setup_interp(const struct setup_tri *t, enum depth_mode depth,
+                  const struct fb_depth_proj *proj, struct setup_interp *in)
+{
+    double ux[3], uy[3], sx[3], sy[3], ox = t->x0 + 0.5, oy = t->y0 + 0.5;
+    for (int i = 0; i < 3; i++) {
+        ux[i] = t->v[i]->win[0], uy[i] = t->v[i]->win[1];
+        sx[i] = (double)t->v[i]->fx / VIEWPORT_SUBPIX_ONE;
+        sy[i] = (double)t->v[i]->fy / VIEWPORT_SUBPIX_ONE;
+    }
+    /* unsnapped planes, unless snapping changed the orientation, made the triangle
+     * non-degenerate, or the planes extrapolate over the covered area: then snapped ones */
+    double uarea = (ux[1] - ux[0]) * (uy[2] - uy[0]) - (uy[1] - uy[0]) * (ux[2] - ux[0]);
+    double sarea_src = (sx[1] - sx[0]) * (sy[2] - sy[0]) - (sy[1] - sy[0]) * (sx[2] - sx[0]);
+    if (!(uarea != 0 && (uarea < 0) == (sarea_src < 0) && planes(ux, uy, ox, oy, in) &&
+          planes_bounded(t, in)))
+        planes(sx, sy, ox, oy, in);
+    double lo = INFINITY, hi = -INFINITY;
+    for (int i = 0; i < 3; i++) {
+        const double *c = t->v[i]->clip;
+        double d;
+        in->rw[i] = 1.0 / c[3];
+        in->var[i] = t->v[i]->var;
+        switch (depth) {
+        case DEPTH_RZ: d = (c[3] - c[2]) / (2 * c[3]); break;
+        case DEPTH_W:
+            d = proj->ortho ? 0.5 * (c[2] / c[3] * (proj->far - proj->near) + proj->far + proj->near)
+                            : c[3];
+            break;
+        default: d = t->v[i]->win[2]; break;
+        }
+        in->d[i] = d;
+        lo = d < lo ? d : lo;
+        hi = d > hi ? d : hi;
+    }
+    in->d_lo = lo, in->d_hi = hi;
 }

@@ -240,7 +240,7 @@ void skybox_draw(const struct skybox *s, const struct camera *cam, struct fb *fb
         double ny = 1 - 2 * (y + 0.5) / fb->h;
         for (int x = 0; x < fb->w; x++) {
             size_t i = (size_t)y * fb->w + x;
-            if (fb->depth[i] < 1.0f)
+            if (fb_covered(fb, i))
                 continue;
             double nx = 2 * (x + 0.5) / fb->w - 1;
             vec3 d = v3_add(f, v3_add(v3_scale(r, nx * tx), v3_scale(u, ny * ty)));

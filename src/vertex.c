@@ -1,7 +1,7 @@
 /* vertex.c: per-vertex transform and lighting (see vertex.h). */
 #include "vertex.h"
 
-#include "setup.h"
+#include "viewport.h"
 
 int vertex_varying_count(enum shade_mode shade, enum debug_view view)
 {
@@ -12,20 +12,11 @@ int vertex_varying_count(enum shade_mode shade, enum debug_view view)
     return 2;
 }
 
-void vertex_window(const double c[4], int fb_w, int fb_h, double win[3])
-{
-    double rw = 1.0 / c[3];
-    win[0] = (c[0] * rw + 1.0) * 0.5 * fb_w;
-    win[1] = (1.0 - c[1] * rw) * 0.5 * fb_h;
-    win[2] = 0.5 * c[2] * rw + 0.5;
-}
-
 void vertex_project(struct vertex_out *v, int fb_w, int fb_h)
 {
-    vertex_window(v->clip, fb_w, fb_h, v->win);
-    /* round to nearest, ties to even (the default rounding mode), like llvmpipe's lrintf */
-    v->fx = (int64_t)nearbyint(v->win[0] * SETUP_SUBPIX_ONE);
-    v->fy = (int64_t)nearbyint(v->win[1] * SETUP_SUBPIX_ONE);
+    viewport_window(v->clip, fb_w, fb_h, v->win);
+    v->fx = viewport_snap(v->win[0]);
+    v->fy = viewport_snap(v->win[1]);
     v->projected = 1;
 }
 

@@ -5,7 +5,9 @@
 #
 # Every scene of tests/oracle/scenes.txt is drawn by `rastty render` and by build/oracle/glref
 # (Mesa llvmpipe unless GALLIUM_DRIVER says otherwise) and the two are compared by
-# build/oracle/compare, one line per scene, then "N passed, N failed, N skipped"; exit 1 when a
+# build/oracle/compare, one line per scene; rastty also draws each scene with --raster
+# scanline and --raster tiled, which must write the same bytes (colour and depth) as the
+# default edge rasterizer, then "N passed, N failed, N skipped"; exit 1 when a
 # scene failed. Builds nothing: `make oracle-build` (tests/oracle/oracle.mk) makes glref and
 # compare, the top-level Makefile makes rastty. Outputs go to build/oracle/out/NAME.*; a failing
 # scene leaves NAME.diff.png there (red: only rastty covers, cyan: only Mesa covers, yellow:
@@ -144,13 +146,27 @@ for l in "${lines[@]}"; do
         failed=$((failed + 1))
         continue
     fi
+    # every rasterizer must write the same bytes (colour and depth) as the default one
+    raster_bad=
+    if [ "$mode" = rastty ]; then
+        for r in scanline tiled; do
+            if ! "$rastty" render "${argv[@]}" --raster "$r" --out "$test.$r.ppm" \
+                --depth-out "$test.$r.pfm" 2>/dev/null >/dev/null ||
+                ! cmp -s "$test.ppm" "$test.$r.ppm" || ! cmp -s "$test.pfm" "$test.$r.pfm"; then
+                raster_bad="$raster_bad $r"
+            else
+                rm -f "$test.$r.ppm" "$test.$r.pfm"
+            fi
+        done
+    fi
     flags=()
     [[ $checks == *magenta* ]] && flags+=(--magenta)
     [[ $checks == *exact* ]] && flags+=(--exact)
     if "$compare" --name "$name" "${flags[@]}" --list "$list" --diff "$out/$name.diff.png" \
-        "$test.ppm" "$test.pfm" "$ref.ppm" "$ref.pfm"; then
+        "$test.ppm" "$test.pfm" "$ref.ppm" "$ref.pfm" && [ -z "$raster_bad" ]; then
         passed=$((passed + 1))
     else
+        [ -n "$raster_bad" ] && echo "$name FAIL (--raster$raster_bad: bytes differ from --raster edge: $test.*.ppm)"
         [ -f "$out/$name.diff.png" ] && echo "    diff image: $out/$name.diff.png"
         failed=$((failed + 1))
     fi

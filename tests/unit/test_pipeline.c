@@ -48,7 +48,7 @@ static int covered(const struct fb *fb)
 {
     int n = 0;
     for (int i = 0; i < fb->w * fb->h; i++)
-        n += fb->depth[i] < 1;
+        n += fb_covered(fb, (size_t)i);
     return n;
 }
 
@@ -80,8 +80,8 @@ TEST(near_plane_crossing_keeps_visible_part)
     REQUIRE(draw(&f) == 0);
     CHECK(f.st.tris_clipped > 0);
     for (int x = 0; x < 40; x++) {
-        CHECK(f.fb.depth[29 * 40 + x] < 1); /* bottom row covered */
-        CHECK(f.fb.depth[0 * 40 + x] == 1); /* top row (sky) empty */
+        CHECK(fb_covered(&f.fb, 29 * 40 + (size_t)x)); /* bottom row covered */
+        CHECK(!fb_covered(&f.fb, (size_t)x));            /* top row (sky) empty */
     }
     frame_free(&f);
 }
