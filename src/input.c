@@ -6,13 +6,14 @@
 static const struct input_binding bindings[] = {
     {'w', IN_FORWARD},     {'W', IN_FORWARD},    {'s', IN_BACK},        {'S', IN_BACK},
     {'a', IN_LEFT},        {'A', IN_LEFT},       {'d', IN_RIGHT},       {'D', IN_RIGHT},
-    {'Q', IN_DOWN},        {'z', IN_DOWN},       {'Z', IN_DOWN},        {'e', IN_UP},
+    {'Q', IN_DOWN},        {'z', IN_DOWN},       {'Z', IN_DEPTH},       {'e', IN_UP},
     {'E', IN_UP},          {'x', IN_UP},         {'X', IN_UP},          {KEY_LEFT, IN_YAW_LEFT},
     {KEY_RIGHT, IN_YAW_RIGHT}, {KEY_UP, IN_PITCH_UP}, {KEY_DOWN, IN_PITCH_DOWN},
     {'o', IN_ORBIT},       {'+', IN_FOV_IN},     {'=', IN_FOV_IN},      {'-', IN_FOV_OUT},
     {'[', IN_SLOWER},      {']', IN_FASTER},     {'r', IN_RESET},       {'\t', IN_NEXT_SCENE},
     {KEY_BTAB, IN_PREV_SCENE}, {'m', IN_SHADE},  {'f', IN_FILTER},      {'c', IN_CULL},
     {'l', IN_LIGHT},       {'v', IN_VIEW},       {'p', IN_PERSPECTIVE}, {' ', IN_PAUSE},
+    {'R', IN_RASTER},
     {'h', IN_HELP},        {'?', IN_HELP},       {'q', IN_QUIT},        {27, IN_QUIT},
 };
 
@@ -32,7 +33,9 @@ static const char *const help[] = {
     "c          culling none / back / front",
     "l          rotate the light",
     "v          view: colour depth normals overdraw wireframe",
-    "p          texture perspective method",
+    "R          rasterizer: edge scanline tiled",
+    "p          interpolation: correct affine span8 span16 span32",
+    "Z          depth buffer: z w z16 rz",
     "Space      pause / resume auto-rotation",
     "h ?        this help",
     "q Esc      quit",

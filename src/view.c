@@ -115,6 +115,18 @@ static void set_message(struct view *v, const char *msg)
     v->hud_dirty = true;
 }
 
+/* "rasterizer: scanline  (edge scanline tiled)" */
+static void method_message(struct view *v, const char *axis, const struct render_enum *t, int cur)
+{
+    char msg[sizeof v->message];
+    int n = snprintf(msg, sizeof msg, "%s: %s  (", axis, t->names[cur]);
+    for (int i = 0; i < t->n && n > 0 && (size_t)n < sizeof msg; i++)
+        n += snprintf(msg + n, sizeof msg - (size_t)n, "%s%s", i ? " " : "", t->names[i]);
+    if (n > 0 && (size_t)n < sizeof msg)
+        snprintf(msg + n, sizeof msg - (size_t)n, ")");
+    set_message(v, msg);
+}
+
 /* ---- scenes ---- */
 
 /* demo.rsc: $RASTTY_ASSETS, else assets/ next to the binary (a build tree), else
@@ -183,6 +195,9 @@ static void enter_scene(struct view *v)
     v->ro.filter = keep.filter;
     v->ro.cull = keep.cull;
     v->ro.view = keep.view;
+    v->ro.raster = keep.raster;
+    v->ro.persp = keep.persp;
+    v->ro.depth = keep.depth;
     v->cam = v->home;
     v->dirty = v->hud_dirty = true;
 }
@@ -226,10 +241,11 @@ static void hud_compose(struct view *v, char *out, size_t n)
         return;
     }
     snprintf(out, n,
-             " %s [%d/%d] | %s %s cull:%s%s | %s | %.0f fps | render %.1f ms enc %.2f ms | "
-             "%.1f KB | tris %llu clip %llu cull %llu | %s | h: help",
+             " %s [%d/%d] | %s %s cull:%s%s | %s %s %s | %s | %.0f fps | render %.1f ms "
+             "enc %.2f ms | %.1f KB | tris %llu clip %llu cull %llu | %s | h: help",
              s->name, v->cur + 1, v->n_scenes, shade, render_filter_name(v->ro.filter),
-             render_cull_name(v->ro.cull), extra, v->orbit ? "orbit" : "fly", v->fps,
+             render_cull_name(v->ro.cull), extra, render_raster_name(v->ro.raster),
+             render_persp_name(v->ro.persp), render_depth_name(v->ro.depth), v->orbit ? "orbit" : "fly", v->fps,
              v->st.render_ms, v->encode_ms, v->last_bytes / 1024.0,
              (unsigned long long)v->st.tris_drawn, (unsigned long long)v->st.tris_clipped,
              (unsigned long long)(v->st.tris_culled + v->st.tris_rejected),
@@ -385,7 +401,18 @@ static void command(struct view *v, enum input_cmd c, double t, bool *quit)
             v->ro.lights[i].dir = m4_mul_dir(m4_rotate(v3(0, 1, 0), 30), v->ro.lights[i].dir);
         break;
     case IN_VIEW: v->ro.view = (enum debug_view)((v->ro.view + 1) % VIEW_COUNT); break;
-    case IN_PERSPECTIVE: set_message(v, "p: only the perspective-correct method exists so far"); break;
+    case IN_RASTER:
+        v->ro.raster = (enum raster_method)((v->ro.raster + 1) % RASTER_COUNT);
+        method_message(v, "rasterizer", &render_raster_names, (int)v->ro.raster);
+        break;
+    case IN_PERSPECTIVE:
+        v->ro.persp = (enum persp_method)((v->ro.persp + 1) % PERSP_COUNT);
+        method_message(v, "interpolation", &render_persp_names, (int)v->ro.persp);
+        break;
+    case IN_DEPTH:
+        v->ro.depth = (enum depth_mode)((v->ro.depth + 1) % DEPTH_COUNT);
+        method_message(v, "depth buffer", &render_depth_names, (int)v->ro.depth);
+        break;
     case IN_PAUSE: v->spinning = !v->spinning; break;
     case IN_HELP:
         v->help = !v->help;
