@@ -24,12 +24,14 @@
  *                  the error grows without bound as the angle flattens.
  *   PERSP_SPANn    (n = 8, 16, 32) piecewise affine, as in Hecker's perspective texture
  *                  mapping articles: exact b at the span ends, affine in between. Span ends
- *                  sit on absolute columns (multiples of n), so the picture does not depend
- *                  on which rasterizer found the pixels; an end outside the triangle is
- *                  clamped into it in barycentric space (l_k >= 0, renormalised), so nothing
- *                  extrapolates. Cost: two divisions per n pixels of a row. Fails: far less
- *                  than affine — the error is the bend of 1/w across n pixels, which grows
- *                  with n and with how fast depth changes across the screen (grazing
+ *                  sit on absolute columns (multiples of n), clamped to the row's first and
+ *                  last covered pixel (computed from the edge functions, not from the run
+ *                  the rasterizer handed over), so the picture does not depend on which
+ *                  rasterizer found the pixels and no end is ever outside the triangle.
+ *                  Cost: two divisions per n pixels of a row, three per row for its ends.
+ *                  Fails: far less than affine — the error is the bend of 1/w across n
+ *                  pixels, which grows with n and with how fast depth changes across the
+ *                  screen (grazing surfaces close to the eye); seams where two spans meet.
  *                  surfaces close to the eye). */
 #ifndef RASTTY_SPAN_H
 #define RASTTY_SPAN_H

@@ -15,24 +15,42 @@ void span_end(struct span_ctx *s)
     s->tris_empty += !s->in_ready;
 }
 
-/* Perspective-correct weights at the centre of column x on the row whose planes start at
- * r[k] (span ends): l clamped into the triangle (l_k >= 0, renormalised) first. */
-static void persp_anchor(const struct setup_interp *in, const double r[3], double dx,
-                         double b_out[3])
+/* Perspective-correct weights at the centre of column x0 + dx of the row whose planes
+ * start at r[k] (span ends; always a covered pixel, so inside the triangle). */
+static void persp_at(const struct setup_interp *in, const double r[3], double dx, double b_out[3])
 {
-    double l[3], sum = 0;
-    for (int k = 0; k < 3; k++) {
-        l[k] = r[k] + dx * in->lam_dx[k];
-        l[k] = l[k] > 0 ? l[k] : 0;
-        sum += l[k];
-    }
     double q[3], qs = 0;
     for (int k = 0; k < 3; k++) {
-        q[k] = (sum > 0 ? l[k] / sum : 1.0 / 3) * in->rw[k];
+        q[k] = (r[k] + dx * in->lam_dx[k]) * in->rw[k];
         qs += q[k];
     }
     for (int k = 0; k < 3; k++)
         b_out[k] = q[k] / qs;
+}
+
+/* floor(a / b), b > 0 */
+static inline int64_t floor_div(int64_t a, int64_t b)
+{
+    int64_t q = a / b;
+    return q - (a % b < 0);
+}
+
+/* The first and last covered column of row y, from the edge functions (the same integers
+ * every rasterizer tests): the ends that span methods clamp their spans to. */
+static void row_extent(const struct setup_tri *t, int y, int *lo_out, int *hi_out)
+{
+    int64_t lo = t->x0, hi = t->x1;
+    for (int k = 0; k < 3; k++) {
+        int64_t a = t->e_dx[k], e = t->e[k] + (int64_t)(y - t->y0) * t->e_dy[k];
+        if (a > 0) { /* e + (x - x0) a >= 0  <=>  x >= x0 - floor(e / a) */
+            int64_t b = t->x0 - floor_div(e, a);
+            lo = b > lo ? b : lo;
+        } else if (a < 0) { /* x <= x0 + floor(e / -a) */
+            int64_t b = t->x0 + floor_div(e, -a);
+            hi = b < hi ? b : hi;
+        }
+    }
+    *lo_out = (int)lo, *hi_out = (int)hi;
 }
 
 /* The depth method's value at a pixel with screen-linear weights l (and q = l/w). */
@@ -64,8 +82,10 @@ static inline void run(struct span_ctx *s, int y, int xa, int xb, const enum sha
     const double r[3] = {in->lam[0] + dy * in->lam_dy[0], in->lam[1] + dy * in->lam_dy[1],
                          in->lam[2] + dy * in->lam_dy[2]};
     const size_t row = (size_t)y * (size_t)fb->w;
-    int anchor = -1;               /* span methods: the column the current span starts at */
-    double ba[3] = {0}, bd[3] = {0}; /* weights there, and their change over the span */
+    /* span methods: the current span's absolute start column and its clamped ends, the
+     * weights at its start and their change over it; the row's covered extent */
+    int anchor = -1, a0 = 0, row_lo = -1, row_hi = -1;
+    double ba[3] = {0}, bd[3] = {0}, inv_len = 0;
     uint64_t shaded = 0;
     for (int x = xa; x <= xb; x++) {
         size_t i = row + (size_t)x;
@@ -90,15 +110,20 @@ static inline void run(struct span_ctx *s, int y, int xa, int xb, const enum sha
             b0 = (float)l[0], b1 = (float)l[1], b2 = (float)l[2];
         } else {
             int a = x - x % span_n; /* x >= 0 */
-            if (a != anchor) {
+            if (a != anchor) { /* a new span: exact weights at both (clamped) ends */
+                if (row_lo < 0)
+                    row_extent(t, y, &row_lo, &row_hi);
                 double bb[3];
                 anchor = a;
-                persp_anchor(in, r, a - t->x0, ba);
-                persp_anchor(in, r, a + span_n - t->x0, bb);
+                a0 = a > row_lo ? a : row_lo;
+                int a1 = a + span_n < row_hi ? a + span_n : row_hi;
+                persp_at(in, r, a0 - t->x0, ba);
+                persp_at(in, r, a1 - t->x0, bb);
+                inv_len = a1 > a0 ? 1.0 / (a1 - a0) : 0;
                 for (int k = 0; k < 3; k++)
                     bd[k] = bb[k] - ba[k];
             }
-            double f = (x - a) * (1.0 / span_n);
+            double f = (x - a0) * inv_len;
             b0 = (float)(ba[0] + f * bd[0]), b1 = (float)(ba[1] + f * bd[1]);
             b2 = (float)(ba[2] + f * bd[2]);
         }

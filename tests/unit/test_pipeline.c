@@ -151,3 +151,31 @@ TEST(non_finite_vertices_drop_their_triangles)
     REQUIRE(draw(&f) == 0);
     frame_free(&f);
 }
+
+TEST(culling_is_decided_once_per_source_triangle)
+{
+    /* a triangle through the near plane (found by a random search): clipping makes a quad,
+     * fanned into two pieces, and snapping flips one piece's orientation. Culled piece by
+     * piece, that piece would be judged the other way round from its source triangle;
+     * culled as a whole (the rule), the triangle is kept or dropped entirely. */
+    const char *obj = "v 2.837 -5.794 -2.8095\nv -2.884 9.511 2.898\nv -1.156 -0.023 9.29\n"
+                      "f 1 2 3\n";
+    struct frame f;
+    REQUIRE(frame_init(&f, obj, 64, 48) == 0);
+    f.ro.cull = CULL_FRONT; /* it faces the camera */
+    REQUIRE(draw(&f) == 0);
+    CHECK_EQ_INT(f.st.tris_culled, 1);
+    CHECK_EQ_INT(f.st.tris_drawn, 0);
+    CHECK_EQ_INT(covered(&f.fb), 0);
+    /* culling back faces keeps all of it: the same pixels as no culling */
+    f.ro.cull = CULL_BACK;
+    REQUIRE(draw(&f) == 0);
+    CHECK_EQ_INT(f.st.tris_culled, 0);
+    CHECK_EQ_INT(f.st.tris_clipped, 1);
+    int back_cull = covered(&f.fb);
+    f.ro.cull = CULL_NONE;
+    REQUIRE(draw(&f) == 0);
+    CHECK_EQ_INT(covered(&f.fb), back_cull);
+    CHECK(back_cull > 0);
+    frame_free(&f);
+}

@@ -1,0 +1,290 @@
+/* test_methods.c: every method where it must hold and where theory says it must fail —
+ * the batch size never changes a picture; affine interpolation swims more the flatter a
+ * textured ground is seen, piecewise-affine spans stay between affine and correct; 16-bit
+ * depth z-fights two near-coplanar quads far away where float z, w and reversed z do not. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "obj.h"
+#include "pipeline.h"
+#include "test.h"
+
+/* an n x n grid over [-s,s]^2 in the plane y = 0 (two triangles a cell), uv = (x, z) / 2 */
+static char *grid_obj(int n, double s)
+{
+    size_t cap = (size_t)(n + 1) * (n + 1) * 96 + (size_t)n * n * 64 + 64, len = 0;
+    char *o = malloc(cap);
+    if (!o)
+        return NULL;
+    for (int j = 0; j <= n; j++)
+        for (int i = 0; i <= n; i++) {
+            double x = -s + 2 * s * i / n, z = -s + 2 * s * j / n;
+            len += (size_t)snprintf(o + len, cap - len, "v %g 0 %g\nvt %g %g\n", x, z, x / 2,
+                                    z / 2);
+        }
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            int a = j * (n + 1) + i + 1, b = a + 1, c = a + n + 2, d = a + n + 1;
+            len += (size_t)snprintf(o + len, cap - len, "f %d/%d %d/%d %d/%d\nf %d/%d %d/%d %d/%d\n",
+                                    a, a, c, c, b, b, a, a, d, d, c, c);
+        }
+    return o;
+}
+
+/* an 8x8 two-colour checker with a gradient, so that a shifted uv changes the colour */
+static int checker(struct texture *tex)
+{
+    uint8_t px[8 * 8 * 4];
+    for (int y = 0; y < 8; y++)
+        for (int x = 0; x < 8; x++) {
+            uint8_t *p = px + 4 * (y * 8 + x);
+            int on = (x + y) % 2;
+            p[0] = (uint8_t)(on ? 230 : 30 + 20 * x);
+            p[1] = (uint8_t)(on ? 200 : 40 + 20 * y);
+            p[2] = (uint8_t)(on ? 60 : 180);
+            p[3] = 255;
+        }
+    return texture_from_rgba(8, 8, px, tex, NULL);
+}
+
+/* a smooth 16x16 ramp (red along u, green along v): colour error is proportional to uv error */
+static int ramp(struct texture *tex)
+{
+    uint8_t px[16 * 16 * 4];
+    for (int y = 0; y < 16; y++)
+        for (int x = 0; x < 16; x++) {
+            uint8_t *p = px + 4 * (y * 16 + x);
+            p[0] = (uint8_t)(8 + 16 * x), p[1] = (uint8_t)(8 + 16 * y), p[2] = 128, p[3] = 255;
+        }
+    return texture_from_rgba(16, 16, px, tex, NULL);
+}
+
+struct scene1 {
+    struct mesh m;
+    struct texture tex;
+    struct draw_item item;
+    struct pipeline *p;
+    struct fb fb;
+};
+
+static int scene1_init(struct scene1 *s, const char *obj, int w, int h, uint32_t batch)
+{
+    memset(s, 0, sizeof *s);
+    if (!obj || obj_parse(obj, strlen(obj), NULL, &s->m, NULL) || checker(&s->tex) ||
+        fb_init(&s->fb, w, h, false, NULL))
+        return -1;
+    s->item.mesh = &s->m;
+    s->item.model = m4_identity();
+    s->item.texture_override = &s->tex;
+    s->p = batch ? pipeline_new_batch(batch) : pipeline_new();
+    return s->p ? 0 : -1;
+}
+
+static void scene1_free(struct scene1 *s)
+{
+    pipeline_destroy(s->p);
+    fb_free(&s->fb);
+    texture_free(&s->tex);
+    mesh_free(&s->m);
+}
+
+TEST(batch_capacity_never_changes_the_picture)
+{
+    /* a 24x24 grid through the near plane (clipping), drawn through a batch that holds one
+     * clipped triangle at a time and through the default one: the same bytes */
+    char *obj = grid_obj(24, 6);
+    struct scene1 a, b;
+    REQUIRE(scene1_init(&a, obj, 96, 64, 9) == 0);
+    REQUIRE(scene1_init(&b, obj, 96, 64, 0) == 0);
+    free(obj);
+    struct camera cam; /* low and wide: the grid passes under the eye, through near */
+    camera_default(&cam);
+    cam.eye = v3(0.3, 0.2, 2);
+    cam.target = v3(0, 0, -2);
+    cam.fov_deg = 100;
+    struct render_opts o;
+    render_opts_default(&o);
+    for (enum raster_method r = 0; r < RASTER_COUNT; r++) {
+        o.raster = r;
+        struct frame_stats sa, sb;
+        REQUIRE(pipeline_draw(a.p, &a.item, 1, NULL, &cam, &o, &a.fb, &sa, NULL) == 0);
+        REQUIRE(pipeline_draw(b.p, &b.item, 1, NULL, &cam, &o, &b.fb, &sb, NULL) == 0);
+        CHECK(sa.tris_clipped > 0);
+        CHECK(memcmp(a.fb.rgb, b.fb.rgb, 96 * 64 * 3) == 0);
+        CHECK(memcmp(a.fb.depth, b.fb.depth, 96 * 64 * sizeof(float)) == 0);
+        CHECK_EQ_INT(sa.pixels_shaded, sb.pixels_shaded);
+    }
+    scene1_free(&a);
+    scene1_free(&b);
+}
+
+/* mean absolute channel difference over pixels both frames covered */
+static double mean_abs_diff(const struct fb *a, const uint8_t *ref_rgb, const float *ref_depth)
+{
+    double sum = 0;
+    long n = 0;
+    for (int i = 0; i < a->w * a->h; i++) {
+        if (!fb_covered(a, (size_t)i) || ref_depth[i] == 1.0f)
+            continue;
+        for (int k = 0; k < 3; k++)
+            sum += abs((int)a->rgb[3 * i + k] - (int)ref_rgb[3 * i + k]);
+        n += 3;
+    }
+    return n ? sum / n : 0;
+}
+
+TEST(affine_swims_more_the_flatter_the_ground_spans_stay_between)
+{
+    /* a 2x2 ground quad (two triangles) with a smooth ramp texture (bilinear, so colour
+     * error is proportional to uv error) seen from 1.5 units at elevations 80 .. 10 degrees:
+     * per-pixel perspective is the reference. The flatter the view, the more w varies
+     * across each triangle, so affine's error must grow; 16-pixel spans must stay between
+     * it and the reference, and shorter spans closer */
+    const char *obj = "v -1 0 1\nv 1 0 1\nv 1 0 -1\nv -1 0 -1\n"
+                      "vt 0.02 0.02\nvt 0.98 0.02\nvt 0.98 0.98\nvt 0.02 0.98\n"
+                      "f 1/1 2/2 3/3\nf 1/1 3/3 4/4\n";
+    struct scene1 s;
+    REQUIRE(scene1_init(&s, obj, 160, 96, 0) == 0);
+    texture_free(&s.tex);
+    REQUIRE(ramp(&s.tex) == 0);
+    size_t n = 160 * 96;
+    uint8_t *ref = malloc(n * 3);
+    float *ref_depth = malloc(n * sizeof(float));
+    REQUIRE(ref && ref_depth);
+    const double angles[] = {80, 60, 40, 20, 10};
+    double prev_affine = -1, prev_span16 = -1;
+    for (int a = 0; a < 5; a++) {
+        struct camera cam;
+        camera_default(&cam);
+        double th = angles[a] * M_PI / 180;
+        cam.eye = v3(0, 1.5 * sin(th), 1.5 * cos(th));
+        cam.target = v3(0, 0, 0);
+        cam.up = v3(0.5, 0.866, 0); /* rolled 30 degrees: rows are not lines of equal depth */
+        struct render_opts o;
+        render_opts_default(&o);
+        o.shade = SHADE_UNLIT;
+        o.filter = TEX_BILINEAR;
+        struct frame_stats st;
+        REQUIRE(pipeline_draw(s.p, &s.item, 1, NULL, &cam, &o, &s.fb, &st, NULL) == 0);
+        memcpy(ref, s.fb.rgb, n * 3);
+        memcpy(ref_depth, s.fb.depth, n * sizeof(float));
+        double err[PERSP_COUNT];
+        for (enum persp_method p = 0; p < PERSP_COUNT; p++) {
+            o.persp = p;
+            REQUIRE(pipeline_draw(s.p, &s.item, 1, NULL, &cam, &o, &s.fb, &st, NULL) == 0);
+            err[p] = mean_abs_diff(&s.fb, ref, ref_depth);
+        }
+        fprintf(stderr, "      %4.0f deg: affine %.2f span32 %.2f span16 %.2f span8 %.2f\n",
+                angles[a], err[PERSP_AFFINE], err[PERSP_SPAN32], err[PERSP_SPAN16],
+                err[PERSP_SPAN8]);
+        CHECK(err[PERSP_CORRECT] == 0);
+        CHECK(err[PERSP_AFFINE] > prev_affine);          /* grows as the angle flattens */
+        CHECK(err[PERSP_SPAN16] < err[PERSP_AFFINE]);    /* spans: between affine ... */
+        CHECK(err[PERSP_SPAN8] <= err[PERSP_SPAN16]);    /* ... shorter spans closer ... */
+        CHECK(err[PERSP_SPAN16] <= err[PERSP_SPAN32]);
+        CHECK(err[PERSP_SPAN16] > prev_span16);          /* spans fail too, more slowly */
+        prev_affine = err[PERSP_AFFINE];
+        prev_span16 = err[PERSP_SPAN16];
+    }
+    CHECK(prev_affine > 10); /* at 10 degrees affine is far off: the swim is real */
+    free(ref);
+    free(ref_depth);
+    scene1_free(&s);
+}
+
+TEST(z16_z_fights_far_away_z_w_and_reversed_z_do_not)
+{
+    /* two quads facing the camera 20 units away, 0.01 apart (near 0.1, far 100), the far
+     * one (green) drawn first, slightly tilted so its depth sweeps across many steps. A
+     * 16-bit depth step there spans ~0.06 units: the near red quad ties with the green one
+     * and loses (LESS) in many pixels. Float z steps 2.4e-4 units there; w and reversed z
+     * are finer still: red everywhere. */
+    const char *quad = "v -1 -1 0\nv 1 -1 0\nv 1 1 0.2\nv -1 1 0.2\nf 1 2 3 4\n";
+    struct mesh m;
+    REQUIRE(obj_parse(quad, strlen(quad), NULL, &m, NULL) == 0);
+    float green[3] = {0, 1, 0}, red[3] = {1, 0, 0};
+    struct draw_item items[2] = {
+        {.mesh = &m, .model = m4_mul(m4_translate(v3(0, 0, -20)), m4_scale(v3(8, 8, 1))),
+         .kd_override = green},
+        {.mesh = &m, .model = m4_mul(m4_translate(v3(0, 0, -19.99)), m4_scale(v3(8, 8, 1))),
+         .kd_override = red},
+    };
+    struct fb fb;
+    REQUIRE(fb_init(&fb, 64, 64, false, NULL) == 0);
+    struct pipeline *p = pipeline_new();
+    REQUIRE(p);
+    struct camera cam;
+    camera_default(&cam);
+    struct render_opts o;
+    render_opts_default(&o);
+    o.shade = SHADE_UNLIT;
+    int fights[DEPTH_COUNT];
+    for (enum depth_mode d = 0; d < DEPTH_COUNT; d++) {
+        o.depth = d;
+        struct frame_stats st;
+        REQUIRE(pipeline_draw(p, items, 2, NULL, &cam, &o, &fb, &st, NULL) == 0);
+        fights[d] = 0;
+        int red_px = 0;
+        for (int y = 20; y < 44; y++) /* inside both quads */
+            for (int x = 20; x < 44; x++) {
+                const uint8_t *c = fb.rgb + 3 * (y * 64 + x);
+                fights[d] += c[1] > 0;
+                red_px += c[0] > 0;
+            }
+        CHECK_EQ_INT(fights[d] + red_px, 24 * 24); /* every pixel is one of the two */
+    }
+    fprintf(stderr, "      far quad wins: z %d, w %d, z16 %d, rz %d of 576 px\n", fights[DEPTH_Z],
+            fights[DEPTH_W], fights[DEPTH_Z16], fights[DEPTH_RZ]);
+    CHECK(fights[DEPTH_Z16] > 50);
+    CHECK_EQ_INT(fights[DEPTH_Z], 0);
+    CHECK_EQ_INT(fights[DEPTH_W], 0);
+    CHECK_EQ_INT(fights[DEPTH_RZ], 0);
+    pipeline_destroy(p);
+    fb_free(&fb);
+    mesh_free(&m);
+}
+
+TEST(depth_methods_store_the_same_window_depth)
+{
+    /* a ground quad receding at 40 degrees: every method's stored measure, mapped back to
+     * window depth, agrees with float z (w: interpolated perspective-correctly, so a
+     * screen-linear w would be off by up to ~1e-2 here; z16: within a step) */
+    const char *obj = "v -1 0 1\nv 1 0 1\nv 1 0 -1\nv -1 0 -1\nf 1 2 3 4\n";
+    struct scene1 s;
+    REQUIRE(scene1_init(&s, obj, 160, 96, 0) == 0);
+    struct camera cam;
+    camera_default(&cam);
+    cam.eye = v3(0, 1.5 * sin(0.7), 1.5 * cos(0.7));
+    struct render_opts o;
+    render_opts_default(&o);
+    struct frame_stats st;
+    size_t n = 160 * 96;
+    double *ref = malloc(n * sizeof *ref);
+    REQUIRE(ref);
+    REQUIRE(pipeline_draw(s.p, &s.item, 1, NULL, &cam, &o, &s.fb, &st, NULL) == 0);
+    int covered = 0;
+    for (size_t i = 0; i < n; i++) {
+        ref[i] = fb_depth_window(&s.fb, i);
+        covered += fb_covered(&s.fb, i);
+    }
+    CHECK(covered > 2000);
+    for (enum depth_mode d = DEPTH_W; d < DEPTH_COUNT; d++) {
+        o.depth = d;
+        REQUIRE(pipeline_draw(s.p, &s.item, 1, NULL, &cam, &o, &s.fb, &st, NULL) == 0);
+        double worst = 0;
+        int cov = 0;
+        for (size_t i = 0; i < n; i++) {
+            cov += fb_covered(&s.fb, i);
+            double dd = fabs(fb_depth_window(&s.fb, i) - ref[i]);
+            worst = dd > worst ? dd : worst;
+        }
+        CHECK_EQ_INT(cov, covered);
+        CHECK(worst < (d == DEPTH_Z16 ? 0.6 / 65535 : 1e-6));
+        if (!(worst < (d == DEPTH_Z16 ? 0.6 / 65535 : 1e-6)))
+            fprintf(stderr, "      %s: worst window-depth difference %g\n",
+                    render_depth_name(d), worst);
+    }
+    free(ref);
+    scene1_free(&s);
+}
