@@ -83,7 +83,7 @@ build/asan/rastty: $(BUILD)/librastty.a $(MAINOBJ)
 	@echo "  LD      $@"
 	$(Q)$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $(MAINOBJ) $(BUILD)/librastty.a $(LDLIBS)
 
-bench: rastty assets
+bench: rastty assets oracle-build
 	@tests/bench.sh
 
 # libFuzzer targets for every parser (clang); FUZZ_SECONDS each. See tests/fuzz/README.

@@ -37,6 +37,7 @@ struct options {
     const char *out;          /* --out */
     const char *depth_out;    /* --depth-out */
     bool stats;               /* --stats: print frame statistics to stderr */
+    int repeat;               /* --repeat: render this many times (timing) */
     /* dump / view */
     int cols, rows;           /* 0 = terminal size or 80x24 */
     int frames;

@@ -2,6 +2,7 @@
 #include "cmd.h"
 
 #include <stdio.h>
+#include <stdlib.h>
 
 #include "image.h"
 #include "pipeline.h"
@@ -55,6 +56,12 @@ void cmd_print_stats(const struct frame_stats *st)
             (unsigned long long)st->pixels_shaded, st->render_ms);
 }
 
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
 int cmd_render(const struct options *o, struct err *e)
 {
     if (!image_color_ext_ok(o->out))
@@ -68,19 +75,32 @@ int cmd_render(const struct options *o, struct err *e)
     struct fb fb;
     struct pipeline *p = pipeline_new();
     struct frame_stats st;
+    double *ms = NULL;
     int rc = 1;
     if (!p)
         err_set(e, "out of memory");
+    else if (!(ms = malloc((size_t)o->repeat * sizeof *ms)))
+        err_set(e, "out of memory");
     else if (fb_init(&fb, o->width, o->height, ro.view == VIEW_OVERDRAW, e) == 0) {
-        if (pipeline_draw(p, scene.items, scene.n_items, scene.has_sky ? &scene.sky : NULL, &cam,
-                          &ro, &fb, &st, e) == 0 &&
-            image_write_color(o->out, &fb, e) == 0 &&
+        int drawn = 0;
+        for (; drawn < o->repeat; drawn++) { /* --repeat: the same frame again, for timing */
+            if (pipeline_draw(p, scene.items, scene.n_items, scene.has_sky ? &scene.sky : NULL,
+                              &cam, &ro, &fb, &st, e))
+                break;
+            ms[drawn] = st.render_ms;
+        }
+        if (drawn == o->repeat && image_write_color(o->out, &fb, e) == 0 &&
             (!o->depth_out || image_write_pfm(o->depth_out, &fb, e) == 0))
             rc = 0;
-        if (o->stats)
+        if (o->stats && drawn > 0) {
             cmd_print_stats(&st);
+            qsort(ms, (size_t)drawn, sizeof *ms, cmp_double);
+            fprintf(stderr, "frames=%d median_ms=%.4f min_ms=%.4f\n", drawn, ms[drawn / 2],
+                    ms[0]);
+        }
         fb_free(&fb);
     }
+    free(ms);
     pipeline_destroy(p);
     scene_free(&scene);
     return rc;

@@ -23,7 +23,7 @@ enum arg { ARG_NONE, ARG_VALUE, ARG_ENUM };
 enum flag_id {
     F_SIZE, F_EYE, F_TARGET, F_UP, F_FOV, F_NEAR, F_FAR, F_ORTHO, F_FRAME, F_LIGHT, F_ENUM,
     F_TEXTURE, F_NO_TEXTURE, F_BACKGROUND, F_HIDDEN_LINES, F_OUT,
-    F_DEPTH_OUT, F_STATS, F_COLS, F_ROWS, F_FRAMES, F_ORBIT, F_CAMERA_PATH, F_COLORS,
+    F_DEPTH_OUT, F_STATS, F_REPEAT, F_COLS, F_ROWS, F_FRAMES, F_ORBIT, F_CAMERA_PATH, F_COLORS,
     F_TOLERANCE, F_DITHER, F_DIFF, F_PPM_DIR, F_FRAME_INDEX, F_FPS, F_NO_HUD, F_HELP, F_VERSION,
 };
 
@@ -68,6 +68,7 @@ static const struct flag flags[] = {
     {"--out", F_OUT, ARG_VALUE, C_RENDER | C_DUMP | C_A2P, "FILE", "output file (.ppm/.png; dump: .ans)", NULL, 0},
     {"--depth-out", F_DEPTH_OUT, ARG_VALUE, C_RENDER, "FILE.pfm", "also write the depth buffer as PFM", NULL, 0},
     {"--stats", F_STATS, ARG_NONE, C_RENDER | C_DUMP, NULL, "print triangle/pixel counts and timings to stderr", NULL, 0},
+    {"--repeat", F_REPEAT, ARG_VALUE, C_RENDER, "N", "render the frame N times (timing; --stats prints median_ms=)", NULL, 0},
     {"--cols", F_COLS, ARG_VALUE, C_DUMP | C_BENCH, "C", "terminal columns (dump: 80 or the terminal's; bench: 160)", NULL, 0},
     {"--rows", F_ROWS, ARG_VALUE, C_DUMP | C_BENCH, "R", "terminal rows (dump: 24 or the terminal's; bench: 48)", NULL, 0},
     {"--frames", F_FRAMES, ARG_VALUE, C_DUMP | C_BENCH, "N", "number of frames (dump: 1 or the camera path's length; bench: 180)", NULL, 0},
@@ -194,6 +195,7 @@ static void defaults(struct options *o)
     o->frame_index = -1;
     o->tolerance = -1; /* not given: each subcommand picks its default */
     o->fps = 60;
+    o->repeat = 1;
 }
 
 static int apply(struct options *o, const struct flag *f, const char *v, struct err *e)
@@ -267,6 +269,10 @@ static int apply(struct options *o, const struct flag *f, const char *v, struct 
     case F_OUT: o->out = v; return 0;
     case F_DEPTH_OUT: o->depth_out = v; return 0;
     case F_STATS: o->stats = true; return 0;
+    case F_REPEAT:
+        if (parse_int(v, 1, 100000, &o->repeat))
+            return bad(e, f->name, "expected a count 1..100000", v);
+        return 0;
     case F_COLS:
     case F_ROWS:
         if (parse_int(v, 1, FB_MAX_DIM / 2, f->id == F_COLS ? &o->cols : &o->rows))

@@ -2,7 +2,8 @@
 # tests/bench.sh: `make bench` — render and terminal-output costs (numbers, never verdicts).
 #   1. bytes/frame and decoded PSNR for an orbit of the shared african_head (textured,
 #      2 deg/frame, 160x48 cells) on black, on the shared photo skybox, and on rastty's own sky;
-#   2. render time per frame of the demo scene and the big shared models.
+#   2. render time per frame of the demo scene and the big shared models;
+#   3. every rendering method: ms/frame and error against Mesa (tests/bench_methods.sh).
 # Needs ../shared (or $RASTTY_SHARED) for the shared models; skips those parts without it.
 set -eu
 cd "$(dirname "$0")/.."
@@ -37,3 +38,5 @@ for size in "160 48" "320 96"; do
     "$BIN" bench "${models[@]}" --cols "$1" --rows "$2" --frames 36 --orbit 10 |
         grep -E '^[^ ].*frames' || true
 done
+echo
+tests/bench_methods.sh
