@@ -241,11 +241,12 @@ static void hud_compose(struct view *v, char *out, size_t n)
         return;
     }
     snprintf(out, n,
-             " %s [%d/%d] | %s %s cull:%s%s | %s %s %s | %s | %.0f fps | render %.1f ms "
+             " %s [%d/%d] | %s %s cull:%s%s | %s | %.0f fps | %s %s %s | render %.1f ms "
              "enc %.2f ms | %.1f KB | tris %llu clip %llu cull %llu | %s | h: help",
              s->name, v->cur + 1, v->n_scenes, shade, render_filter_name(v->ro.filter),
-             render_cull_name(v->ro.cull), extra, render_raster_name(v->ro.raster),
-             render_persp_name(v->ro.persp), render_depth_name(v->ro.depth), v->orbit ? "orbit" : "fly", v->fps,
+             render_cull_name(v->ro.cull), extra, v->orbit ? "orbit" : "fly", v->fps,
+             render_raster_name(v->ro.raster), render_persp_name(v->ro.persp),
+             render_depth_name(v->ro.depth),
              v->st.render_ms, v->encode_ms, v->last_bytes / 1024.0,
              (unsigned long long)v->st.tris_drawn, (unsigned long long)v->st.tris_clipped,
              (unsigned long long)(v->st.tris_culled + v->st.tris_rejected),

@@ -72,6 +72,28 @@ strafe() {
 }
 check strafe_right_moves_model_left strafe
 
+# R cycles the rasterizer without changing a byte of the picture; p and Z cycle the
+# interpolation and depth methods; the status line names each
+method_keys() {
+    start k 100 25 assets/teapot.obj --texture assets/checker.png --background 0,0,0 || return 1
+    keys k Space; settle k
+    picture k r0 >/dev/null
+    local want; want=$(md5sum < "$OUT/r0.ans")
+    for r in scanline tiled; do
+        keys k R; settle k
+        wait_for 3 hud_has k "$r" || { echo "status line lacks $r"; return 1; }
+        picture k "r_$r" >/dev/null
+        [ "$(md5sum < "$OUT/r_$r.ans")" = "$want" ] || { echo "--raster $r changed the picture"; return 1; }
+    done
+    keys k p; settle k
+    wait_for 3 hud_has k "interpolation: affine" || { echo "p: no affine"; return 1; }
+    picture k affine >/dev/null
+    [ "$(md5sum < "$OUT/affine.ans")" != "$want" ] || { echo "affine drew the same picture"; return 1; }
+    keys k Z
+    wait_for 3 hud_has k "depth buffer: w" || { echo "Z: no w"; return 1; }
+}
+check method_keys_cycle_and_rasterizers_agree method_keys
+
 # mouse: the wheel zooms and a left drag orbits, from SGR reports (?1006, which the viewer
 # asks for: they work past column 223) and from X10 reports (terminals without 1006)
 mouse() {
