@@ -16,6 +16,7 @@
 #include <stdint.h>
 
 #include "err.h"
+#include "simd.h"
 
 #define FB_MAX_DIM 8192 /* per side; keeps fixed-point edge functions well inside int64 */
 
@@ -91,8 +92,17 @@ void fb_show_overdraw(struct fb *fb); /* 0 black, 1 blue, 2 green, 3 yellow, 4+ 
 
 static inline uint8_t fb_quantize(float c)
 {
-    c = c > 0 ? (c < 1 ? c : 1) : 0; /* NaN -> 0: converting NaN to an integer is undefined */
-    return (uint8_t)(c * 255.0f + 0.5f);
+    c = c > 0 ? c : 0; /* NaN -> 0 too: converting NaN to an integer is undefined */
+    c = c < 1 ? c : 1; /* two branch-free min/max instructions */
+    return (uint8_t)(int)(c * 255.0f + 0.5f);
+}
+
+/* fb_quantize of four values (0..255 in each lane) */
+static inline i4 fb_quantize4(f4 c)
+{
+    c = f4_select(c > f4_set(0), c, f4_set(0));
+    c = f4_select(c < f4_set(1), c, f4_set(1));
+    return i4_trunc(c * f4_set(255.0f) + f4_set(0.5f));
 }
 
 #endif

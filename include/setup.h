@@ -38,8 +38,9 @@
  *   the snapped corners: when that leaves [-1/4, 1 + 1/4] the planes come from the snapped
  *   positions instead (which keep every covered centre's l_k in [0,1]). span.c also clamps
  *   the depth to the corners' range, so no pixel's depth ever leaves it.
- *   Depth is linear in screen space (sum l_k d_k); varyings are perspective-correct through
- *   b_k = (l_k/w_k) / sum_j(l_j/w_j), a = sum b_k a_k (span.h has the other methods). */
+ *   Depth is linear in screen space (sum l_k d_k); varyings are perspective-correct as
+ *   a = (sum l_k a_k / w_k) / (sum l_k / w_k): two screen-linear planes and one division per
+ *   pixel (span.h has the other methods). */
 #ifndef RASTTY_SETUP_H
 #define RASTTY_SETUP_H
 
@@ -60,15 +61,23 @@ struct setup_tri {
     uint32_t shade;           /* index of the source triangle's shading constants (batch.h) */
 };
 
-/* Interpolation planes of one triangle (setup_interp). */
+/* A quantity that is linear in screen space: its value at the centre of pixel (x, y) is
+ * (c + dy * (y - y0)) + dx * (x - x0), evaluated in float in exactly that order (span.c),
+ * relative to the triangle's box origin so the terms stay small. */
+struct setup_plane {
+    float c, dx, dy;
+};
+
+/* Interpolation planes of one triangle (setup_interp), built in double from the barycentric
+ * planes l_k and rounded to float once, as llvmpipe's planes are float. */
 struct setup_interp {
-    double lam[3];               /* barycentric of corner k at the centre of pixel (x0,y0) */
-    double lam_dx[3], lam_dy[3]; /* its change per pixel step in x / in y */
-    double rw[3];                /* 1/w of corner k */
-    double d[3];                 /* corner k's depth in the depth method's plane: window z
-                                    (z, z16), (w - z)/2w (rz), eye depth (w) */
-    double d_lo, d_hi;           /* the corners' range of d: no pixel leaves it */
-    const float *var[3];         /* varyings of corner k */
+    struct setup_plane z;   /* depth in the method's measure: z01 (z, z16), (w - z)/2w (rz);
+                               for w the numerator sum l_k e_k / w_k of the eye depth e */
+    struct setup_plane zq;  /* w only: the denominator sum l_k / w_k */
+    float z_lo, z_hi;       /* the corners' range of the depth: no pixel leaves it */
+    struct setup_plane q;   /* interpolation denominator: sum l_k / w_k (correct, spans),
+                               the constant 1 (affine) */
+    struct setup_plane a[VARY_MAX]; /* numerators: sum l_k a_k / w_k (affine: sum l_k a_k) */
 };
 
 enum setup_result { SETUP_DRAW, SETUP_EMPTY };
@@ -88,8 +97,10 @@ enum setup_result setup_triangle(const struct vertex_out *v0, const struct verte
                                  const struct vertex_out *v2, int fb_w, int fb_h,
                                  struct setup_tri *out);
 
-/* Interpolation setup (see above); proj is the depth method's camera data (fb.h). */
+/* Interpolation setup (see above) of n_var varyings; proj is the depth method's camera data
+ * (fb.h); affine: numerators without the division by w. */
 void setup_interp(const struct setup_tri *t, enum depth_mode depth,
-                  const struct fb_depth_proj *proj, struct setup_interp *out);
+                  const struct fb_depth_proj *proj, int affine, int n_var,
+                  struct setup_interp *out);
 
 #endif

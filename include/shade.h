@@ -96,4 +96,31 @@ static inline void shade_fragment(const struct shade_ctx *c, enum shade_mode mod
     }
 }
 
+/* Four pixels of the unlit, flat and Gouraud modes at once (Phong and the normals view go
+ * pixel by pixel through shade_fragment): in every lane exactly what shade_fragment gives.
+ * var[k] holds varying k of the four pixels. */
+static inline void shade_fragment4(const struct shade_ctx *c, enum shade_mode mode,
+                                   const struct shade_tri *t, const f4 *var, f4 rgb_out[3])
+{
+    f4 albedo[3];
+    if (t->tex) {
+        f4 tx[3];
+        texture_sample4(t->tex, c->filter, var[0], var[1], tx);
+        for (int k = 0; k < 3; k++)
+            albedo[k] = f4_set(t->base[k]) * tx[k];
+    } else {
+        for (int k = 0; k < 3; k++)
+            albedo[k] = f4_set(t->base[k]);
+    }
+    const float *ks = t->mat->ks;
+    for (int k = 0; k < 3; k++) {
+        if (mode == SHADE_FLAT)
+            rgb_out[k] = albedo[k] * f4_set(t->flat_d[k]) + f4_set(ks[k]) * f4_set(t->flat_s[k]);
+        else if (mode == SHADE_GOURAUD)
+            rgb_out[k] = albedo[k] * var[2 + k] + f4_set(ks[k]) * var[5 + k];
+        else
+            rgb_out[k] = albedo[k];
+    }
+}
+
 #endif

@@ -1,8 +1,9 @@
 /* vertex.h: the vertex stage — each unique mesh vertex transformed once per frame.
  *
  * In:  a mesh, the frame's uniforms (matrices, eye, lights, shading mode).
- * Out: one struct vertex_out per mesh vertex: clip-space position (double), world position,
- *      frustum/guard-band outcode, and the varyings the shading mode needs:
+ * Out: one struct vertex_out per mesh vertex: clip-space position (double), frustum/guard-band
+ *      outcode, snapped window position (vertex_run, every vertex); world position and the
+ *      varyings the shading mode needs (vertex_shade, on demand):
  *        unlit, flat, wire : u v
  *        gouraud           : u v, light.h's D rgb, S rgb (per-vertex lighting)
  *        phong, normals    : u v, world position xyz, world normal xyz
@@ -52,6 +53,7 @@ struct vertex_out {
     double win[3];   /* window x, y (pixels, y down) and depth; valid when `projected` */
     int64_t fx, fy;  /* win x, y snapped to 1/256 pixel (viewport.h); valid when `projected` */
     int projected;   /* set by vertex_project (the vertex stage does it for every w > 0) */
+    int shaded;      /* wpos and var are valid (vertex_shade) */
     uint32_t outcode;
     float wpos[3];   /* world position (flat shading, centroid and face normal) */
     float var[VARY_MAX];
@@ -71,8 +73,14 @@ struct vertex_uniforms {
 
 /* Number of varyings written for a shading mode / debug view. */
 int vertex_varying_count(enum shade_mode shade, enum debug_view view);
-/* Transform every vertex of m into out[0 .. m->n_verts). */
+/* Position every vertex of m into out[0 .. m->n_verts): clip position, outcode, window
+ * position and snap; wpos and var wait for vertex_shade. */
 void vertex_run(const struct mesh *m, const struct vertex_uniforms *u, struct vertex_out *out);
+/* World position and varyings of vertex i (lighting for Gouraud): done only for vertices of
+ * triangles that survive rejection and culling — on a closed mesh half the vertices are
+ * used by back faces alone. */
+void vertex_shade(const struct mesh *m, const struct vertex_uniforms *u, uint32_t i,
+                  struct vertex_out *o);
 /* Outcode of a clip-space position (also used by clip.c for new vertices). */
 static inline uint32_t vertex_outcode(const double c[4], double gx, double gy)
 {

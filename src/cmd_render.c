@@ -94,6 +94,10 @@ int cmd_render(const struct options *o, struct err *e)
             rc = 0;
         if (o->stats && drawn > 0) {
             cmd_print_stats(&st);
+            fprintf(stderr, "camera: --eye %.9g,%.9g,%.9g --target %.9g,%.9g,%.9g --up %.9g,%.9g,%.9g "
+                            "--fov %.9g --near %.9g --far %.9g\n",
+                    cam.eye.x, cam.eye.y, cam.eye.z, cam.target.x, cam.target.y, cam.target.z,
+                    cam.up.x, cam.up.y, cam.up.z, cam.fov_deg, cam.near, cam.far);
             qsort(ms, (size_t)drawn, sizeof *ms, cmp_double);
             fprintf(stderr, "frames=%d median_ms=%.4f min_ms=%.4f\n", drawn, ms[drawn / 2],
                     ms[0]);

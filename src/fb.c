@@ -35,12 +35,18 @@ void fb_clear(struct fb *fb, const uint8_t bg[3])
 {
     size_t n = (size_t)fb->w * (size_t)fb->h;
     float clear = fb_depth_clear_value(fb->depth_mode);
-    for (size_t i = 0; i < n; i++) {
-        fb->rgb[3 * i + 0] = bg[0];
-        fb->rgb[3 * i + 1] = bg[1];
-        fb->rgb[3 * i + 2] = bg[2];
-        fb->depth[i] = clear;
+    if (bg[0] == bg[1] && bg[1] == bg[2]) { /* grey (black): one memset */
+        memset(fb->rgb, bg[0], n * 3);
+    } else { /* one row by pattern, then copies of it */
+        uint8_t *row = fb->rgb;
+        for (int x = 0; x < fb->w; x++)
+            memcpy(row + 3 * x, bg, 3);
+        for (int y = 1; y < fb->h; y++)
+            memcpy(fb->rgb + (size_t)y * fb->w * 3, row, (size_t)fb->w * 3);
     }
+    float *d = fb->depth;
+    for (size_t i = 0; i < n; i++) /* a constant store: the compiler vectorises it */
+        d[i] = clear;
     if (fb->overdraw)
         memset(fb->overdraw, 0, n * sizeof *fb->overdraw);
 }

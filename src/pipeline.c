@@ -137,7 +137,7 @@ static void add_setup(struct pipeline *p, struct frame *f, const struct vertex_o
 /* The front end for one item's filled triangles; depth_only: the hidden-line pre-pass
  * (every face, whatever the culling; no shading records). */
 static void front_end(struct pipeline *p, struct frame *f, const struct draw_item *item,
-                      const struct vertex_out *vo, bool depth_only)
+                      struct vertex_out *vo, bool depth_only)
 {
     const struct mesh *m = item->mesh;
     const struct render_opts *o = f->o;
@@ -145,8 +145,7 @@ static void front_end(struct pipeline *p, struct frame *f, const struct draw_ite
     struct batch *bt = &p->batch;
     int n_var = depth_only ? 0 : vertex_varying_count(o->shade, o->view);
     for (uint32_t i = 0; i < m->n_tris; i++) {
-        const struct vertex_out *v[3] = {&vo[m->tris[i][0]], &vo[m->tris[i][1]],
-                                         &vo[m->tris[i][2]]};
+        struct vertex_out *v[3] = {&vo[m->tris[i][0]], &vo[m->tris[i][1]], &vo[m->tris[i][2]]};
         uint32_t all = v[0]->outcode & v[1]->outcode & v[2]->outcode;
         uint32_t any = v[0]->outcode | v[1]->outcode | v[2]->outcode;
         stats->tris_in++;
@@ -160,6 +159,9 @@ static void front_end(struct pipeline *p, struct frame *f, const struct draw_ite
             stats->tris_culled++;
             continue;
         }
+        for (int k = 0; k < 3; k++) /* world position and varyings, once per used vertex */
+            if (!v[k]->shaded)
+                vertex_shade(m, &f->u, m->tris[i][k], v[k]);
         if (!batch_has_room(bt))
             flush(p, f);
         uint32_t shade = bt->n_shades;
@@ -181,7 +183,8 @@ static void front_end(struct pipeline *p, struct frame *f, const struct draw_ite
         }
         stats->tris_clipped++;
         struct vertex_out *poly = &bt->verts[bt->n_verts];
-        int n = clip_triangle(v, any & VERTEX_NEEDS_CLIP, n_var, f->u.guard_x, f->u.guard_y,
+        const struct vertex_out *cv[3] = {v[0], v[1], v[2]};
+        int n = clip_triangle(cv, any & VERTEX_NEEDS_CLIP, n_var, f->u.guard_x, f->u.guard_y,
                               poly);
         for (int k = 0; k < n; k++)
             if (!poly[k].projected) /* a vertex made by clipping */

@@ -77,32 +77,36 @@ enum setup_result setup_triangle(const struct vertex_out *v0, const struct verte
     return SETUP_DRAW;
 }
 
-/* barycentric planes of the triangle (px[k], py[k]) at pixel centre (ox, oy); 0 if degenerate */
-static int planes(const double px[3], const double py[3], double ox, double oy,
-                  struct setup_interp *in)
+/* barycentric planes l_k of the triangle (px[k], py[k]) at pixel centre (ox, oy): value and
+ * change per pixel in x and y; 0 if degenerate */
+struct bary {
+    double l[3], dx[3], dy[3];
+};
+
+static int planes(const double px[3], const double py[3], double ox, double oy, struct bary *b)
 {
     double area = (px[1] - px[0]) * (py[2] - py[0]) - (py[1] - py[0]) * (px[2] - px[0]);
     if (area == 0)
         return 0;
     double inv = 1.0 / area;
     for (int k = 0; k < 3; k++) {
-        int a = (k + 1) % 3, b = (k + 2) % 3;
-        double dx = px[b] - px[a], dy = py[b] - py[a];
-        in->lam[k] = (dx * (oy - py[a]) - dy * (ox - px[a])) * inv;
-        in->lam_dx[k] = -dy * inv;
-        in->lam_dy[k] = dx * inv;
+        int a = (k + 1) % 3, c = (k + 2) % 3;
+        double dx = px[c] - px[a], dy = py[c] - py[a];
+        b->l[k] = (dx * (oy - py[a]) - dy * (ox - px[a])) * inv;
+        b->dx[k] = -dy * inv;
+        b->dy[k] = dx * inv;
     }
     return 1;
 }
 
 /* do the planes stay within [-eps, 1+eps] over the snapped triangle (its corners)? */
-static int planes_bounded(const struct setup_tri *t, const struct setup_interp *in)
+static int planes_bounded(const struct setup_tri *t, const struct bary *b)
 {
     for (int j = 0; j < 3; j++) {
         double dx = (double)t->v[j]->fx / VIEWPORT_SUBPIX_ONE - (t->x0 + 0.5);
         double dy = (double)t->v[j]->fy / VIEWPORT_SUBPIX_ONE - (t->y0 + 0.5);
         for (int k = 0; k < 3; k++) {
-            double l = in->lam[k] + dx * in->lam_dx[k] + dy * in->lam_dy[k];
+            double l = b->l[k] + dx * b->dx[k] + dy * b->dy[k];
             if (!(l >= -SETUP_SLIVER_EPS && l <= 1 + SETUP_SLIVER_EPS))
                 return 0;
         }
@@ -110,8 +114,19 @@ static int planes_bounded(const struct setup_tri *t, const struct setup_interp *
     return 1;
 }
 
+/* the plane of sum_k l_k f_k, rounded to float */
+static struct setup_plane combine(const struct bary *b, const double f[3])
+{
+    struct setup_plane p;
+    p.c = (float)(b->l[0] * f[0] + b->l[1] * f[1] + b->l[2] * f[2]);
+    p.dx = (float)(b->dx[0] * f[0] + b->dx[1] * f[1] + b->dx[2] * f[2]);
+    p.dy = (float)(b->dy[0] * f[0] + b->dy[1] * f[1] + b->dy[2] * f[2]);
+    return p;
+}
+
 void setup_interp(const struct setup_tri *t, enum depth_mode depth,
-                  const struct fb_depth_proj *proj, struct setup_interp *in)
+                  const struct fb_depth_proj *proj, int affine, int n_var,
+                  struct setup_interp *in)
 {
     double ux[3], uy[3], sx[3], sy[3], ox = t->x0 + 0.5, oy = t->y0 + 0.5;
     for (int i = 0; i < 3; i++) {
@@ -123,26 +138,38 @@ void setup_interp(const struct setup_tri *t, enum depth_mode depth,
      * non-degenerate, or the planes extrapolate over the covered area: then snapped ones */
     double uarea = (ux[1] - ux[0]) * (uy[2] - uy[0]) - (uy[1] - uy[0]) * (ux[2] - ux[0]);
     double sarea_src = (sx[1] - sx[0]) * (sy[2] - sy[0]) - (sy[1] - sy[0]) * (sx[2] - sx[0]);
-    if (!(uarea != 0 && (uarea < 0) == (sarea_src < 0) && planes(ux, uy, ox, oy, in) &&
-          planes_bounded(t, in)))
-        planes(sx, sy, ox, oy, in);
-    double lo = INFINITY, hi = -INFINITY;
+    struct bary b;
+    if (!(uarea != 0 && (uarea < 0) == (sarea_src < 0) && planes(ux, uy, ox, oy, &b) &&
+          planes_bounded(t, &b)))
+        planes(sx, sy, ox, oy, &b);
+    double rw[3], d[3], f[3], lo = INFINITY, hi = -INFINITY;
     for (int i = 0; i < 3; i++) {
         const double *c = t->v[i]->clip;
-        double d;
-        in->rw[i] = 1.0 / c[3];
-        in->var[i] = t->v[i]->var;
+        rw[i] = 1.0 / c[3];
         switch (depth) {
-        case DEPTH_RZ: d = (c[3] - c[2]) / (2 * c[3]); break;
+        case DEPTH_RZ: d[i] = (c[3] - c[2]) / (2 * c[3]); break;
         case DEPTH_W:
-            d = proj->ortho ? 0.5 * (c[2] / c[3] * (proj->far - proj->near) + proj->far + proj->near)
-                            : c[3];
+            d[i] = proj->ortho ? 0.5 * (c[2] / c[3] * (proj->far - proj->near) + proj->far + proj->near)
+                               : c[3];
             break;
-        default: d = t->v[i]->win[2]; break;
+        default: d[i] = t->v[i]->win[2]; break;
         }
-        in->d[i] = d;
-        lo = d < lo ? d : lo;
-        hi = d > hi ? d : hi;
+        lo = d[i] < lo ? d[i] : lo;
+        hi = d[i] > hi ? d[i] : hi;
     }
-    in->d_lo = lo, in->d_hi = hi;
+    in->z_lo = (float)lo, in->z_hi = (float)hi;
+    if (depth == DEPTH_W) { /* e = (sum l e / w) / (sum l / w) */
+        for (int i = 0; i < 3; i++)
+            f[i] = d[i] * rw[i];
+        in->z = combine(&b, f);
+        in->zq = combine(&b, rw);
+    } else {
+        in->z = combine(&b, d);
+    }
+    in->q = affine ? (struct setup_plane){1, 0, 0} : combine(&b, rw);
+    for (int k = 0; k < n_var; k++) {
+        for (int i = 0; i < 3; i++)
+            f[i] = (double)t->v[i]->var[k] * (affine ? 1.0 : rw[i]);
+        in->a[k] = combine(&b, f);
+    }
 }

@@ -3,6 +3,8 @@
 
 #include <math.h>
 
+#include "simd.h"
+
 void span_begin(struct span_ctx *s, const struct setup_tri *t, const struct shade_tri *st)
 {
     s->tri = t;
@@ -13,19 +15,6 @@ void span_begin(struct span_ctx *s, const struct setup_tri *t, const struct shad
 void span_end(struct span_ctx *s)
 {
     s->tris_empty += !s->in_ready;
-}
-
-/* Perspective-correct weights at the centre of column x0 + dx of the row whose planes
- * start at r[k] (span ends; always a covered pixel, so inside the triangle). */
-static void persp_at(const struct setup_interp *in, const double r[3], double dx, double b_out[3])
-{
-    double q[3], qs = 0;
-    for (int k = 0; k < 3; k++) {
-        q[k] = (r[k] + dx * in->lam_dx[k]) * in->rw[k];
-        qs += q[k];
-    }
-    for (int k = 0; k < 3; k++)
-        b_out[k] = q[k] / qs;
 }
 
 /* floor(a / b), b > 0 */
@@ -53,88 +42,140 @@ static void row_extent(const struct setup_tri *t, int y, int *lo_out, int *hi_ou
     *lo_out = (int)lo, *hi_out = (int)hi;
 }
 
-/* The depth method's value at a pixel with screen-linear weights l (and q = l/w). */
-static inline float depth_at(const struct span_ctx *s, const double l[3], const double q[3])
+/* a plane's value on row y (its row base), then at column offset X: the fixed order */
+static inline float row_of(const struct setup_plane *p, float Y)
 {
-    const struct setup_interp *in = &s->in;
-    double d;
-    if (s->depth == DEPTH_W)
-        d = (q[0] * in->d[0] + q[1] * in->d[1] + q[2] * in->d[2]) / (q[0] + q[1] + q[2]);
-    else
-        d = l[0] * in->d[0] + l[1] * in->d[1] + l[2] * in->d[2];
-    d = d < in->d_lo ? in->d_lo : d > in->d_hi ? in->d_hi : d; /* never past the corners */
-    if (s->depth == DEPTH_Z16)
-        return (float)floor(d * 65535.0 + 0.5);
-    return (float)d;
+    return p->c + p->dy * Y;
+}
+
+/* The varyings exactly (one division) at column offset X of the row whose denominator and
+ * numerator bases are qr, ar; qdx, adx their steps per column. */
+static inline void exact_at(float qr, float qdx, const float *ar, const float *adx, float X,
+                            int n_var, float *var_out)
+{
+    float rq = 1.0f / (qr + qdx * X);
+    for (int k = 0; k < n_var; k++)
+        var_out[k] = (ar[k] + adx[k] * X) * rq;
 }
 
 /* One run, instantiated per shading mode by span_draw's switch: `mode` is a compile-time
- * constant in each copy, so shade_fragment's switch folds away. */
+ * constant in each copy, so the shading's switches fold away. Pixels go four at a time
+ * (simd.h): depth, the test and the varyings of four pixels in a few vector operations, then
+ * unlit, flat and Gouraud shading four at a time too (shade_fragment4), Phong lane by lane.
+ * A lane's arithmetic is the scalar formula, so a pixel's bytes never depend on where its
+ * group of four started. Every plane coefficient is copied into a local first: the
+ * framebuffer's byte stores may alias anything and would otherwise force reloads. */
 static inline void run(struct span_ctx *s, int y, int xa, int xb, const enum shade_mode mode)
 {
     const struct setup_interp *in = &s->in;
     const struct setup_tri *t = s->tri;
-    struct fb *fb = s->fb;
     const int n_var = mode == SHADE_GOURAUD || mode == SHADE_PHONG ? 8 : 2;
     const enum persp_method persp = s->persp;
+    const enum depth_mode depth = s->depth;
     const int span_n = persp == PERSP_SPAN8 ? 8 : persp == PERSP_SPAN16 ? 16 : 32;
-    const double dy = y - t->y0;
-    const double r[3] = {in->lam[0] + dy * in->lam_dy[0], in->lam[1] + dy * in->lam_dy[1],
-                         in->lam[2] + dy * in->lam_dy[2]};
-    const size_t row = (size_t)y * (size_t)fb->w;
-    /* span methods: the current span's absolute start column and its clamped ends, the
-     * weights at its start and their change over it; the row's covered extent */
+    const float Y = (float)(y - t->y0);
+    const float zr = row_of(&in->z, Y), zqr = row_of(&in->zq, Y), qr = row_of(&in->q, Y);
+    const f4 zdx = f4_set(in->z.dx), zqdx = f4_set(in->zq.dx), qdx = f4_set(in->q.dx);
+    const f4 z_lo = f4_set(in->z_lo), z_hi = f4_set(in->z_hi);
+    float ar[VARY_MAX], adx[VARY_MAX];
+    for (int k = 0; k < n_var; k++) {
+        ar[k] = row_of(&in->a[k], Y);
+        adx[k] = in->a[k].dx;
+    }
+    const int x_org = t->x0, fb_w = s->fb->w;
+    const size_t row = (size_t)y * (size_t)fb_w;
+    float *restrict depth_buf = s->fb->depth + row;
+    uint8_t *restrict rgb_buf = s->fb->rgb + 3 * row;
+    uint32_t *restrict overdraw = s->fb->overdraw ? s->fb->overdraw + row : NULL;
+    const struct shade_ctx *sc = s->shade;
+    const struct shade_tri *st = s->st;
+    /* span methods: the current span's absolute start column, its clamped ends, the
+     * varyings there and their change per pixel; the row's covered extent */
     int anchor = -1, a0 = 0, row_lo = -1, row_hi = -1;
-    double ba[3] = {0}, bd[3] = {0}, inv_len = 0;
+    float va[VARY_MAX] = {0}, vd[VARY_MAX] = {0};
     uint64_t shaded = 0;
-    for (int x = xa; x <= xb; x++) {
-        size_t i = row + (size_t)x;
-        double dx = x - t->x0;
-        double l[3] = {r[0] + dx * in->lam_dx[0], r[1] + dx * in->lam_dx[1],
-                       r[2] + dx * in->lam_dx[2]};
-        double q[3] = {l[0] * in->rw[0], l[1] * in->rw[1], l[2] * in->rw[2]};
-        float z = depth_at(s, l, q);
-        if (fb->overdraw)
-            fb->overdraw[i]++;
-        if (!fb_depth_passes(s->depth, z, fb->depth[i]))
+    const f4 lane = {0, 1, 2, 3};
+    for (int x = xa; x <= xb; x += SIMD_LANES) {
+        const int n = xb - x + 1 < SIMD_LANES ? xb - x + 1 : SIMD_LANES;
+        const f4 X = f4_set((float)(x - x_org)) + lane;
+        f4 z = f4_set(zr) + zdx * X;
+        if (depth == DEPTH_W)
+            z = z / (f4_set(zqr) + zqdx * X);
+        z = f4_select(z < z_lo, z_lo, z); /* never past the corners */
+        z = f4_select(z > z_hi, z_hi, z);
+        if (depth == DEPTH_Z16) { /* floor(z * 65535 + 0.5); z is in [0, 1] */
+            f4 q = z * f4_set(65535.0f) + f4_set(0.5f);
+            i4 qi = i4_trunc(q);
+            z = f4_from_i4(qi);
+        }
+        f4 old;
+        if (x + SIMD_LANES <= fb_w) /* inside the row: one load (lanes past xb are unused) */
+            __builtin_memcpy(&old, depth_buf + x, sizeof old);
+        else
+            for (int l = 0; l < SIMD_LANES; l++)
+                old[l] = l < n ? depth_buf[x + l] : 0;
+        i4 pass = (depth == DEPTH_RZ ? z > old : z < old) & (f4_set((float)n) > lane);
+        if (overdraw)
+            for (int l = 0; l < n; l++)
+                overdraw[x + l]++;
+        if (!i4_any(pass))
             continue;
-        fb->depth[i] = z;
-        shaded++;
+        for (int l = 0; l < n; l++)
+            if (pass[l]) {
+                depth_buf[x + l] = z[l];
+                shaded++;
+            }
         if (mode == SHADE_WIRE)
             continue;
-        float b0, b1, b2;
-        if (persp == PERSP_CORRECT) {
-            double inv = 1.0 / (q[0] + q[1] + q[2]);
-            b0 = (float)(q[0] * inv), b1 = (float)(q[1] * inv), b2 = (float)(q[2] * inv);
-        } else if (persp == PERSP_AFFINE) {
-            b0 = (float)l[0], b1 = (float)l[1], b2 = (float)l[2];
+        f4 var[VARY_MAX];
+        if (persp == PERSP_CORRECT || persp == PERSP_AFFINE) {
+            f4 rq = f4_set(1.0f) / (f4_set(qr) + qdx * X);
+            for (int k = 0; k < n_var; k++)
+                var[k] = (f4_set(ar[k]) + f4_set(adx[k]) * X) * rq;
         } else {
-            int a = x - x % span_n; /* x >= 0 */
-            if (a != anchor) { /* a new span: exact weights at both (clamped) ends */
-                if (row_lo < 0)
-                    row_extent(t, y, &row_lo, &row_hi);
-                double bb[3];
-                anchor = a;
-                a0 = a > row_lo ? a : row_lo;
-                int a1 = a + span_n < row_hi ? a + span_n : row_hi;
-                persp_at(in, r, a0 - t->x0, ba);
-                persp_at(in, r, a1 - t->x0, bb);
-                inv_len = a1 > a0 ? 1.0 / (a1 - a0) : 0;
-                for (int k = 0; k < 3; k++)
-                    bd[k] = bb[k] - ba[k];
+            for (int k = 0; k < n_var; k++)
+                var[k] = f4_set(0);
+            for (int l = 0; l < n; l++) {
+                int xl = x + l, a = xl - xl % span_n; /* x >= 0 */
+                if (a != anchor) { /* a new span: exact varyings at both (clamped) ends */
+                    if (row_lo < 0)
+                        row_extent(t, y, &row_lo, &row_hi);
+                    anchor = a;
+                    a0 = a > row_lo ? a : row_lo;
+                    int a1 = a + span_n < row_hi ? a + span_n : row_hi;
+                    float vb[VARY_MAX];
+                    exact_at(qr, in->q.dx, ar, adx, (float)(a0 - x_org), n_var, va);
+                    exact_at(qr, in->q.dx, ar, adx, (float)(a1 - x_org), n_var, vb);
+                    float inv_len = a1 > a0 ? 1.0f / (float)(a1 - a0) : 0;
+                    for (int k = 0; k < n_var; k++)
+                        vd[k] = (vb[k] - va[k]) * inv_len;
+                }
+                float f = (float)(xl - a0);
+                for (int k = 0; k < n_var; k++)
+                    var[k][l] = va[k] + f * vd[k];
             }
-            double f = (x - a0) * inv_len;
-            b0 = (float)(ba[0] + f * bd[0]), b1 = (float)(ba[1] + f * bd[1]);
-            b2 = (float)(ba[2] + f * bd[2]);
         }
-        float var[VARY_MAX], rgb[3];
-        const float *v0 = in->var[0], *v1 = in->var[1], *v2 = in->var[2];
-        for (int k = 0; k < n_var; k++)
-            var[k] = b0 * v0[k] + b1 * v1[k] + b2 * v2[k];
-        shade_fragment(s->shade, mode, s->st, var, rgb);
-        fb->rgb[3 * i + 0] = fb_quantize(rgb[0]);
-        fb->rgb[3 * i + 1] = fb_quantize(rgb[1]);
-        fb->rgb[3 * i + 2] = fb_quantize(rgb[2]);
+        if (mode == SHADE_PHONG) { /* lane by lane */
+            for (int l = 0; l < n; l++) {
+                if (!pass[l])
+                    continue;
+                float v1[VARY_MAX], rgb[3];
+                for (int k = 0; k < n_var; k++)
+                    v1[k] = var[k][l];
+                shade_fragment(sc, mode, st, v1, rgb);
+                uint8_t *p = rgb_buf + 3 * (x + l);
+                p[0] = fb_quantize(rgb[0]), p[1] = fb_quantize(rgb[1]), p[2] = fb_quantize(rgb[2]);
+            }
+            continue;
+        }
+        f4 rgb[3];
+        shade_fragment4(sc, mode, st, var, rgb);
+        i4 r8 = fb_quantize4(rgb[0]), g8 = fb_quantize4(rgb[1]), b8 = fb_quantize4(rgb[2]);
+        for (int l = 0; l < n; l++)
+            if (pass[l]) {
+                uint8_t *p = rgb_buf + 3 * (x + l);
+                p[0] = (uint8_t)r8[l], p[1] = (uint8_t)g8[l], p[2] = (uint8_t)b8[l];
+            }
     }
     s->tested += (uint64_t)(xb - xa + 1);
     s->shaded += shaded;
@@ -143,7 +184,9 @@ static inline void run(struct span_ctx *s, int y, int xa, int xb, const enum sha
 void span_draw(struct span_ctx *s, int y, int x0, int x1)
 {
     if (!s->in_ready) {
-        setup_interp(s->tri, s->depth, &s->fb->proj, &s->in);
+        int n_var = s->mode == SHADE_GOURAUD || s->mode == SHADE_PHONG ? 8 : 2;
+        setup_interp(s->tri, s->depth, &s->fb->proj, s->persp == PERSP_AFFINE,
+                     s->mode == SHADE_WIRE ? 0 : n_var, &s->in);
         s->in_ready = true;
     }
     switch (s->mode) {

@@ -11,7 +11,7 @@ ORACLE_DIR    := build/oracle
 ORACLE_CFLAGS := $(WARN) $(DEFS) $(OPT) $(shell pkg-config --cflags stb 2>/dev/null || echo -I/usr/include/stb)
 ORACLE_STB    := $(shell pkg-config --libs stb 2>/dev/null || echo -lstb)
 ORACLE_HAVE_OSMESA := $(shell pkg-config --exists osmesa 2>/dev/null && echo yes)
-ORACLE_BINS   := $(ORACLE_DIR)/compare $(if $(ORACLE_HAVE_OSMESA),$(ORACLE_DIR)/glref)
+ORACLE_BINS   := $(ORACLE_DIR)/compare $(if $(ORACLE_HAVE_OSMESA),$(ORACLE_DIR)/glref build/bench/glbench)
 
 .PHONY: oracle oracle-build oracle-calibrate
 
@@ -27,6 +27,12 @@ oracle-calibrate: oracle-build
 	tests/oracle/run.sh --calibrate
 
 $(ORACLE_DIR)/glref: tests/oracle/glref.c tests/oracle/oracle.mk | $(ORACLE_DIR)
+	$(CC) $(ORACLE_CFLAGS) $(shell pkg-config --cflags osmesa) -o $@ $< \
+	    $(shell pkg-config --libs osmesa) $(ORACLE_STB) -lm
+
+# Mesa's time for make bench's workloads (tests/bench/glbench.c)
+build/bench/glbench: tests/bench/glbench.c tests/oracle/oracle.mk
+	@mkdir -p build/bench
 	$(CC) $(ORACLE_CFLAGS) $(shell pkg-config --cflags osmesa) -o $@ $< \
 	    $(shell pkg-config --libs osmesa) $(ORACLE_STB) -lm
 
