@@ -9,9 +9,12 @@
  * the batch and starts a new one (as llvmpipe flushes a full scene), so memory stays bounded
  * on any mesh and the picture never depends on the capacity (a test checks it).
  *
- * Designed for a threaded back end: batch_draw only reads the batch, writes only pixels
- * inside its rectangle, and keeps all per-triangle scratch in its span_ctx, so several
- * workers can each draw a different screen tile of the same batch. */
+ * With several threads the back end works by screen tile, as llvmpipe does: batch_draw bins
+ * the triangles into BATCH_TILE x BATCH_TILE tiles (each tile's list in submission order),
+ * and the threads take tiles from a shared counter; a thread draws all of a tile's triangles
+ * with its own span_ctx, clipped to the tile. A pixel belongs to one tile and every pixel's
+ * value depends only on its position and the triangles before it, so the frame is the same
+ * bytes whatever the thread count (a test checks it). No lock is taken in the pixel path. */
 #ifndef RASTTY_BATCH_H
 #define RASTTY_BATCH_H
 
@@ -24,16 +27,22 @@
 #include "setup.h"
 #include "shade.h"
 #include "span.h"
+#include "workers.h"
 
 /* worst case of one source triangle: a clipped polygon of CLIP_MAX_VERTS corners, fanned */
 #define BATCH_MIN_CAPACITY CLIP_MAX_VERTS
 #define BATCH_DEFAULT_CAPACITY 8192
+#define BATCH_TILE 32 /* tile side in pixels, for binning */
 
 struct batch {
     struct setup_tri *tris;
     struct shade_tri *shades;
     struct vertex_out *verts; /* made by clipping; never moved while the batch lives */
     uint32_t n_tris, n_shades, n_verts, cap;
+    /* tile bins (batch_draw with threads): tile t's triangles are
+     * bin_tris[bin_start[t] .. bin_start[t + 1]) */
+    uint32_t *bin_start, *bin_tris;
+    size_t bin_start_cap, bin_tris_cap;
 };
 
 /* cap (>= BATCH_MIN_CAPACITY) triangles, shading records and clip vertices */
@@ -50,7 +59,12 @@ static inline bool batch_has_room(const struct batch *b)
            b->n_verts + CLIP_MAX_VERTS <= b->cap;
 }
 
-/* Rasterize every triangle of the batch, in order, inside r. */
-void batch_draw(const struct batch *b, raster_fn raster, struct raster_rect r, struct span_ctx *s);
+/* Rasterize every triangle of the batch, in order, into the fb_w x fb_h framebuffer of the
+ * span contexts: on the calling thread alone when w has no threads, else by tile on all of
+ * them, thread k using ctx[k] (ctx[k].hit must hold cap entries, zeroed). Returns the
+ * number of triangles no thread found a pixel for, and zeroes the hit arrays again; -1 if
+ * the bins could not be allocated (e set). */
+long batch_draw(struct batch *b, raster_fn raster, int fb_w, int fb_h, struct workers *w,
+                struct span_ctx *ctx, struct err *e);
 
 #endif

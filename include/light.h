@@ -21,6 +21,7 @@
 
 #include "mesh.h"
 #include "render.h"
+#include "simd.h"
 
 #define LIGHT_AMBIENT 0.1f
 #define LIGHT_DIFFUSE 0.9f
@@ -49,7 +50,7 @@ static inline float light_pow(float x, float n)
         x *= x;
         return x * x;
     }
-    return powf(x, n);
+    return x > 0 || n <= 0 ? powf(x, n) : 0; /* 0^n = 0 exactly (n > 0): skip the call */
 }
 
 /* D and S (see above) at one point; n and v unit length. */
@@ -91,6 +92,58 @@ static inline void light_normalize(float v[3])
     float l = sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
     float il = l > 0 ? 1.0f / l : 0;
     v[0] *= il, v[1] *= il, v[2] *= il;
+}
+
+/* light_normalize, four vectors at once (v[k] holds component k of the four) */
+static inline void light_normalize4(f4 v[3])
+{
+    f4 l = f4_sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    i4 pos = l > f4_set(0);
+    f4 il = f4_select(pos, f4_set(1.0f) / f4_select(pos, l, f4_set(1)), f4_set(0));
+    v[0] *= il, v[1] *= il, v[2] *= il;
+}
+
+/* x^n in each lane, exactly as light_pow */
+static inline f4 light_pow4(f4 x, float n)
+{
+    if (n == 32.0f) {
+        x *= x;
+        x *= x;
+        x *= x;
+        x *= x;
+        return x * x;
+    }
+    f4 r;
+    for (int l = 0; l < SIMD_LANES; l++) /* 0^n = 0 exactly: most lanes face away */
+        r[l] = x[l] > 0 || n <= 0 ? powf(x[l], n) : 0;
+    return r;
+}
+
+/* light_terms for four points (n, v: unit vectors, one component per vector): in every lane
+ * exactly what light_terms gives */
+static inline void light_terms4(const struct light_env *env, const f4 n[3], const f4 v[3],
+                                float ns, f4 d_out[3], f4 s_out[3])
+{
+    f4 d[3] = {f4_set(0), f4_set(0), f4_set(0)}, s[3] = {f4_set(0), f4_set(0), f4_set(0)};
+    for (int i = 0; i < env->n; i++) {
+        const float *l = env->dir[i], *col = env->col[i];
+        f4 h[3] = {f4_set(l[0]) + v[0], f4_set(l[1]) + v[1], f4_set(l[2]) + v[2]};
+        f4 hl = f4_sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+        i4 pos = hl > f4_set(0);
+        f4 ih = f4_select(pos, f4_set(1.0f) / f4_select(pos, hl, f4_set(1)), f4_set(0));
+        f4 ndl = n[0] * f4_set(l[0]) + n[1] * f4_set(l[1]) + n[2] * f4_set(l[2]);
+        f4 ndh = (n[0] * h[0] + n[1] * h[1] + n[2] * h[2]) * ih;
+        f4 dd = f4_select(ndl > f4_set(0), ndl, f4_set(0));
+        f4 ss = light_pow4(f4_select(ndh > f4_set(0), ndh, f4_set(0)), ns);
+        for (int k = 0; k < 3; k++) {
+            d[k] += dd * f4_set(col[k]);
+            s[k] += ss * f4_set(col[k]);
+        }
+    }
+    for (int k = 0; k < 3; k++) {
+        d_out[k] = f4_set(LIGHT_AMBIENT) + f4_set(LIGHT_DIFFUSE) * d[k];
+        s_out[k] = s[k];
+    }
 }
 
 #endif

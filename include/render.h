@@ -55,6 +55,7 @@ struct render_opts {
     enum raster_method raster;  /* --raster: which pixels a triangle covers */
     enum persp_method persp;    /* --persp: how varyings are interpolated */
     enum depth_mode depth;      /* --depth: what the depth buffer stores */
+    int threads;                /* --threads: 0 = one per core; the picture never depends on it */
     enum cull_mode cull;
     enum debug_view view;
     bool textures;       /* sample material / override textures (else albedo = kd) */

@@ -96,9 +96,8 @@ static inline void shade_fragment(const struct shade_ctx *c, enum shade_mode mod
     }
 }
 
-/* Four pixels of the unlit, flat and Gouraud modes at once (Phong and the normals view go
- * pixel by pixel through shade_fragment): in every lane exactly what shade_fragment gives.
- * var[k] holds varying k of the four pixels. */
+/* Four pixels at once (the normals view goes pixel by pixel through shade_fragment): in every
+ * lane exactly what shade_fragment gives. var[k] holds varying k of the four pixels. */
 static inline void shade_fragment4(const struct shade_ctx *c, enum shade_mode mode,
                                    const struct shade_tri *t, const f4 *var, f4 rgb_out[3])
 {
@@ -113,8 +112,24 @@ static inline void shade_fragment4(const struct shade_ctx *c, enum shade_mode mo
             albedo[k] = f4_set(t->base[k]);
     }
     const float *ks = t->mat->ks;
+    f4 d[3], sp[3];
+    if (mode == SHADE_PHONG) { /* as shade_phong */
+        f4 n[3] = {var[5], var[6], var[7]}, vv[3];
+        if (c->ortho) {
+            for (int k = 0; k < 3; k++)
+                vv[k] = f4_set(c->view_back[k]);
+        } else {
+            for (int k = 0; k < 3; k++)
+                vv[k] = f4_set(c->eye[k]) - var[2 + k];
+            light_normalize4(vv);
+        }
+        light_normalize4(n);
+        light_terms4(&c->lights, n, vv, t->mat->ns, d, sp);
+    }
     for (int k = 0; k < 3; k++) {
-        if (mode == SHADE_FLAT)
+        if (mode == SHADE_PHONG)
+            rgb_out[k] = albedo[k] * d[k] + f4_set(ks[k]) * sp[k];
+        else if (mode == SHADE_FLAT)
             rgb_out[k] = albedo[k] * f4_set(t->flat_d[k]) + f4_set(ks[k]) * f4_set(t->flat_s[k]);
         else if (mode == SHADE_GOURAUD)
             rgb_out[k] = albedo[k] * var[2 + k] + f4_set(ks[k]) * var[5 + k];

@@ -48,6 +48,17 @@ static inline i4 i4_trunc(f4 a)
     return __builtin_convertvector(a, i4);
 }
 
+/* square root of each lane: the same IEEE result as sqrtf */
+static inline f4 f4_sqrt(f4 a)
+{
+#if defined(__SSE__)
+    return __builtin_ia32_sqrtps(a);
+#else
+    return (f4){__builtin_sqrtf(a[0]), __builtin_sqrtf(a[1]), __builtin_sqrtf(a[2]),
+                __builtin_sqrtf(a[3])};
+#endif
+}
+
 /* any lane set? */
 static inline int i4_any(i4 m)
 {

@@ -54,17 +54,18 @@ struct span_ctx {
     /* per triangle (span_begin) */
     const struct setup_tri *tri;
     const struct shade_tri *st;
+    uint32_t tri_index;        /* its place in the batch */
     struct setup_interp in;
     bool in_ready;             /* setup_interp done for tri */
-    /* counts, added to the frame's stats by the caller */
-    uint64_t tested, shaded, tris_empty;
+    /* results, added to the frame's stats by the caller */
+    uint8_t *hit;              /* hit[tri_index] = 1 once a triangle has a run (or NULL) */
+    uint64_t tested, shaded;
 };
 
 /* Start a triangle: its interpolation setup waits for its first run. */
-void span_begin(struct span_ctx *s, const struct setup_tri *t, const struct shade_tri *st);
+void span_begin(struct span_ctx *s, const struct setup_tri *t, const struct shade_tri *st,
+                uint32_t tri_index);
 /* Pixels x0..x1 (inclusive, x0 <= x1, inside the triangle's box) of row y, all covered. */
 void span_draw(struct span_ctx *s, int y, int x0, int x1);
-/* End a triangle (counts it in tris_empty if no run came). */
-void span_end(struct span_ctx *s);
 
 #endif

@@ -73,9 +73,11 @@ struct vertex_uniforms {
 
 /* Number of varyings written for a shading mode / debug view. */
 int vertex_varying_count(enum shade_mode shade, enum debug_view view);
-/* Position every vertex of m into out[0 .. m->n_verts): clip position, outcode, window
- * position and snap; wpos and var wait for vertex_shade. */
-void vertex_run(const struct mesh *m, const struct vertex_uniforms *u, struct vertex_out *out);
+/* Position vertices i0 .. i1-1 of m into out[i0 .. i1): clip position, outcode, window
+ * position and snap; wpos and var wait for vertex_shade. Ranges may run on different
+ * threads. */
+void vertex_run(const struct mesh *m, const struct vertex_uniforms *u, struct vertex_out *out,
+                uint32_t i0, uint32_t i1);
 /* World position and varyings of vertex i (lighting for Gouraud): done only for vertices of
  * triangles that survive rejection and culling — on a closed mesh half the vertices are
  * used by back faces alone. */

@@ -1,6 +1,7 @@
 /* batch.c: the set-up triangle array and the back end's loop over it (see batch.h). */
 #include "batch.h"
 
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -24,15 +25,118 @@ void batch_free(struct batch *b)
     free(b->tris);
     free(b->shades);
     free(b->verts);
+    free(b->bin_start);
+    free(b->bin_tris);
     memset(b, 0, sizeof *b);
 }
 
-void batch_draw(const struct batch *b, raster_fn raster, struct raster_rect r, struct span_ctx *s)
+/* grow *p (elements of sz bytes, capacity *cap) to hold n */
+static int reserve(void **p, size_t *cap, size_t n, size_t sz)
 {
+    if (n <= *cap)
+        return 0;
+    size_t c = *cap ? *cap : 1024;
+    while (c < n)
+        c *= 2;
+    void *q = realloc(*p, c * sz);
+    if (!q)
+        return -1;
+    *p = q;
+    *cap = c;
+    return 0;
+}
+
+/* each triangle into the tiles its box overlaps, in submission order (count, offsets, fill) */
+static int bin(struct batch *b, int tiles_x, int n_tiles)
+{
+    if (reserve((void **)&b->bin_start, &b->bin_start_cap, (size_t)n_tiles + 1, sizeof(uint32_t)))
+        return -1;
+    uint32_t *start = b->bin_start;
+    memset(start, 0, ((size_t)n_tiles + 1) * sizeof *start);
+    size_t total = 0;
     for (uint32_t i = 0; i < b->n_tris; i++) {
         const struct setup_tri *t = &b->tris[i];
-        span_begin(s, t, &b->shades[t->shade]);
-        raster(t, r, s);
-        span_end(s);
+        for (int ty = t->y0 / BATCH_TILE; ty <= t->y1 / BATCH_TILE; ty++)
+            for (int tx = t->x0 / BATCH_TILE; tx <= t->x1 / BATCH_TILE; tx++)
+                start[ty * tiles_x + tx + 1]++;
     }
+    for (int k = 0; k < n_tiles; k++)
+        start[k + 1] += start[k];
+    total = start[n_tiles];
+    if (reserve((void **)&b->bin_tris, &b->bin_tris_cap, total, sizeof(uint32_t)))
+        return -1;
+    /* fill, using start[t] as tile t's write position, then shift the offsets back */
+    for (uint32_t i = 0; i < b->n_tris; i++) {
+        const struct setup_tri *t = &b->tris[i];
+        for (int ty = t->y0 / BATCH_TILE; ty <= t->y1 / BATCH_TILE; ty++)
+            for (int tx = t->x0 / BATCH_TILE; tx <= t->x1 / BATCH_TILE; tx++)
+                b->bin_tris[start[ty * tiles_x + tx]++] = i;
+    }
+    for (int k = n_tiles; k > 0; k--)
+        start[k] = start[k - 1];
+    start[0] = 0;
+    return 0;
+}
+
+struct tile_job {
+    const struct batch *b;
+    raster_fn raster;
+    struct span_ctx *ctx;
+    int fb_w, fb_h, tiles_x, n_tiles;
+    atomic_int next; /* the next tile to hand out */
+};
+
+static void draw_tiles(void *arg, int k)
+{
+    struct tile_job *j = arg;
+    const struct batch *b = j->b;
+    struct span_ctx *s = &j->ctx[k];
+    for (;;) {
+        int t = atomic_fetch_add_explicit(&j->next, 1, memory_order_relaxed);
+        if (t >= j->n_tiles)
+            return;
+        int tx = t % j->tiles_x, ty = t / j->tiles_x;
+        struct raster_rect r = {tx * BATCH_TILE, ty * BATCH_TILE,
+                                tx * BATCH_TILE + BATCH_TILE - 1, ty * BATCH_TILE + BATCH_TILE - 1};
+        r.x1 = r.x1 < j->fb_w - 1 ? r.x1 : j->fb_w - 1;
+        r.y1 = r.y1 < j->fb_h - 1 ? r.y1 : j->fb_h - 1;
+        for (uint32_t n = b->bin_start[t]; n < b->bin_start[t + 1]; n++) {
+            uint32_t i = b->bin_tris[n];
+            const struct setup_tri *tri = &b->tris[i];
+            span_begin(s, tri, &b->shades[tri->shade], i);
+            j->raster(tri, r, s);
+        }
+    }
+}
+
+long batch_draw(struct batch *b, raster_fn raster, int fb_w, int fb_h, struct workers *w,
+                struct span_ctx *ctx, struct err *e)
+{
+    int threads = workers_count(w) + 1;
+    if (threads == 1) {
+        struct raster_rect all = {0, 0, fb_w - 1, fb_h - 1};
+        for (uint32_t i = 0; i < b->n_tris; i++) {
+            const struct setup_tri *t = &b->tris[i];
+            span_begin(ctx, t, &b->shades[t->shade], i);
+            raster(t, all, ctx);
+        }
+    } else {
+        struct tile_job j = {.b = b, .raster = raster, .ctx = ctx, .fb_w = fb_w, .fb_h = fb_h};
+        j.tiles_x = (fb_w + BATCH_TILE - 1) / BATCH_TILE;
+        j.n_tiles = j.tiles_x * ((fb_h + BATCH_TILE - 1) / BATCH_TILE);
+        atomic_init(&j.next, 0);
+        if (bin(b, j.tiles_x, j.n_tiles))
+            return err_set(e, "out of memory for the tile bins"), -1;
+        workers_run(w, draw_tiles, &j);
+    }
+    long empty = 0;
+    for (uint32_t i = 0; i < b->n_tris; i++) {
+        int hit = 0;
+        for (int k = 0; k < threads; k++) {
+            hit |= ctx[k].hit[i];
+            ctx[k].hit[i] = 0;
+        }
+        empty += !hit;
+    }
+    return empty;
 }

@@ -23,7 +23,7 @@ enum arg { ARG_NONE, ARG_VALUE, ARG_ENUM };
 enum flag_id {
     F_SIZE, F_EYE, F_TARGET, F_UP, F_FOV, F_NEAR, F_FAR, F_ORTHO, F_FRAME, F_LIGHT, F_ENUM,
     F_TEXTURE, F_NO_TEXTURE, F_BACKGROUND, F_HIDDEN_LINES, F_OUT,
-    F_DEPTH_OUT, F_STATS, F_REPEAT, F_COLS, F_ROWS, F_FRAMES, F_ORBIT, F_CAMERA_PATH, F_COLORS,
+    F_DEPTH_OUT, F_STATS, F_REPEAT, F_THREADS, F_COLS, F_ROWS, F_FRAMES, F_ORBIT, F_CAMERA_PATH, F_COLORS,
     F_TOLERANCE, F_DITHER, F_DIFF, F_PPM_DIR, F_FRAME_INDEX, F_FPS, F_NO_HUD, F_HELP, F_VERSION,
 };
 
@@ -61,6 +61,7 @@ static const struct flag flags[] = {
     ENUM_FLAG("--raster", C_DRAW | C_BENCH, "rasterizer", render_raster_names, render.raster),
     ENUM_FLAG("--persp", C_DRAW | C_BENCH, "varying interpolation", render_persp_names, render.persp),
     ENUM_FLAG("--depth", C_DRAW | C_BENCH, "depth buffer", render_depth_names, render.depth),
+    {"--threads", F_THREADS, ARG_VALUE, C_DRAW | C_BENCH, "N", "rendering threads, 1..64 (default: $RASTTY_THREADS, else one per core)", NULL, 0},
     {"--background", F_BACKGROUND, ARG_VALUE, C_DRAW, "R,G,B", "background colour, 0..255 each (default 0,0,0)", NULL, 0},
     ENUM_FLAG("--cull", C_DRAW | C_BENCH, "face culling", render_cull_names, render.cull),
     {"--hidden-lines", F_HIDDEN_LINES, ARG_NONE, C_DRAW, NULL, "wire: hide edges behind the model's surfaces", NULL, 0},
@@ -269,6 +270,10 @@ static int apply(struct options *o, const struct flag *f, const char *v, struct 
     case F_OUT: o->out = v; return 0;
     case F_DEPTH_OUT: o->depth_out = v; return 0;
     case F_STATS: o->stats = true; return 0;
+    case F_THREADS:
+        if (parse_int(v, 1, 64, &o->render.threads))
+            return bad(e, f->name, "expected a thread count 1..64", v);
+        return 0;
     case F_REPEAT:
         if (parse_int(v, 1, 100000, &o->repeat))
             return bad(e, f->name, "expected a count 1..100000", v);
@@ -350,6 +355,9 @@ static int validate(struct options *o, struct err *e)
 int options_parse(int argc, char **argv, struct options *o, struct err *e)
 {
     defaults(o);
+    const char *env = getenv("RASTTY_THREADS"); /* --threads overrides it */
+    if (env && *env && parse_int(env, 1, 64, &o->render.threads))
+        return bad(e, "RASTTY_THREADS", "expected a thread count 1..64", env);
     int i = 1;
     if (argc > 1 && argv[1][0] != '-') {
         for (int c = 0; c < CMD_COUNT; c++)

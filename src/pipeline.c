@@ -1,6 +1,7 @@
 /* pipeline.c: one frame over a list of draw items (see pipeline.h). */
 #include "pipeline.h"
 
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -13,6 +14,7 @@
 #include "shade.h"
 #include "span.h"
 #include "vertex.h"
+#include "workers.h"
 
 struct item_verts {
     struct vertex_out *v;
@@ -23,6 +25,10 @@ struct pipeline {
     struct item_verts *items; /* vertex-stage output per draw item, reused across frames */
     int n_items;
     struct batch batch;       /* set-up triangles: front end -> back end */
+    int n_threads;            /* the back end's threads, the caller's included */
+    struct workers *workers;  /* n_threads - 1 of them */
+    struct span_ctx *ctx;     /* one per thread */
+    uint8_t *hit;             /* n_threads x batch.cap: which triangles found a pixel */
 };
 
 /* What one frame's front end and back end share. */
@@ -30,7 +36,7 @@ struct frame {
     const struct render_opts *o;
     struct vertex_uniforms u;
     struct shade_ctx sc;
-    struct span_ctx span;
+    struct span_ctx span; /* the template every thread's context starts from */
     struct fb *fb;
     struct frame_stats *stats;
 };
@@ -58,7 +64,30 @@ void pipeline_destroy(struct pipeline *p)
         free(p->items[i].v);
     free(p->items);
     batch_free(&p->batch);
+    workers_destroy(p->workers);
+    free(p->ctx);
+    free(p->hit);
     free(p);
+}
+
+/* n threads for the back end (and the vertex stage), kept until another count is asked */
+static int use_threads(struct pipeline *p, int n, struct err *e)
+{
+    if (n == p->n_threads)
+        return 0;
+    workers_destroy(p->workers);
+    free(p->ctx);
+    free(p->hit);
+    p->n_threads = 0;
+    p->workers = NULL;
+    p->ctx = calloc((size_t)n, sizeof *p->ctx);
+    p->hit = calloc((size_t)n * p->batch.cap, 1);
+    if (!p->ctx || !p->hit)
+        return err_set(e, "out of memory for %d threads", n);
+    if (!(p->workers = workers_new(n - 1, e)))
+        return -1;
+    p->n_threads = n;
+    return 0;
 }
 
 static double now_ms(void)
@@ -115,11 +144,15 @@ static void flat_terms(const struct vertex_uniforms *u, const struct vertex_out 
 }
 
 /* the back end: rasterize what the front end has set up, then start a new batch */
-static void flush(struct pipeline *p, struct frame *f)
+static int flush(struct pipeline *p, struct frame *f, struct err *e)
 {
-    struct raster_rect all = {0, 0, f->fb->w - 1, f->fb->h - 1};
-    batch_draw(&p->batch, raster_methods[f->o->raster], all, &f->span);
+    long empty = batch_draw(&p->batch, raster_methods[f->o->raster], f->fb->w, f->fb->h,
+                            p->workers, p->ctx, e);
+    if (empty < 0)
+        return -1;
+    f->stats->tris_empty += (uint64_t)empty;
     batch_reset(&p->batch);
+    return 0;
 }
 
 /* append one triangle (a source triangle or a piece of one) to the batch */
@@ -136,8 +169,8 @@ static void add_setup(struct pipeline *p, struct frame *f, const struct vertex_o
 
 /* The front end for one item's filled triangles; depth_only: the hidden-line pre-pass
  * (every face, whatever the culling; no shading records). */
-static void front_end(struct pipeline *p, struct frame *f, const struct draw_item *item,
-                      struct vertex_out *vo, bool depth_only)
+static int front_end(struct pipeline *p, struct frame *f, const struct draw_item *item,
+                     struct vertex_out *vo, bool depth_only, struct err *e)
 {
     const struct mesh *m = item->mesh;
     const struct render_opts *o = f->o;
@@ -162,8 +195,8 @@ static void front_end(struct pipeline *p, struct frame *f, const struct draw_ite
         for (int k = 0; k < 3; k++) /* world position and varyings, once per used vertex */
             if (!v[k]->shaded)
                 vertex_shade(m, &f->u, m->tris[i][k], v[k]);
-        if (!batch_has_room(bt))
-            flush(p, f);
+        if (!batch_has_room(bt) && flush(p, f, e))
+            return -1;
         uint32_t shade = bt->n_shades;
         if (!depth_only) {
             struct shade_tri *st = &bt->shades[bt->n_shades++];
@@ -193,6 +226,7 @@ static void front_end(struct pipeline *p, struct frame *f, const struct draw_ite
         for (int k = 1; k + 1 < n; k++)
             add_setup(p, f, &poly[0], &poly[k], &poly[k + 1], shade);
     }
+    return 0;
 }
 
 /* Triangle edges as lines. `overlay` edges decorate a shaded frame: they are not counted
@@ -271,6 +305,42 @@ static void frame_init(struct frame *f, const struct camera *cam, const struct r
     f->span.depth = o->depth;
 }
 
+/* the vertex stage on every thread: chunks of vertices from a shared counter */
+struct vertex_job {
+    const struct mesh *m;
+    const struct vertex_uniforms *u;
+    struct vertex_out *out;
+    atomic_uint next;
+};
+
+#define VERTEX_CHUNK 4096
+
+static void vertex_chunks(void *arg, int k)
+{
+    struct vertex_job *j = arg;
+    (void)k;
+    for (;;) {
+        uint32_t c = atomic_fetch_add_explicit(&j->next, 1, memory_order_relaxed);
+        uint32_t i0 = c * VERTEX_CHUNK;
+        if (i0 >= j->m->n_verts)
+            return;
+        uint32_t i1 = i0 + VERTEX_CHUNK < j->m->n_verts ? i0 + VERTEX_CHUNK : j->m->n_verts;
+        vertex_run(j->m, j->u, j->out, i0, i1);
+    }
+}
+
+static void vertex_stage(struct pipeline *p, const struct mesh *m,
+                         const struct vertex_uniforms *u, struct vertex_out *out)
+{
+    if (p->n_threads == 1 || m->n_verts < 2 * VERTEX_CHUNK) {
+        vertex_run(m, u, out, 0, m->n_verts);
+        return;
+    }
+    struct vertex_job j = {.m = m, .u = u, .out = out};
+    atomic_init(&j.next, 0);
+    workers_run(p->workers, vertex_chunks, &j);
+}
+
 int pipeline_draw(struct pipeline *p, const struct draw_item *items, int n_items,
                   const struct skybox *sky, const struct camera *cam,
                   const struct render_opts *o, struct fb *fb, struct frame_stats *stats,
@@ -278,6 +348,8 @@ int pipeline_draw(struct pipeline *p, const struct draw_item *items, int n_items
 {
     double t0 = now_ms();
     memset(stats, 0, sizeof *stats);
+    if (use_threads(p, o->threads > 0 ? o->threads : workers_cores(), e))
+        return -1;
     fb->depth_mode = o->depth;
     fb->proj = (struct fb_depth_proj){cam->ortho_height > 0, cam->near, cam->far};
     fb_clear(fb, o->background);
@@ -286,6 +358,10 @@ int pipeline_draw(struct pipeline *p, const struct draw_item *items, int n_items
     struct frame f;
     frame_init(&f, cam, o, fb, stats);
     batch_reset(&p->batch);
+    for (int k = 0; k < p->n_threads; k++) {
+        p->ctx[k] = f.span;
+        p->ctx[k].hit = p->hit + (size_t)k * p->batch.cap;
+    }
 
     bool show_sky = sky && (o->view == VIEW_COLOR || o->view == VIEW_WIRE_OVERLAY);
     bool wire = f.span.mode == SHADE_WIRE;
@@ -324,19 +400,22 @@ int pipeline_draw(struct pipeline *p, const struct draw_item *items, int n_items
             if (!vo)
                 return -1;
             if (pass == 1 || !pass1) /* pass 2 reuses pass 1's vertices */
-                vertex_run(m, &f.u, vo);
-            if (pass == 1)
-                front_end(p, &f, item, vo, wire);
-            else
+                vertex_stage(p, m, &f.u, vo);
+            if (pass == 1) {
+                if (front_end(p, &f, item, vo, wire, e))
+                    return -1;
+            } else {
                 draw_edges(m, vo, o, !wire || o->hidden_lines, !wire, fb, stats);
+            }
         }
         if (pass == 1) {
-            flush(p, &f); /* the surfaces are complete */
-            if (!wire) {
-                stats->pixels_tested = f.span.tested;
-                stats->pixels_shaded = f.span.shaded;
-                stats->tris_empty = f.span.tris_empty;
-            }
+            if (flush(p, &f, e)) /* the surfaces are complete */
+                return -1;
+            if (!wire)
+                for (int k = 0; k < p->n_threads; k++) {
+                    stats->pixels_tested += p->ctx[k].tested;
+                    stats->pixels_shaded += p->ctx[k].shaded;
+                }
             if (show_sky && !wire) /* the sky goes where the surfaces left room */
                 skybox_draw(sky, cam, fb);
         }

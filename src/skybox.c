@@ -193,18 +193,14 @@ void skybox_free(struct skybox *s)
     memset(s, 0, sizeof *s);
 }
 
-void skybox_sample(const struct skybox *s, int level, vec3 d, float rgb_out[3])
+/* bilinear sample of face f of level l at face coordinates (sc, tc) / ma in [-1, 1] */
+static inline void sample_face(const struct skybox_level *l, int f, double u, double v,
+                               float rgb_out[3])
 {
-    const struct skybox_level *l = &s->level[level];
-    double sc, tc, ma;
-    int f = face_of(d, &sc, &tc, &ma);
-    if (!(ma > 0)) {
-        rgb_out[0] = rgb_out[1] = rgb_out[2] = 0;
-        return;
-    }
     /* texel space: centre of texel i at i + 0.5; border texels at -1 and n cover the edges */
-    double x = (sc / ma + 1) * 0.5 * l->n - 0.5, y = (tc / ma + 1) * 0.5 * l->n - 0.5;
-    int i0 = (int)floor(x), j0 = (int)floor(y);
+    double x = (u + 1) * 0.5 * l->n - 0.5, y = (v + 1) * 0.5 * l->n - 0.5;
+    int i0 = (int)x, j0 = (int)y; /* floor: x, y >= -0.5 here, and finite */
+    i0 -= x < i0, j0 -= y < j0;
     i0 = i0 < -1 ? -1 : i0 > l->n - 1 ? l->n - 1 : i0;
     j0 = j0 < -1 ? -1 : j0 > l->n - 1 ? l->n - 1 : j0;
     float ax = (float)(x - i0), ay = (float)(y - j0);
@@ -216,6 +212,17 @@ void skybox_sample(const struct skybox *s, int level, vec3 d, float rgb_out[3])
         float a = p00[c] + ax * (p10[c] - p00[c]), b = p01[c] + ax * (p11[c] - p01[c]);
         rgb_out[c] = (a + ay * (b - a)) * (1.0f / 255.0f);
     }
+}
+
+void skybox_sample(const struct skybox *s, int level, vec3 d, float rgb_out[3])
+{
+    double sc, tc, ma;
+    int f = face_of(d, &sc, &tc, &ma);
+    if (!(ma > 0)) {
+        rgb_out[0] = rgb_out[1] = rgb_out[2] = 0;
+        return;
+    }
+    sample_face(&s->level[level], f, sc / ma, tc / ma, rgb_out);
 }
 
 void skybox_draw(const struct skybox *s, const struct camera *cam, struct fb *fb)
@@ -236,21 +243,28 @@ void skybox_draw(const struct skybox *s, const struct camera *cam, struct fb *fb
         level = s->n_levels - 1;
         frac = 0;
     }
+    const struct skybox_level *l0 = &s->level[level], *l1 = &s->level[level + (frac > 0)];
     for (int y = 0; y < fb->h; y++) {
         double ny = 1 - 2 * (y + 0.5) / fb->h;
+        vec3 row = v3_add(f, v3_scale(u, ny * ty));
         for (int x = 0; x < fb->w; x++) {
             size_t i = (size_t)y * fb->w + x;
             if (fb_covered(fb, i))
                 continue;
             double nx = 2 * (x + 0.5) / fb->w - 1;
-            vec3 d = v3_add(f, v3_add(v3_scale(r, nx * tx), v3_scale(u, ny * ty)));
-            float c[3];
-            skybox_sample(s, level, d, c);
-            if (frac > 0) { /* trilinear: blend with the next coarser level */
-                float c2[3];
-                skybox_sample(s, level + 1, d, c2);
-                for (int k = 0; k < 3; k++)
-                    c[k] += frac * (c2[k] - c[k]);
+            vec3 d = v3_add(row, v3_scale(r, nx * tx));
+            double sc, tc, ma;
+            int face = face_of(d, &sc, &tc, &ma);
+            float c[3] = {0, 0, 0};
+            if (ma > 0) {
+                double fu = sc / ma, fv = tc / ma;
+                sample_face(l0, face, fu, fv, c);
+                if (frac > 0) { /* trilinear: blend with the next coarser level */
+                    float c2[3];
+                    sample_face(l1, face, fu, fv, c2);
+                    for (int k = 0; k < 3; k++)
+                        c[k] += frac * (c2[k] - c[k]);
+                }
             }
             fb->rgb[3 * i] = fb_quantize(c[0]);
             fb->rgb[3 * i + 1] = fb_quantize(c[1]);

@@ -5,16 +5,13 @@
 
 #include "simd.h"
 
-void span_begin(struct span_ctx *s, const struct setup_tri *t, const struct shade_tri *st)
+void span_begin(struct span_ctx *s, const struct setup_tri *t, const struct shade_tri *st,
+                uint32_t tri_index)
 {
     s->tri = t;
     s->st = st;
+    s->tri_index = tri_index;
     s->in_ready = false;
-}
-
-void span_end(struct span_ctx *s)
-{
-    s->tris_empty += !s->in_ready;
 }
 
 /* floor(a / b), b > 0 */
@@ -61,7 +58,7 @@ static inline void exact_at(float qr, float qdx, const float *ar, const float *a
 /* One run, instantiated per shading mode by span_draw's switch: `mode` is a compile-time
  * constant in each copy, so the shading's switches fold away. Pixels go four at a time
  * (simd.h): depth, the test and the varyings of four pixels in a few vector operations, then
- * unlit, flat and Gouraud shading four at a time too (shade_fragment4), Phong lane by lane.
+ * the shading four at a time too (shade_fragment4; the normals view lane by lane).
  * A lane's arithmetic is the scalar formula, so a pixel's bytes never depend on where its
  * group of four started. Every plane coefficient is copied into a local first: the
  * framebuffer's byte stores may alias anything and would otherwise force reloads. */
@@ -155,7 +152,7 @@ static inline void run(struct span_ctx *s, int y, int xa, int xb, const enum sha
                     var[k][l] = va[k] + f * vd[k];
             }
         }
-        if (mode == SHADE_PHONG) { /* lane by lane */
+        if (sc->view == VIEW_NORMALS) { /* lane by lane */
             for (int l = 0; l < n; l++) {
                 if (!pass[l])
                     continue;
@@ -188,6 +185,8 @@ void span_draw(struct span_ctx *s, int y, int x0, int x1)
         setup_interp(s->tri, s->depth, &s->fb->proj, s->persp == PERSP_AFFINE,
                      s->mode == SHADE_WIRE ? 0 : n_var, &s->in);
         s->in_ready = true;
+        if (s->hit)
+            s->hit[s->tri_index] = 1;
     }
     switch (s->mode) {
     case SHADE_UNLIT: run(s, y, x0, x1, SHADE_UNLIT); break;

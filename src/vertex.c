@@ -31,9 +31,10 @@ void vertex_light(const struct vertex_uniforms *u, const float n[3], const float
     light_terms(&u->lights, n, v, ns, d_out, s_out);
 }
 
-void vertex_run(const struct mesh *m, const struct vertex_uniforms *u, struct vertex_out *out)
+void vertex_run(const struct mesh *m, const struct vertex_uniforms *u, struct vertex_out *out,
+                uint32_t i0, uint32_t i1)
 {
-    for (uint32_t i = 0; i < m->n_verts; i++) {
+    for (uint32_t i = i0; i < i1; i++) {
         const struct mesh_vertex *mv = &m->verts[i];
         struct vertex_out *o = &out[i];
         vec4 c = m4_mul_v4(u->mvp, (vec4){mv->pos[0], mv->pos[1], mv->pos[2], 1});

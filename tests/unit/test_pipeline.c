@@ -179,3 +179,25 @@ TEST(culling_is_decided_once_per_source_triangle)
     CHECK(back_cull > 0);
     frame_free(&f);
 }
+
+TEST(triangles_that_cover_no_pixel_are_counted)
+{
+    /* orthographic, 32 px for 32 units: window = (x + 16, 16 - y). A sliver from (0.6,1.0)
+     * to (3.4,2.0)/(3.4,2.05) in window coordinates has pixel centres in its box but none
+     * inside it; a 4x4 square covers 16. Drawn alone or together, on any thread count. */
+    const char *obj = "v -15.4 15 0\nv -12.6 14 0\nv -12.6 13.95 0\n"
+                      "v 0 0 0\nv 4 0 0\nv 4 4 0\nv 0 4 0\nf 1 2 3\nf 4 5 6 7\n";
+    struct frame f;
+    REQUIRE(frame_init(&f, obj, 32, 32) == 0);
+    f.cam.ortho_height = 32;
+    for (int threads = 1; threads <= 2; threads++) {
+        f.ro.threads = threads;
+        REQUIRE(draw(&f) == 0);
+        CHECK_EQ_INT(f.st.tris_in, 3);
+        CHECK_EQ_INT(f.st.tris_drawn, 3);
+        CHECK_EQ_INT(f.st.tris_empty, 1);
+        CHECK_EQ_INT(f.st.pixels_tested, 16);
+        CHECK_EQ_INT(covered(&f.fb), 16);
+    }
+    frame_free(&f);
+}

@@ -1,0 +1,28 @@
+/* workers.h: a small pool of threads that run one job at a time, together with the caller.
+ *
+ * workers_run(pool, fn, arg) calls fn(arg, k) once on each of the pool's threads (k = 1..n)
+ * and once on the calling thread (k = 0), and returns when all calls have returned. The
+ * job divides its own work (the back end hands out screen tiles through an atomic counter),
+ * so results never depend on which thread did what. Threads sleep between jobs. A pool of
+ * zero threads is valid: the caller does everything. Not reentrant: one job at a time. */
+#ifndef RASTTY_WORKERS_H
+#define RASTTY_WORKERS_H
+
+#include "err.h"
+
+struct workers;
+
+typedef void (*workers_fn)(void *arg, int k);
+
+/* n extra threads (0 .. WORKERS_MAX); NULL and e set on failure */
+struct workers *workers_new(int n, struct err *e);
+void workers_destroy(struct workers *w);
+int workers_count(const struct workers *w); /* extra threads, 0 for NULL */
+void workers_run(struct workers *w, workers_fn fn, void *arg);
+
+#define WORKERS_MAX 63
+
+/* The number of online cores (1 .. WORKERS_MAX + 1): the default thread count. */
+int workers_cores(void);
+
+#endif
