@@ -62,6 +62,7 @@ struct vertex_out {
 struct vertex_uniforms {
     int fb_w, fb_h;
     mat4 model, normal_matrix, mvp;
+    float model_f[3][4], normal_f[3][3]; /* the same in float, for vertex_shade */
     vec3 eye;          /* world space */
     int ortho;         /* V = view_back everywhere */
     vec3 view_back;    /* unit vector toward the viewer (orthographic) */

@@ -27,11 +27,14 @@ static inline void viewport_window(const double clip[4], int fb_w, int fb_h, dou
     win_out[2] = 0.5 * clip[2] * rw + 0.5;
 }
 
-/* a window coordinate in 1/256 pixel; |win| must be well inside the int64 range (the guard
- * band keeps it below 2^15 pixels) */
+/* a window coordinate in 1/256 pixel, rounded to nearest, ties to even; |win| must stay
+ * below 2^42 pixels (the guard band keeps it below 2^15). Adding and subtracting 1.5 * 2^52
+ * rounds exactly as nearbyint does in the default rounding mode, without a libm call. */
 static inline int64_t viewport_snap(double win)
 {
-    return (int64_t)nearbyint(win * VIEWPORT_SUBPIX_ONE);
+    const double magic = 6755399441055744.0; /* 1.5 * 2^52 */
+    double t = win * VIEWPORT_SUBPIX_ONE + magic; /* IEEE arithmetic: never re-associated */
+    return (int64_t)(t - magic);
 }
 
 #endif

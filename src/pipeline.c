@@ -387,6 +387,12 @@ int pipeline_draw(struct pipeline *p, const struct draw_item *items, int n_items
                 continue;
             f.u.model = item->model;
             f.u.normal_matrix = m4_normal_matrix(item->model);
+            for (int r = 0; r < 3; r++)
+                for (int c = 0; c < 4; c++) {
+                    f.u.model_f[r][c] = (float)item->model.m[r][c];
+                    if (c < 3)
+                        f.u.normal_f[r][c] = (float)f.u.normal_matrix.m[r][c];
+                }
             f.u.mvp = m4_mul(pv, item->model);
             if (sphere_outside(m, f.u.mvp, max_scale(item->model))) {
                 if (counts) {

@@ -34,16 +34,22 @@ void vertex_light(const struct vertex_uniforms *u, const float n[3], const float
 void vertex_run(const struct mesh *m, const struct vertex_uniforms *u, struct vertex_out *out,
                 uint32_t i0, uint32_t i1)
 {
+    /* the matrix in locals: the stores below may alias it otherwise (same sums, same order
+     * as m4_mul_v4, so the same bits) */
+    const mat4 a = u->mvp;
+    const double gx = u->guard_x, gy = u->guard_y;
+    const int w = u->fb_w, h = u->fb_h;
     for (uint32_t i = i0; i < i1; i++) {
-        const struct mesh_vertex *mv = &m->verts[i];
+        const float *p = m->verts[i].pos;
+        const double x = p[0], y = p[1], z = p[2];
         struct vertex_out *o = &out[i];
-        vec4 c = m4_mul_v4(u->mvp, (vec4){mv->pos[0], mv->pos[1], mv->pos[2], 1});
-        o->clip[0] = c.x, o->clip[1] = c.y, o->clip[2] = c.z, o->clip[3] = c.w;
-        o->outcode = vertex_outcode(o->clip, u->guard_x, u->guard_y);
+        for (int r = 0; r < 4; r++)
+            o->clip[r] = a.m[r][0] * x + a.m[r][1] * y + a.m[r][2] * z + a.m[r][3] * 1.0;
+        o->outcode = vertex_outcode(o->clip, gx, gy);
         o->projected = 0;
         o->shaded = 0;
         if (!(o->outcode & VERTEX_NEEDS_CLIP))
-            vertex_project(o, u->fb_w, u->fb_h);
+            vertex_project(o, w, h);
     }
 }
 
@@ -53,15 +59,19 @@ void vertex_shade(const struct mesh *m, const struct vertex_uniforms *u, uint32_
     const struct mesh_vertex *mv = &m->verts[i];
     int want_normals = u->view == VIEW_NORMALS || u->shade == SHADE_PHONG;
     int want_gouraud = !want_normals && u->shade == SHADE_GOURAUD;
-    vec3 wp = m4_mul_point(u->model, (vec3){mv->pos[0], mv->pos[1], mv->pos[2]});
-    o->wpos[0] = (float)wp.x, o->wpos[1] = (float)wp.y, o->wpos[2] = (float)wp.z;
+    const float *p = mv->pos, (*a)[4] = u->model_f;
+    for (int r = 0; r < 3; r++) /* float, as a GPU's vertex shader would */
+        o->wpos[r] = a[r][0] * p[0] + a[r][1] * p[1] + a[r][2] * p[2] + a[r][3];
     o->var[0] = mv->uv[0];
     o->var[1] = mv->uv[1];
     o->shaded = 1;
     if (!want_normals && !want_gouraud)
         return;
-    vec3 nd = v3_norm(m4_mul_dir(u->normal_matrix, v3(mv->nrm[0], mv->nrm[1], mv->nrm[2])));
-    float n[3] = {(float)nd.x, (float)nd.y, (float)nd.z};
+    const float *nn = mv->nrm, (*b)[3] = u->normal_f;
+    float n[3];
+    for (int r = 0; r < 3; r++)
+        n[r] = b[r][0] * nn[0] + b[r][1] * nn[1] + b[r][2] * nn[2];
+    light_normalize(n);
     if (want_normals) {
         o->var[2] = o->wpos[0], o->var[3] = o->wpos[1], o->var[4] = o->wpos[2];
         o->var[5] = n[0], o->var[6] = n[1], o->var[7] = n[2];
