@@ -3,6 +3,7 @@
 
 #include <stdio.h>
 #include <stdlib.h>
+#include <time.h>
 
 #include "image.h"
 #include "pipeline.h"
@@ -67,8 +68,12 @@ int cmd_render(const struct options *o, struct err *e)
     if (!image_color_ext_ok(o->out))
         return err_set(e, "rastty render: --out %s: use a .ppm or .png file name", o->out), 2;
     struct scene scene;
+    struct timespec l0, l1;
+    clock_gettime(CLOCK_MONOTONIC, &l0);
     if (cmd_load_scene(o, o->inputs[0], &scene, e))
         return 2;
+    clock_gettime(CLOCK_MONOTONIC, &l1);
+    double load_ms = (l1.tv_sec - l0.tv_sec) * 1e3 + (l1.tv_nsec - l0.tv_nsec) * 1e-6;
     struct camera cam;
     struct render_opts ro;
     cmd_view_setup(o, &scene, (double)o->width / o->height, o->frame, &cam, &ro);
@@ -99,8 +104,8 @@ int cmd_render(const struct options *o, struct err *e)
                     cam.eye.x, cam.eye.y, cam.eye.z, cam.target.x, cam.target.y, cam.target.z,
                     cam.up.x, cam.up.y, cam.up.z, cam.fov_deg, cam.near, cam.far);
             qsort(ms, (size_t)drawn, sizeof *ms, cmp_double);
-            fprintf(stderr, "frames=%d median_ms=%.4f min_ms=%.4f\n", drawn, ms[drawn / 2],
-                    ms[0]);
+            fprintf(stderr, "frames=%d median_ms=%.4f min_ms=%.4f load_ms=%.2f\n", drawn,
+                    ms[drawn / 2], ms[0], load_ms);
         }
         fb_free(&fb);
     }

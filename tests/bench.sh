@@ -3,7 +3,8 @@
 #   1. bytes/frame and decoded PSNR for an orbit of the shared african_head (textured,
 #      2 deg/frame, 160x48 cells) on black, on the shared photo skybox, and on rastty's own sky;
 #   2. render time per frame of the demo scene and the big shared models;
-#   3. every rendering method: ms/frame and error against Mesa (tests/bench_methods.sh).
+#   3. every rendering method: ms/frame and error against Mesa (tests/bench_methods.sh);
+#   4. rastty against Mesa llvmpipe on the speed workloads, side by side (tests/bench_speed.sh).
 # Needs ../shared (or $RASTTY_SHARED) for the shared models; skips those parts without it.
 set -eu
 cd "$(dirname "$0")/.."
@@ -40,3 +41,5 @@ for size in "160 48" "320 96"; do
 done
 echo
 tests/bench_methods.sh
+echo
+tests/bench_speed.sh
