@@ -177,6 +177,8 @@ static int front_end(struct pipeline *p, struct frame *f, const struct draw_item
     struct frame_stats *stats = f->stats;
     struct batch *bt = &p->batch;
     int n_var = depth_only ? 0 : vertex_varying_count(o->shade, o->view);
+    struct shade_tri proto = {0}; /* the shading record of the last material seen */
+    int last_mat = -1;
     for (uint32_t i = 0; i < m->n_tris; i++) {
         struct vertex_out *v[3] = {&vo[m->tris[i][0]], &vo[m->tris[i][1]], &vo[m->tris[i][2]]};
         uint32_t all = v[0]->outcode & v[1]->outcode & v[2]->outcode;
@@ -200,13 +202,18 @@ static int front_end(struct pipeline *p, struct frame *f, const struct draw_item
         uint32_t shade = bt->n_shades;
         if (!depth_only) {
             struct shade_tri *st = &bt->shades[bt->n_shades++];
-            st->mat = &m->materials[m->tri_material[i]];
-            st->tex = NULL;
-            if (o->textures)
-                st->tex = item->texture_override ? item->texture_override
-                          : st->mat->texture >= 0 ? &m->textures[st->mat->texture]
-                                                  : NULL;
-            light_base_color(st->mat, item->kd_override, st->tex != NULL, st->base);
+            uint16_t mi = m->tri_material[i];
+            if (mi != last_mat) { /* triangles come in runs of one material */
+                last_mat = mi;
+                proto.mat = &m->materials[mi];
+                proto.tex = NULL;
+                if (o->textures)
+                    proto.tex = item->texture_override ? item->texture_override
+                                : proto.mat->texture >= 0 ? &m->textures[proto.mat->texture]
+                                                          : NULL;
+                light_base_color(proto.mat, item->kd_override, proto.tex != NULL, proto.base);
+            }
+            *st = proto;
             if (f->span.mode == SHADE_FLAT)
                 flat_terms(&f->u, v[0], v[1], v[2], st->mat->ns, st);
         }

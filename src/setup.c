@@ -31,19 +31,8 @@ enum setup_result setup_triangle(const struct vertex_out *v0, const struct verte
                                  struct setup_tri *t)
 {
     const struct vertex_out *v[3] = {v0, v1, v2};
-    int64_t X[3], Y[3];
-    for (int i = 0; i < 3; i++) {
-        X[i] = v[i]->fx, Y[i] = v[i]->fy;
-        t->v[i] = v[i];
-    }
-    int64_t area = (X[1] - X[0]) * (Y[2] - Y[0]) - (Y[1] - Y[0]) * (X[2] - X[0]);
-    if (area == 0)
-        return SETUP_EMPTY;
-    /* edge order: the interior on the positive side of every edge */
-    int idx[3] = {0, 1, 2};
-    if (area < 0)
-        idx[1] = 2, idx[2] = 1;
-
+    int64_t X[3] = {v0->fx, v1->fx, v2->fx}, Y[3] = {v0->fy, v1->fy, v2->fy};
+    /* the pixel box first: most triangles of a dense mesh hold no pixel centre */
     int64_t minx = X[0], maxx = X[0], miny = Y[0], maxy = Y[0];
     for (int i = 1; i < 3; i++) {
         minx = X[i] < minx ? X[i] : minx;
@@ -60,6 +49,15 @@ enum setup_result setup_triangle(const struct vertex_out *v0, const struct verte
     py1 = py1 > fb_h - 1 ? fb_h - 1 : py1;
     if (px0 > px1 || py0 > py1)
         return SETUP_EMPTY;
+    int64_t area = (X[1] - X[0]) * (Y[2] - Y[0]) - (Y[1] - Y[0]) * (X[2] - X[0]);
+    if (area == 0)
+        return SETUP_EMPTY;
+    for (int i = 0; i < 3; i++)
+        t->v[i] = v[i];
+    /* edge order: the interior on the positive side of every edge */
+    int idx[3] = {0, 1, 2};
+    if (area < 0)
+        idx[1] = 2, idx[2] = 1;
     t->x0 = (int)px0, t->y0 = (int)py0, t->x1 = (int)px1, t->y1 = (int)py1;
 
     for (int i = 0; i < 3; i++)
@@ -167,9 +165,21 @@ void setup_interp(const struct setup_tri *t, enum depth_mode depth,
         in->z = combine(&b, d);
     }
     in->q = affine ? (struct setup_plane){1, 0, 0} : combine(&b, rw);
-    for (int k = 0; k < n_var; k++) {
-        for (int i = 0; i < 3; i++)
-            f[i] = (double)t->v[i]->var[k] * (affine ? 1.0 : rw[i]);
-        in->a[k] = combine(&b, f);
+    /* the varyings two at a time: the same double sums as combine(), in vector registers */
+    typedef double d2 __attribute__((vector_size(16)));
+    for (int k = 0; k < n_var; k += 2) {
+        d2 fv[3];
+        for (int i = 0; i < 3; i++) {
+            double s = affine ? 1.0 : rw[i];
+            fv[i] = (d2){(double)t->v[i]->var[k] * s, (double)t->v[i]->var[k + 1] * s};
+        }
+        d2 c = (d2){b.l[0], b.l[0]} * fv[0] + (d2){b.l[1], b.l[1]} * fv[1] +
+               (d2){b.l[2], b.l[2]} * fv[2];
+        d2 dx = (d2){b.dx[0], b.dx[0]} * fv[0] + (d2){b.dx[1], b.dx[1]} * fv[1] +
+                (d2){b.dx[2], b.dx[2]} * fv[2];
+        d2 dy = (d2){b.dy[0], b.dy[0]} * fv[0] + (d2){b.dy[1], b.dy[1]} * fv[1] +
+                (d2){b.dy[2], b.dy[2]} * fv[2];
+        for (int l = 0; l < 2; l++)
+            in->a[k + l] = (struct setup_plane){(float)c[l], (float)dx[l], (float)dy[l]};
     }
 }
