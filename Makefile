@@ -90,7 +90,7 @@ bench: rastty assets oracle-build
 FUZZ_SECONDS ?= 60
 FUZZ_TARGETS := obj mtl decode scene
 FUZZ_CFLAGS  := -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
-                -std=c11 $(DEFS) -Iinclude $(shell pkg-config --cflags stb)
+                -std=c11 $(DEFS) -Iinclude $(shell pkg-config --cflags stb 2>/dev/null)
 build/fuzz_%: tests/fuzz/fuzz_%.c $(SRCS)
 	@mkdir -p build/fuzz-work/$*
 	clang $(FUZZ_CFLAGS) $< $(filter-out src/main.c,$(SRCS)) -o $@ $(LDLIBS)
