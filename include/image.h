@@ -2,7 +2,9 @@
  *
  * PPM (binary P6) and PNG (stb_image_write) for colour, chosen by the file extension;
  * PFM for depth: "Pf" greyscale, little-endian (scale -1), rows bottom-to-top as the format
- * requires, 1.0 where nothing was drawn. */
+ * requires, 1.0 where nothing was drawn.
+ * Every file is written atomically (file.h): on a failed write (a full disk) the old file is
+ * left as it was and no partial file remains. */
 #ifndef RASTTY_IMAGE_H
 #define RASTTY_IMAGE_H
 

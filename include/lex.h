@@ -1,11 +1,11 @@
 /* lex.h: text scanning shared by the OBJ and MTL parsers (and anything else that reads our
  * line-based text formats).
  *
- * Owns: reading a whole file into memory (lex_read_file), the one decimal number syntax
- * (lex_float), and the rules for lines, whitespace, tokens, statement keywords and comments
- * on names (the small lex_* helpers, inline because the OBJ loop runs them per byte), so
- * both formats agree on them and there is one place to get them right. No state, no
- * allocation except lex_read_file's buffer.
+ * Owns: the one decimal number syntax (lex_float), and the rules for lines, whitespace,
+ * tokens, statement keywords and comments on names (the small lex_* helpers, inline because
+ * the OBJ loop runs them per byte), so both formats agree on them and there is one place to
+ * get them right. No state, no allocation. Files are read by file.h (regular files only,
+ * with size limits).
  * Called by obj.c and mtl.c: each splits its text with lex_line_end, takes the keyword with
  * lex_keyword and keeps its own statement rules (which '#' ends a line of numbers, what a
  * name may contain).
@@ -27,11 +27,6 @@
 #include <stddef.h>
 #include <string.h>
 
-/* Read a whole file into a malloc'd buffer (NUL-terminated; *len_out excludes the NUL).
- * Returns 0, or an errno value (ENOMEM, EISDIR, EFBIG beyond 16 GiB, ...) with
- * *text_out = NULL. Pipes and other non-regular files are read until EOF. */
-int lex_read_file(const char *path, char **text_out, size_t *len_out);
-
 enum { LEX_NUM_OK = 0, LEX_NUM_SYNTAX = -1, LEX_NUM_RANGE = -2 };
 /* Parse the whole token s[0..n) as a decimal float: [+-] digits [. digits] [e [+-] digits]
  * (".5" and "5." too). No hex, inf or nan, no surrounding whitespace; a result that
@@ -50,6 +45,13 @@ static inline const char *lex_num_problem(int rc)
 }
 
 /* ---- lines and tokens ---- */
+
+/* Past a UTF-8 byte-order mark at p, if there is one (Windows editors write it; read as
+ * text it would glue itself to the first keyword). */
+static inline const char *lex_skip_bom(const char *p, const char *end)
+{
+    return end - p >= 3 && memcmp(p, "\xef\xbb\xbf", 3) == 0 ? p + 3 : p;
+}
 
 /* End of the line starting at p: its '\n' (which the line does not include) or end. */
 static inline const char *lex_line_end(const char *p, const char *end)

@@ -17,6 +17,7 @@
 
 #include "decode.h"
 #include "encode.h"
+#include "file.h"
 #include "image.h"
 #include "pipeline.h"
 #include "termcaps.h"
@@ -30,24 +31,33 @@ struct camera_path {
 static int path_load(const char *path, struct camera_path *cp, struct err *e)
 {
     memset(cp, 0, sizeof *cp);
-    char q[200];
-    err_quote(path, strlen(path), 160, q, sizeof q);
-    FILE *f = fopen(path, "r");
-    if (!f)
-        return err_set(e, "%s: cannot open camera path: %s", q, strerror(errno));
-    char line[1024];
-    int lineno = 0, cap = 0, rc = 0;
-    while (rc == 0 && fgets(line, sizeof line, f)) {
+    char q[FILE_QUOTE_SIZE];
+    file_quote(path, q, sizeof q);
+    char *text;
+    size_t len;
+    int rc = file_read(path, FILE_MAX_TEXT, &text, &len);
+    if (rc)
+        return err_set(e, "%s: cannot open camera path: %s", q, file_strerror(rc));
+    int lineno = 0, cap = 0;
+    for (char *s = text, *end = text + len; rc == 0 && s < end;) {
+        char *eol = memchr(s, '\n', (size_t)(end - s));
+        eol = eol ? eol : end;
+        *eol = '\0'; /* our buffer: each line becomes a C string */
+        char *line = s;
+        s = eol + 1;
         lineno++;
-        char *s = line;
-        while (*s == ' ' || *s == '\t')
-            s++;
-        if (*s == '#' || *s == '\n' || *s == '\r' || *s == '\0')
+        if (strlen(line) != (size_t)(eol - line)) {
+            rc = err_set(e, "%s:%d: binary data in camera path", q, lineno);
+            break;
+        }
+        while (*line == ' ' || *line == '\t')
+            line++;
+        if (*line == '#' || *line == '\r' || *line == '\0')
             continue;
         double v[6];
         int used = 0;
-        if (sscanf(s, "%lf %lf %lf %lf %lf %lf %n", &v[0], &v[1], &v[2], &v[3], &v[4], &v[5],
-                   &used) != 6 || (s[used] != '\0' && s[used] != '#')) {
+        if (sscanf(line, "%lf %lf %lf %lf %lf %lf %n", &v[0], &v[1], &v[2], &v[3], &v[4], &v[5],
+                   &used) != 6 || (line[used] != '\0' && line[used] != '#')) {
             rc = err_set(e, "%s:%d: expected 'ex ey ez tx ty tz'", q, lineno);
             break;
         }
@@ -82,7 +92,7 @@ static int path_load(const char *path, struct camera_path *cp, struct err *e)
         cp->target[cp->n] = v3(v[3], v[4], v[5]);
         cp->n++;
     }
-    fclose(f);
+    free(text);
     if (rc == 0 && cp->n == 0)
         rc = err_set(e, "%s: no camera positions", q);
     return rc;
@@ -114,10 +124,12 @@ int cmd_dump(const struct options *o, struct err *e)
         if (!rows)
             rows = tty ? ws.ws_row : 24;
     }
+    char q[FILE_QUOTE_SIZE];
     if (o->ppm_dir) {
         struct stat st;
         if (stat(o->ppm_dir, &st) != 0 || !S_ISDIR(st.st_mode))
-            return err_set(e, "rastty dump: --ppm-dir %s: not a directory", o->ppm_dir), 2;
+            return err_set(e, "rastty dump: --ppm-dir %s: not a directory",
+                           file_quote(o->ppm_dir, q, sizeof q)), 2;
     }
     struct camera_path cp = {0};
     if (o->camera_path && path_load(o->camera_path, &cp, e)) {
@@ -140,6 +152,7 @@ int cmd_dump(const struct options *o, struct err *e)
                              .dither = o->dither,
                              .mark_frames = true};
     FILE *out = stdout;
+    struct file_out fo = {0}; /* --out: written atomically, renamed at the end */
     int rc = 1;
     struct fb fb = {0};
     struct encode_screen es = {0};
@@ -148,9 +161,10 @@ int cmd_dump(const struct options *o, struct err *e)
         err_set(e, "out of memory");
         goto done;
     }
-    if (o->out && !(out = fopen(o->out, "wb"))) {
-        err_set(e, "rastty dump: %s: cannot create: %s", o->out, strerror(errno));
-        goto done;
+    if (o->out) {
+        if (file_out_open(&fo, o->out, e))
+            goto done;
+        out = fo.f;
     }
     if (fb_init(&fb, cols, 2 * rows, ro.view == VIEW_OVERDRAW, e) ||
         encode_screen_init(&es, cols, rows, e))
@@ -172,7 +186,8 @@ int cmd_dump(const struct options *o, struct err *e)
         struct encode_stats es_stats;
         const char *bytes = encode_fb(&es, &fb, &eo, &n, &es_stats);
         if (fwrite(bytes, 1, n, out) != n) {
-            err_set(e, "rastty dump: write failed: %s", strerror(errno));
+            err_set(e, "rastty dump: %s: write failed: %s",
+                    o->out ? file_quote(o->out, q, sizeof q) : "standard output", strerror(errno));
             goto done;
         }
         if (o->ppm_dir) {
@@ -185,16 +200,18 @@ int cmd_dump(const struct options *o, struct err *e)
             fprintf(stderr, "frame %d: %zu bytes, %d cells, %.3f ms render\n", k, n,
                     es_stats.cells_drawn, st.render_ms);
     }
-    if (fflush(out) != 0) {
-        err_set(e, "rastty dump: write failed: %s", strerror(errno));
+    if (o->out) {
+        out = NULL;
+        if (file_out_commit(&fo, e))
+            goto done;
+    } else if (fflush(out) != 0) {
+        err_set(e, "rastty dump: standard output: write failed: %s", strerror(errno));
         goto done;
     }
     rc = 0;
 done:
-    if (out && out != stdout && fclose(out) != 0 && rc == 0) {
-        err_set(e, "rastty dump: %s: write failed", o->out);
-        rc = 1;
-    }
+    if (rc)
+        file_out_abort(&fo); /* the old --out file stays as it was */
     encode_screen_free(&es);
     fb_free(&fb);
     pipeline_destroy(p);
@@ -205,36 +222,18 @@ done:
 
 int cmd_ansi2ppm(const struct options *o, struct err *e)
 {
+    char q_out[FILE_QUOTE_SIZE];
     if (!image_color_ext_ok(o->out))
-        return err_set(e, "rastty ansi2ppm: --out %s: use a .ppm or .png file name", o->out), 2;
+        return err_set(e, "rastty ansi2ppm: --out %s: use a .ppm or .png file name",
+                       file_quote(o->out, q_out, sizeof q_out)), 2;
     const char *path = o->inputs[0];
-    char q[200];
-    err_quote(path, strlen(path), 160, q, sizeof q);
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return err_set(e, "%s: cannot open: %s", q, strerror(errno)), 2;
-    size_t cap = 1 << 16, len = 0;
-    char *buf = malloc(cap);
-    size_t got;
-    while (buf && (got = fread(buf + len, 1, cap - len, f)) > 0) {
-        len += got;
-        if (len == cap) {
-            char *nb = realloc(buf, cap * 2);
-            if (!nb) {
-                free(buf);
-                buf = NULL;
-                break;
-            }
-            buf = nb;
-            cap *= 2;
-        }
-    }
-    int read_failed = ferror(f);
-    fclose(f);
-    if (!buf || read_failed) {
-        free(buf);
-        return err_set(e, "%s: cannot read", q), 1;
-    }
+    char q[FILE_QUOTE_SIZE];
+    file_quote(path, q, sizeof q);
+    char *buf;
+    size_t len;
+    int read_rc = file_read(path, FILE_MAX_ANSI, &buf, &len);
+    if (read_rc)
+        return err_set(e, "%s: cannot read: %s", q, file_strerror(read_rc)), 2;
     int cols, rows, frames, rc = 2;
     struct decode_state d = {0};
     if (decode_measure(buf, len, q, &cols, &rows, &frames, e) == 0) {

@@ -1,13 +1,14 @@
 /* image.c: PPM / PNG / PFM output (see image.h). */
 #include "image.h"
 
-#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
 
 #include <stb_image_write.h>
+
+#include "file.h"
 
 /* not declared in stb_image_write.h unless STBIW_... is set, but libstb exports it */
 unsigned char *stbi_write_png_to_mem(const unsigned char *pixels, int stride_bytes, int x, int y,
@@ -24,40 +25,33 @@ int image_color_ext_ok(const char *path)
     return has_ext(path, ".ppm") || has_ext(path, ".png");
 }
 
-static int finish(FILE *f, const char *path, struct err *e)
-{
-    int bad = ferror(f);
-    if (fclose(f) != 0 || bad)
-        return err_set(e, "%s: write failed: %s", path, strerror(errno ? errno : EIO));
-    return 0;
-}
-
 int image_write_ppm(const char *path, const struct fb *fb, struct err *e)
 {
-    FILE *f = fopen(path, "wb");
-    if (!f)
-        return err_set(e, "%s: cannot create: %s", path, strerror(errno));
-    fprintf(f, "P6\n%d %d\n255\n", fb->w, fb->h);
-    fwrite(fb->rgb, 3, (size_t)fb->w * (size_t)fb->h, f);
-    return finish(f, path, e);
+    struct file_out o;
+    if (file_out_open(&o, path, e))
+        return -1;
+    fprintf(o.f, "P6\n%d %d\n255\n", fb->w, fb->h);
+    fwrite(fb->rgb, 3, (size_t)fb->w * (size_t)fb->h, o.f);
+    return file_out_commit(&o, e);
 }
 
 int image_write_png(const char *path, const struct fb *fb, struct err *e)
 {
     /* stbi_write_png ignores fwrite/fclose errors (a full disk would "succeed"): encode to
      * memory with stb, write and check here */
+    char q[FILE_QUOTE_SIZE];
     int len;
     unsigned char *png = stbi_write_png_to_mem(fb->rgb, fb->w * 3, fb->w, fb->h, 3, &len);
     if (!png)
-        return err_set(e, "%s: cannot encode PNG", path);
-    FILE *f = fopen(path, "wb");
-    if (!f) {
+        return err_set(e, "%s: cannot encode PNG", file_quote(path, q, sizeof q));
+    struct file_out o;
+    if (file_out_open(&o, path, e)) {
         free(png);
-        return err_set(e, "%s: cannot create: %s", path, strerror(errno));
+        return -1;
     }
-    fwrite(png, 1, (size_t)len, f);
+    fwrite(png, 1, (size_t)len, o.f);
     free(png);
-    return finish(f, path, e);
+    return file_out_commit(&o, e);
 }
 
 int image_write_color(const char *path, const struct fb *fb, struct err *e)
@@ -66,14 +60,16 @@ int image_write_color(const char *path, const struct fb *fb, struct err *e)
         return image_write_ppm(path, fb, e);
     if (has_ext(path, ".png"))
         return image_write_png(path, fb, e);
-    return err_set(e, "%s: unknown image type (use .ppm or .png)", path);
+    char q[FILE_QUOTE_SIZE];
+    return err_set(e, "%s: unknown image type (use .ppm or .png)", file_quote(path, q, sizeof q));
 }
 
 int image_write_pfm(const char *path, const struct fb *fb, struct err *e)
 {
-    FILE *f = fopen(path, "wb");
-    if (!f)
-        return err_set(e, "%s: cannot create: %s", path, strerror(errno));
+    struct file_out o;
+    if (file_out_open(&o, path, e))
+        return -1;
+    FILE *f = o.f;
     fprintf(f, "Pf\n%d %d\n-1.0\n", fb->w, fb->h);
     for (int y = fb->h - 1; y >= 0; y--) {
         for (int x = 0; x < fb->w; x++) {
@@ -87,5 +83,5 @@ int image_write_pfm(const char *path, const struct fb *fb, struct err *e)
             fwrite(b, 1, 4, f);
         }
     }
-    return finish(f, path, e);
+    return file_out_commit(&o, e);
 }

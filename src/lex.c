@@ -1,79 +1,10 @@
-/* lex.c: whole-file reads, the decimal number parser, and the comment rule for names
- * (see lex.h). */
+/* lex.c: the decimal number parser and the comment rule for names (see lex.h). */
 #include "lex.h"
 
-#include <errno.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <sys/stat.h>
-
-#define LEX_MAX_FILE ((size_t)1 << 34) /* 16 GiB: refuse before trying to allocate */
-
-int lex_read_file(const char *path, char **text_out, size_t *len_out)
-{
-    *text_out = NULL;
-    *len_out = 0;
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return errno ? errno : EIO;
-    struct stat st;
-    int rc = 0;
-    if (fstat(fileno(f), &st) != 0) {
-        rc = errno ? errno : EIO;
-        fclose(f);
-        return rc;
-    }
-    if (S_ISDIR(st.st_mode)) {
-        fclose(f);
-        return EISDIR;
-    }
-    /* regular files: one read of the known size; pipes and the like: grow as data comes */
-    /* +2: room for the NUL and one byte more, so the first read comes back short at EOF */
-    size_t cap = S_ISREG(st.st_mode) && st.st_size >= 0 ? (size_t)st.st_size + 2 : 65536;
-    if (cap > LEX_MAX_FILE) {
-        fclose(f);
-        return EFBIG;
-    }
-    char *buf = malloc(cap);
-    size_t len = 0;
-    if (!buf) {
-        fclose(f);
-        return ENOMEM;
-    }
-    for (;;) {
-        if (len + 1 >= cap) {
-            if (cap >= LEX_MAX_FILE) {
-                rc = EFBIG;
-                break;
-            }
-            char *nb = realloc(buf, cap * 2);
-            if (!nb) {
-                rc = ENOMEM;
-                break;
-            }
-            buf = nb;
-            cap *= 2;
-        }
-        size_t want = cap - 1 - len, got = fread(buf + len, 1, want, f);
-        len += got;
-        if (got < want) {
-            if (ferror(f))
-                rc = errno ? errno : EIO;
-            break;
-        }
-    }
-    fclose(f);
-    if (rc) {
-        free(buf);
-        return rc;
-    }
-    buf[len] = '\0';
-    *text_out = buf;
-    *len_out = len;
-    return 0;
-}
 
 static const double pow10_exact[23] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
                                        1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,

@@ -1,5 +1,5 @@
 /* test_lex.c: the text scanning OBJ and MTL share: whitespace and tokens, the comment rule
- * for names, whole-file reads, and the number parser (bit-identical to glibc strtof). */
+ * for names, and the number parser (bit-identical to glibc strtof). */
 #include <errno.h>
 #include <math.h>
 #include <stdbool.h>
@@ -67,52 +67,6 @@ TEST(name_comment_starts_at_a_free_standing_hash)
     }
     const char *s = "ab #c";
     CHECK(lex_comment_start(s, s + 3) == s + 3); /* a '#' past end does not count */
-}
-
-/* ---- whole-file reads ---- */
-
-TEST(read_file_returns_every_byte_nul_terminated)
-{
-    const char *path = "tests/data/obj/checker2x2.png"; /* binary: holds NUL bytes */
-    struct stat st;
-    if (stat(path, &st) != 0) {
-        test_fail(t, __FILE__, __LINE__, "%s missing (run from the repository root)", path);
-        return;
-    }
-    char *text;
-    size_t len;
-    REQUIRE(lex_read_file(path, &text, &len) == 0);
-    CHECK_EQ_INT(len, st.st_size);
-    CHECK(memcmp(text, "\x89PNG\r\n\x1a\n", 8) == 0);
-    CHECK(memchr(text, '\0', len) != NULL);
-    CHECK_EQ_INT(text[len], '\0');
-    FILE *f = fopen(path, "rb");
-    REQUIRE(f);
-    char *want = malloc(len + 1);
-    REQUIRE(want);
-    CHECK_EQ_INT(fread(want, 1, len + 1, f), len);
-    fclose(f);
-    CHECK(memcmp(text, want, len) == 0);
-    free(want);
-    free(text);
-
-    /* not a regular file: read until EOF */
-    REQUIRE(lex_read_file("/dev/null", &text, &len) == 0);
-    CHECK_EQ_INT(len, 0);
-    CHECK(text && text[0] == '\0');
-    free(text);
-}
-
-TEST(read_file_errors_are_errno_values)
-{
-    char *text = (char *)1;
-    size_t len = 7;
-    CHECK_EQ_INT(lex_read_file("tests/data/obj/no_such.obj", &text, &len), ENOENT);
-    CHECK(text == NULL);
-    CHECK_EQ_INT(len, 0);
-    text = (char *)1;
-    CHECK_EQ_INT(lex_read_file("tests/data/obj", &text, &len), EISDIR);
-    CHECK(text == NULL);
 }
 
 /* ---- numbers ---- */
