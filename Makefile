@@ -2,12 +2,12 @@
 CC      ?= cc
 PREFIX  ?= /usr/local
 BUILD   ?= build
-PKGS    := ncursesw stb
+PKGS    := ncursesw stb libpng libjpeg assimp
 WARN    := -std=c11 -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototypes
 DEFS    := -D_DEFAULT_SOURCE -D_POSIX_C_SOURCE=200809L -fno-math-errno -ffp-contract=off
 OPT     ?= -O3 -g
 CFLAGS  += $(WARN) $(DEFS) $(OPT) -Iinclude -DRASTTY_DATADIR='"$(PREFIX)/share/rastty"'  $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
-LDLIBS  += $(shell pkg-config --libs $(PKGS) 2>/dev/null || echo -lncursesw -lstb) -lpthread -lm
+LDLIBS  += $(shell pkg-config --libs $(PKGS) 2>/dev/null || echo -lncursesw -lstb -lpng16 -ljpeg -lassimp) -lpthread -lm
 
 # `make V=1` shows full command lines
 Q       := $(if $(V),,@)

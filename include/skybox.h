@@ -1,6 +1,9 @@
 /* skybox.h: a cubemap drawn behind everything, following the camera's rotation only.
  *
- * Faces: posx negx posy negy posz negz, any stb_image format, square, all the same size.
+ * Faces: posx negx posy negy posz negz, any texture format (texture.h), square, all the same
+ * size; faces larger than SKYBOX_MAX_FACE are downscaled while decoding (a face spans 90
+ * degrees: at terminal sizes 2048 texels are more than any frame shows), and decoded one
+ * at a time.
  * Orientation is OpenGL's cube-map convention: a direction d picks the face of its largest
  * component, then (sc, tc, ma) from the GL table, s = (sc/|ma| + 1)/2, t = (tc/|ma| + 1)/2,
  * with t = 0 the FIRST (top) row of the face image and s = 0 its left column.
@@ -23,6 +26,7 @@
 #include "fb.h"
 
 #define SKYBOX_MAX_LEVELS 12
+#define SKYBOX_MAX_FACE 2048
 
 struct skybox_level {
     int n;          /* face interior is n x n; stored (n+2) x (n+2) with the border */

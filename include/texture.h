@@ -1,9 +1,14 @@
 /* texture.h: decoded images and how the pipeline samples them.
  *
- * Owns: texel storage (RGBA8, row 0 = the image's top row, as the file stores it).
- * Loading goes through stb_image (PNG, JPG, TGA, BMP, GIF, PSD, PNM, HDR). HDR images are
- * tone-mapped at load time with Reinhard (x / (1 + x)) followed by a 1/2.2 gamma, so they
- * become ordinary display-referred 8-bit texels like every other texture.
+ * Owns: texel storage (RGBA8, row 0 = the image's top row, as the file stores it), and the
+ * texture cache a scene loads through. Decoding is imgdec.h's (PNG, JPEG, TGA, BMP, GIF,
+ * PSD, PNM, HDR, chosen by content; HDR tone-mapped to 8 bits), files are read by file.h
+ * (regular files only, at most FILE_MAX_IMAGE bytes).
+ *
+ * Memory: a texture is at most TEXTURE_MAX_SIDE texels on a side (larger images are
+ * downscaled while decoding, with a warning: at terminal sizes no frame can show more).
+ * A texture cache loads each file once (keyed by device and inode, so two spellings of one
+ * path share it) and refuses textures beyond TEXTURE_BUDGET bytes of texels in total.
  *
  * Sampling conventions (shared with the reference renderer):
  *   - OBJ v = 1 is the image's top row, v = 0 its bottom edge.
@@ -15,20 +20,52 @@
 #ifndef RASTTY_TEXTURE_H
 #define RASTTY_TEXTURE_H
 
+#include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 
 #include "err.h"
 #include "simd.h"
 
+#define TEXTURE_MAX_SIDE 4096
+#define TEXTURE_BUDGET ((size_t)512 << 20) /* texel bytes per cache (per scene) */
+
 struct texture {
     int w, h;
     uint8_t *rgba; /* w*h*4 bytes, row-major, row 0 = top of the image */
+    bool borrowed; /* rgba belongs to a texture cache: texture_free leaves it alone */
+};
+
+/* Textures loaded once per file; entries never move, so pointers to them stay valid until
+ * texture_cache_free. Zero-initialise before use. */
+struct texture_cache {
+    struct texture_cache_entry {
+        unsigned long long dev, ino;
+        struct texture tex;
+    } **entries;
+    int n, cap;
+    size_t bytes;  /* texel bytes held */
+    size_t budget; /* 0 = TEXTURE_BUDGET */
 };
 
 enum tex_filter { TEX_NEAREST, TEX_BILINEAR, TEX_FILTER_COUNT };
 
-/* Decode an image file; on failure fills e with "path: reason" and returns -1. */
-int texture_load(const char *path, struct texture *out, struct err *e);
+/* Decode an image file (owned by out); on failure fills e with "path: reason" and returns -1.
+ * Larger than max_side (TEXTURE_MAX_SIDE for ordinary textures) on a side: downscaled, with
+ * a warning added to w (may be NULL). */
+int texture_load(const char *path, int max_side, struct texture *out, struct warnings *w,
+                 struct err *e);
+/* Through the cache: the same file again gives the same texture. *out points into the
+ * cache. Errors as texture_load, plus the budget: "path: 1024x1024 texture would pass the
+ * 512 MiB texture budget". */
+int texture_cache_load(struct texture_cache *c, const char *path, const struct texture **out,
+                       struct warnings *w, struct err *e);
+/* An image already in memory (an embedded glTF image), added to the cache's budget when c
+ * is not NULL (then out is borrowed from it). */
+int texture_cache_decode(struct texture_cache *c, const uint8_t *data, size_t len,
+                         const char *name, struct texture *out, struct warnings *w,
+                         struct err *e);
+void texture_cache_free(struct texture_cache *c);
 /* Wrap caller-made texels (copied). */
 int texture_from_rgba(int w, int h, const uint8_t *rgba, struct texture *out, struct err *e);
 void texture_free(struct texture *t);

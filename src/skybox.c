@@ -103,30 +103,31 @@ static int build_chain(struct skybox *s, struct err *e)
 int skybox_load(struct skybox *s, const char *const paths[6], struct err *e)
 {
     memset(s, 0, sizeof *s);
-    struct texture t[6];
-    memset(t, 0, sizeof t);
+    /* one face at a time, straight into level 0: never six decoded images at once */
     int rc = 0;
     for (int f = 0; f < 6 && rc == 0; f++) {
-        rc = texture_load(paths[f], &t[f], e);
-        if (rc == 0 && (t[f].w != t[f].h || t[f].w != t[0].w)) {
+        struct texture t;
+        rc = texture_load(paths[f], SKYBOX_MAX_FACE, &t, NULL, e);
+        if (rc)
+            break;
+        int n = s->n_levels ? s->level[0].n : t.w;
+        if (t.w != t.h || t.w != n) {
             char q[200];
             rc = err_set(e, "%s: skybox faces must be square and equal (%dx%d, first face %dx%d)",
-                         err_quote(paths[f], strlen(paths[f]), 160, q, sizeof q), t[f].w,
-                         t[f].h, t[0].w, t[0].h);
+                         err_quote(paths[f], strlen(paths[f]), 160, q, sizeof q), t.w, t.h, n,
+                         n);
+        } else if (!s->n_levels && alloc_level(&s->level[0], n)) {
+            rc = err_set(e, "out of memory for the skybox");
+        } else {
+            s->n_levels = 1;
+            for (int j = 0; j < t.h; j++)
+                for (int i = 0; i < t.w; i++)
+                    memcpy(texel(&s->level[0], f, i, j), t.rgba + ((size_t)j * t.w + i) * 4, 3);
         }
+        texture_free(&t);
     }
-    if (rc == 0 && alloc_level(&s->level[0], t[0].w))
-        rc = err_set(e, "out of memory for the skybox");
-    if (rc == 0) {
-        s->n_levels = 1;
-        for (int f = 0; f < 6; f++)
-            for (int j = 0; j < t[f].h; j++)
-                for (int i = 0; i < t[f].w; i++)
-                    memcpy(texel(&s->level[0], f, i, j), t[f].rgba + ((size_t)j * t[f].w + i) * 4, 3);
+    if (rc == 0)
         rc = build_chain(s, e);
-    }
-    for (int f = 0; f < 6; f++)
-        texture_free(&t[f]);
     if (rc)
         skybox_free(s);
     return rc;

@@ -4,6 +4,11 @@
 #include <stdio.h>
 #include <string.h>
 
+#include <stdlib.h>
+#include <time.h>
+
+#include "file.h"
+#include "imgdec.h"
 #include "test.h"
 #include "texture.h"
 
@@ -74,14 +79,17 @@ TEST(texture_load_formats_and_errors)
 {
     struct texture tx;
     struct err e;
-    REQUIRE(texture_load("tests/data/obj/checker2x2.png", &tx, &e) == 0);
+    REQUIRE(texture_load("tests/data/obj/checker2x2.png", TEXTURE_MAX_SIDE, &tx, NULL, &e) == 0);
     CHECK_EQ_INT(tx.w, 2);
     CHECK_EQ_INT(tx.h, 2);
     texture_free(&tx);
-    CHECK(texture_load("tests/data/obj/corrupt.png", &tx, &e) == -1);
+    CHECK(texture_load("tests/data/obj/corrupt.png", TEXTURE_MAX_SIDE, &tx, NULL, &e) == -1);
     CHECK_STR_CONTAINS(e.msg, "corrupt.png");
-    CHECK(texture_load("tests/data/obj/no-such-file.png", &tx, &e) == -1);
+    CHECK(texture_load("tests/data/obj/no-such-file.png", TEXTURE_MAX_SIDE, &tx, NULL, &e) == -1);
     CHECK_STR_CONTAINS(e.msg, "no-such-file.png");
+    /* special files are refused before any read: /dev/zero would never end */
+    CHECK(texture_load("/dev/zero", TEXTURE_MAX_SIDE, &tx, NULL, &e) == -1);
+    CHECK(strcmp(e.msg, "/dev/zero: cannot open texture: a device, not a regular file") == 0);
 }
 
 TEST(texture_hdr_is_tone_mapped_not_clipped)
@@ -95,7 +103,7 @@ TEST(texture_hdr_is_tone_mapped_not_clipped)
     snprintf(path, sizeof path, "%s/sky_hdr/venice_sunset_1k.hdr", dir);
     struct texture tx;
     struct err e;
-    REQUIRE(texture_load(path, &tx, &e) == 0);
+    REQUIRE(texture_load(path, TEXTURE_MAX_SIDE, &tx, NULL, &e) == 0);
     CHECK_EQ_INT(tx.w, 1024);
     CHECK_EQ_INT(tx.h, 512);
     /* radiance up to 6496 (the sun): Reinhard keeps everything below white except the
@@ -110,4 +118,192 @@ TEST(texture_hdr_is_tone_mapped_not_clipped)
     CHECK(mean > 60 && mean < 200);
     CHECK(white < n / 1000);
     texture_free(&tx);
+}
+
+/* ---- decoders: every format through imgdec, byte-exact on small images ---- */
+
+static int decode(const void *data, size_t len, struct texture *tx, struct warnings *w,
+                  struct err *e)
+{
+    if (w)
+        memset(w, 0, sizeof *w);
+    return imgdec_decode(data, len, "t", TEXTURE_MAX_SIDE, tx, w, e);
+}
+
+/* issue 12, defect 1: 16-bit PGM/PPM crashed stb_image (reads past its buffer) */
+TEST(pnm_16_bit_is_decoded_not_a_crash)
+{
+    struct texture tx;
+    struct err e;
+    /* 2x1 P5, maxval 65535: 0xffff, 0x8000 */
+    static const uint8_t pgm[] = "P5 2 1 65535\n\xff\xff\x80\x00";
+    REQUIRE(decode(pgm, sizeof pgm - 1, &tx, NULL, &e) == 0);
+    CHECK_EQ_INT(tx.w, 2);
+    CHECK_EQ_INT(tx.rgba[0], 255);
+    CHECK_EQ_INT(tx.rgba[2], 255);
+    CHECK_EQ_INT(tx.rgba[4], 128); /* 32768 * 255 / 65535, rounded */
+    CHECK_EQ_INT(tx.rgba[7], 255);
+    texture_free(&tx);
+    /* P6, maxval 1000 (16-bit samples), with a comment in the header */
+    static const uint8_t ppm[] = "P6\n# c\n1 1\n1000\n\x03\xe8\x01\xf4\x00\x00";
+    REQUIRE(decode(ppm, sizeof ppm - 1, &tx, NULL, &e) == 0);
+    CHECK_EQ_INT(tx.rgba[0], 255);
+    CHECK_EQ_INT(tx.rgba[1], 128);
+    CHECK_EQ_INT(tx.rgba[2], 0);
+    texture_free(&tx);
+    /* the 15-byte file of the report: a header promising more than the file holds */
+    static const uint8_t short16[] = "P5 9 9 65535\n\x01\x02";
+    CHECK_EQ_INT(decode(short16, sizeof short16 - 1, &tx, NULL, &e), -1);
+    CHECK(strcmp(e.msg, "t: truncated PNM: 2 bytes of pixels, 9x9 needs 162") == 0);
+    CHECK(tx.rgba == NULL);
+    /* the size that made stb_image crash (SIGSEGV) outright: 1024x1024 16-bit */
+    size_t big_n = 20 + (size_t)1024 * 1024 * 2;
+    uint8_t *big = malloc(big_n);
+    REQUIRE(big);
+    int hn = snprintf((char *)big, 20, "P5 1024 1024 65535\n");
+    for (size_t i = (size_t)hn; i < big_n; i++)
+        big[i] = (uint8_t)i;
+    REQUIRE(decode(big, (size_t)hn + (size_t)1024 * 1024 * 2, &tx, NULL, &e) == 0);
+    CHECK_EQ_INT(tx.w, 1024);
+    uint8_t want = (uint8_t)((((unsigned)big[hn] << 8 | big[hn + 1]) * 255u + 32767) / 65535);
+    CHECK_EQ_INT(tx.rgba[0], want);
+    texture_free(&tx);
+    free(big);
+    static const uint8_t ascii[] = "P3 1 1 255\n1 2 3\n";
+    CHECK_EQ_INT(decode(ascii, sizeof ascii - 1, &tx, NULL, &e), -1);
+    CHECK_STR_CONTAINS(e.msg, "P3 is not supported");
+}
+
+/* issue 12, defect 2: truncated Radiance HDR made stb_image loop forever */
+TEST(hdr_truncated_or_malformed_fails_at_once)
+{
+    struct texture tx;
+    struct err e;
+    /* a 135-byte file claiming 9994x9999 (stb accepted it as a 1.5 GB image) */
+    char big[136];
+    int n = snprintf(big, sizeof big, "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 9999 +X 9994\n");
+    memset(big + n, 0x02, sizeof big - 1 - (size_t)n);
+    clock_t t0 = clock();
+    CHECK_EQ_INT(decode(big, 135, &tx, NULL, &e), -1);
+    CHECK_STR_CONTAINS(e.msg, "truncated HDR");
+    /* an RLE run of length 0 (what a file cut short reads as in stb): stb's loop never
+     * advances */
+    uint8_t zero[200];
+    n = snprintf((char *)zero, sizeof zero,
+                 "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1 +X 16\n");
+    const uint8_t line[] = {2, 2, 0, 16, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+    memcpy(zero + n, line, sizeof line);
+    CHECK_EQ_INT(decode(zero, (size_t)n + sizeof line, &tx, NULL, &e), -1);
+    CHECK_STR_CONTAINS(e.msg, "bad or truncated HDR scanline 0");
+    /* a valid 8x1 RLE image: runs of 8 (value 128, exponent 129 = 1.0 -> Reinhard 0.5) */
+    const uint8_t good[] = {2, 2, 0, 8, 128 + 8, 128, 128 + 8, 128, 128 + 8, 128, 128 + 8, 129};
+    n = snprintf((char *)zero, sizeof zero, "#?RGBE\n\n-Y 1 +X 8\n");
+    memcpy(zero + n, good, sizeof good);
+    REQUIRE(decode(zero, (size_t)n + sizeof good, &tx, NULL, &e) == 0);
+    CHECK_EQ_INT(tx.w, 8);
+    CHECK_EQ_INT(tx.rgba[0], 186); /* pow(0.5, 1/2.2) * 255 */
+    CHECK_EQ_INT(tx.rgba[4 * 7 + 2], 186);
+    texture_free(&tx);
+    /* the shared HDR cut at the sizes of the report: errors, each at once */
+    const char *dir = test_models_dir();
+    if (dir) {
+        char path[512];
+        snprintf(path, sizeof path, "%s/sky_hdr/venice_sunset_1k.hdr", dir);
+        char *data;
+        size_t len;
+        REQUIRE(file_read(path, FILE_MAX_IMAGE, &data, &len) == 0);
+        static const size_t cuts[] = {200, 1000, 10000, 100000, 500000};
+        for (size_t i = 0; i < sizeof cuts / sizeof cuts[0]; i++) {
+            CHECK_EQ_INT(decode(data, cuts[i], &tx, NULL, &e), -1);
+            CHECK_STR_CONTAINS(e.msg, "HDR");
+        }
+        free(data);
+    }
+    CHECK((double)(clock() - t0) / CLOCKS_PER_SEC < 10); /* not a time bar: a hang guard */
+}
+
+/* issue 12, defect 6: JPEG goes to libjpeg-turbo, never to stb_image */
+TEST(jpeg_and_png_use_their_libraries)
+{
+    const char *dir = test_models_dir();
+    struct texture tx;
+    struct err e;
+    /* a JPEG cut short: libjpeg's words, not stb's */
+    static const uint8_t notjpeg[] = "\xff\xd8\xff\xe0\x00\x10JFIF\x00";
+    CHECK_EQ_INT(decode(notjpeg, sizeof notjpeg - 1, &tx, NULL, &e), -1);
+    CHECK_STR_CONTAINS(e.msg, "t: bad JPEG (");
+    /* the input a fuzzer found to make stb_image write one past its 257-byte Huffman size
+     * table (UBSan: index 257 out of bounds): libjpeg refuses it cleanly */
+    struct texture tx2;
+    CHECK_EQ_INT(texture_load("tests/data/tex/stb_jpeg_ub.jpg", TEXTURE_MAX_SIDE, &tx2, NULL, &e),
+                 -1);
+    CHECK(strcmp(e.msg, "tests/data/tex/stb_jpeg_ub.jpg: bad JPEG (Bogus Huffman table "
+                        "definition)") == 0);
+    static const uint8_t notpng[] = "\x89PNG\r\n\x1a\n\x00\x00\x00\x0dIHDR";
+    CHECK_EQ_INT(decode(notpng, sizeof notpng - 1, &tx, NULL, &e), -1);
+    CHECK_STR_CONTAINS(e.msg, "t: bad PNG (");
+    if (!dir) {
+        test_skip(t, "no shared models for the JPEG cube map");
+        return;
+    }
+    char path[512];
+    snprintf(path, sizeof path, "%s/skybox/posx.jpg", dir);
+    REQUIRE(texture_load(path, TEXTURE_MAX_SIDE, &tx, NULL, &e) == 0);
+    CHECK_EQ_INT(tx.w, 512);
+    CHECK_EQ_INT(tx.h, 512);
+    texture_free(&tx);
+    /* 1/2 scaling inside libjpeg: 256x256 */
+    struct warnings w = {0};
+    REQUIRE(texture_load(path, 256, &tx, &w, &e) == 0);
+    CHECK_EQ_INT(tx.w, 256);
+    CHECK_EQ_INT(w.n, 1);
+    texture_free(&tx);
+}
+
+/* issue 12, defect 4: a 261 KB 16384^2 PNG cost 2 GB; the same path 64 times 16 GB */
+TEST(huge_texture_downscaled_and_loaded_once)
+{
+    const char *huge = "tests/data/tex/huge16384.png";
+    struct texture_cache c = {0};
+    struct warnings w = {0};
+    struct err e;
+    const struct texture *first = NULL, *tx;
+    for (int i = 0; i < 64; i++) {
+        REQUIRE(texture_cache_load(&c, huge, &tx, &w, &e) == 0);
+        if (i == 0)
+            first = tx;
+        CHECK(tx == first);
+    }
+    CHECK_EQ_INT(c.n, 1);
+    CHECK_EQ_INT(first->w, TEXTURE_MAX_SIDE);
+    CHECK_EQ_INT(first->h, TEXTURE_MAX_SIDE);
+    CHECK_EQ_INT(c.bytes, (size_t)TEXTURE_MAX_SIDE * TEXTURE_MAX_SIDE * 4);
+    /* left half white, right half black, box-filtered */
+    CHECK_EQ_INT(first->rgba[0], 255);
+    CHECK_EQ_INT(first->rgba[(size_t)(TEXTURE_MAX_SIDE - 1) * 4], 0);
+    CHECK_EQ_INT(w.n, 1);
+    CHECK(strcmp(w.msg[0], "tests/data/tex/huge16384.png: 16384x16384 image downscaled to "
+                           "4096x4096 (limit 4096 per side)") == 0);
+    /* a second spelling of the same file is the same texture */
+    REQUIRE(texture_cache_load(&c, "tests/data/tex/../tex/huge16384.png", &tx, &w, &e) == 0);
+    CHECK(tx == first);
+    texture_cache_free(&c);
+    /* over the budget: refused, named */
+    struct texture_cache small = {.budget = 1 << 20};
+    CHECK_EQ_INT(texture_cache_load(&small, huge, &tx, &w, &e), -1);
+    CHECK(strcmp(e.msg, "tests/data/tex/huge16384.png: texture would pass the 1 MiB texture "
+                        "budget (0 MiB in use)") == 0);
+    CHECK_EQ_INT(small.bytes, 0);
+    texture_cache_free(&small);
+}
+
+TEST(not_an_image_is_named)
+{
+    struct texture tx;
+    struct err e;
+    static const uint8_t text[] = "this is not an image\n";
+    CHECK_EQ_INT(decode(text, sizeof text - 1, &tx, NULL, &e), -1);
+    CHECK_STR_CONTAINS(e.msg, "t: not a readable image");
+    CHECK(strcmp(imgdec_kind((const uint8_t *)"\xff\xd8\xff\xe0", 4), "JPEG image") == 0);
+    CHECK(imgdec_kind(text, sizeof text - 1) == NULL);
 }
