@@ -19,7 +19,8 @@ int cmd_bench(const struct options *o, struct err *e);
 void cmd_view_setup(const struct options *o, const struct scene *s, double aspect, bool frame,
                     struct camera *cam_out, struct render_opts *ro_out);
 void cmd_print_stats(const struct frame_stats *st);
-/* scene_load, then --texture over every item; on failure nothing is left allocated. */
+/* scene_load, then --texture over every item, then the scene's warnings to stderr (one line
+ * each, "warning: file:line: ..."); on failure nothing is left allocated. */
 int cmd_load_scene(const struct options *o, const char *path, struct scene *s, struct err *e);
 
 #endif

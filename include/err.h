@@ -13,6 +13,20 @@ struct err {
     char msg[320];
 };
 
+/* Warnings: things wrong with an input that still draws (a material's missing texture, an
+ * unknown map_Kd option, a vt index past the end). Loaders add them; the command prints
+ * them ("file:line: warning: ...") and carries on. The first WARN_KEEP are kept, the rest
+ * only counted. */
+#define WARN_KEEP 16
+struct warnings {
+    char msg[WARN_KEEP][320];
+    int n;       /* kept in msg */
+    int dropped; /* more than WARN_KEEP: only counted */
+};
+
+/* printf-style; w may be NULL (the warning is dropped). */
+void warn_add(struct warnings *w, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
 /* printf-style; always returns -1 so callers can `return err_set(e, ...)`. e may be NULL. */
 int err_set(struct err *e, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 

@@ -1,6 +1,6 @@
 /* mesh.h: an indexed triangle mesh with its materials, as loaded from disk.
  *
- * Loaded once (obj.c fills it), never modified by rendering. Vertices are unique
+ * Loaded once (a loader of model.h fills it), never modified by rendering. Vertices are unique
  * (position, uv, normal, material) combinations, like a GPU vertex buffer, so the vertex stage
  * transforms each one once per frame and every triangle is three indices into them.
  *
@@ -47,8 +47,11 @@ struct mesh {
     uint32_t n_tris;
     struct material *materials; /* at least one */
     uint32_t n_materials;
-    struct texture *textures; /* map_Kd images, loaded */
+    struct texture *textures; /* map_Kd images, loaded (owned, or borrowed from a cache) */
     uint32_t n_textures;
+    uint8_t (*colors)[3]; /* per vertex colour from the file (PLY), n_verts long; NULL when
+                             the file has none. Not drawn yet: the pipeline would multiply
+                             the albedo by it (interpolated like a uv). */
     bool has_uvs;     /* some corner had a vt */
     bool has_normals; /* some corner had a vn (others may have generated normals) */
     float bbox_min[3], bbox_max[3]; /* over the positions used by triangles */
@@ -67,6 +70,7 @@ struct mesh_source {
     const float *uv;  /* n_uv * 2, may be NULL when n_uv == 0 */
     const float *nrm; /* n_nrm * 3, need not be unit length (mesh_build normalises) */
     uint32_t n_pos, n_uv, n_nrm;
+    const uint8_t *rgb; /* n_pos * 3 vertex colours (per position), or NULL */
     const struct mesh_corner *corners; /* n_tris * 3, triangle by triangle */
     const uint16_t *tri_material; /* per triangle; NULL: all 0 */
     uint32_t n_tris;

@@ -2,12 +2,16 @@
  * background. Holds only what a scene uses; owns its meshes, textures and sky; the pipeline
  * borrows meshes through the draw items.
  *
- * Sources: one model (scene_load_model: the OBJ as given, identity transform) or a scene file
- * (scene_load_file, format below; every error is "file:line: message").
+ * Sources: one model (scene_load_model: any format model.h reads, as given, identity
+ * transform) or a scene file (scene_load_file, format below; every error is
+ * "file:line: message"). Textures load through the scene's texture cache: each file once,
+ * within one budget (texture.h). Things wrong with a model that still draws (a material's
+ * missing texture, ...) are collected in `warnings` for the caller to print.
  *
  * Scene file (.rsc), one statement per line, '#' starts a comment, paths relative to the
  * scene file, a path with spaces in double quotes:
  *   model PATH [at X Y Z] [rotate X Y Z] [scale S | scale X Y Z] [texture PATH] [kd R G B]
+ *         PATH: any model format (model.h)
  *         rotate = degrees about X, then Y, then Z; model matrix = translate * rotate * scale;
  *         texture replaces the OBJ's map_Kd, kd (0..1) replaces its diffuse colour
  *   light X Y Z [R G B]           direction toward the light, colour 0..1 (default white);
@@ -32,10 +36,10 @@
 
 struct scene {
     char name[64];                      /* for the HUD: file name, printable ASCII only */
-    struct mesh meshes[SCENE_MAX_ITEMS]; /* distinct OBJ files, n_meshes of them */
+    struct mesh meshes[SCENE_MAX_ITEMS]; /* distinct model files, n_meshes of them */
     int n_meshes;
-    struct texture overrides[SCENE_MAX_ITEMS]; /* per item, for `texture` */
-    struct texture texture_all;         /* scene_set_texture (--texture): every item */
+    struct texture_cache textures;      /* every texture of the scene, once per file */
+    struct warnings warnings;           /* from loading: the caller prints them */
     float kd_override[SCENE_MAX_ITEMS][3];     /* per item, for `kd` */
     struct draw_item items[SCENE_MAX_ITEMS];
     int n_items;
@@ -50,7 +54,7 @@ struct scene {
     vec3 bound_lo, bound_hi;            /* world-space box around every item */
 };
 
-/* One OBJ drawn as given (identity model matrix). */
+/* One model drawn as given (identity model matrix). */
 int scene_load_model(const char *obj_path, struct scene *out, struct err *e);
 /* A scene file (format above). */
 int scene_load_file(const char *path, struct scene *out, struct err *e);

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <time.h>
 
+#include "file.h"
 #include "image.h"
 #include "pipeline.h"
 #include "scene.h"
@@ -42,6 +43,11 @@ int cmd_load_scene(const struct options *o, const char *path, struct scene *s, s
         scene_free(s);
         return -1;
     }
+    /* the model still draws: say what was wrong with it, and go on */
+    for (int i = 0; i < s->warnings.n; i++)
+        fprintf(stderr, "warning: %s\n", s->warnings.msg[i]);
+    if (s->warnings.dropped)
+        fprintf(stderr, "warning: ... and %d more warnings\n", s->warnings.dropped);
     return 0;
 }
 
@@ -65,8 +71,10 @@ static int cmp_double(const void *a, const void *b)
 
 int cmd_render(const struct options *o, struct err *e)
 {
+    char q[FILE_QUOTE_SIZE];
     if (!image_color_ext_ok(o->out))
-        return err_set(e, "rastty render: --out %s: use a .ppm or .png file name", o->out), 2;
+        return err_set(e, "rastty render: --out %s: use a .ppm or .png file name",
+                       file_quote(o->out, q, sizeof q)), 2;
     struct scene scene;
     struct timespec l0, l1;
     clock_gettime(CLOCK_MONOTONIC, &l0);

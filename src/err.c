@@ -15,6 +15,20 @@ int err_set(struct err *e, const char *fmt, ...)
     return -1;
 }
 
+void warn_add(struct warnings *w, const char *fmt, ...)
+{
+    if (!w)
+        return;
+    if (w->n == WARN_KEEP) {
+        w->dropped++;
+        return;
+    }
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(w->msg[w->n++], sizeof w->msg[0], fmt, ap);
+    va_end(ap);
+}
+
 const char *err_quote(const char *text, size_t len, size_t max, char *out, size_t out_size)
 {
     size_t n = 0;

@@ -147,6 +147,8 @@ static void drop_geometry(struct mesh *m)
     free(m->tris);
     free(m->tri_material);
     free(m->vert_material);
+    free(m->colors);
+    m->colors = NULL;
     m->verts = NULL;
     m->tris = NULL;
     m->tri_material = NULL;
@@ -160,6 +162,7 @@ int mesh_build(const struct mesh_source *s, struct mesh *out, struct err *e)
     out->tris = NULL;
     out->tri_material = NULL;
     out->vert_material = NULL;
+    out->colors = NULL;
     out->n_verts = out->n_tris = 0;
     out->has_uvs = out->has_normals = false;
     if (s->n_tris == 0)
@@ -228,6 +231,8 @@ int mesh_build(const struct mesh_source *s, struct mesh *out, struct err *e)
     out->n_verts = n;
     out->verts = malloc((size_t)n * sizeof *out->verts);
     out->vert_material = malloc((size_t)n * sizeof *out->vert_material);
+    if (s->rgb && !(out->colors = malloc((size_t)n * sizeof *out->colors)))
+        goto oom;
     double *acc = NULL;
     if (!out->verts || !out->vert_material || (need_generated && !(acc = position_normals(s))))
         goto oom;
@@ -249,6 +254,8 @@ int mesh_build(const struct mesh_source *s, struct mesh *out, struct err *e)
             normalise_or_z(&acc[(size_t)k->pos * 3], v->nrm);
         }
         out->vert_material[i] = (uint16_t)k->material;
+        if (out->colors)
+            memcpy(out->colors[i], &s->rgb[(size_t)k->pos * 3], 3);
     }
     free(acc);
     free(keys);

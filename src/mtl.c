@@ -7,8 +7,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "file.h"
 #include "lex.h"
-#include "texture.h"
+#include "material.h"
+#include "strmap.h"
 
 #define MTL_QUOTE_PATH 100 /* bytes of a path shown in a message */
 #define MTL_QUOTE_TEXT 40  /* bytes of file text shown in a message */
@@ -22,6 +24,7 @@ struct mparse {
     char where[MTL_QUOTE_PATH + 8];
     unsigned long line;
     struct err *e;
+    struct warnings *w;
 };
 
 static int fail_text(struct mparse *P, const char *what, const char *t, const char *te)
@@ -119,7 +122,9 @@ static int parse_colour(struct mparse *P, const char *kw, const char *p, const c
     return 0;
 }
 
-/* map_Kd options and how many values each takes (min fixed, up to max if numbers). */
+/* Every map_Kd option of the MTL format and how many values each takes (min fixed, up to
+ * max if numbers): -blendu/-blendv/-cc/-clamp on|off, -bm/-boost/-texres one value, -mm base
+ * gain, -o/-s/-t u [v [w]], -imfchan r|g|b|m|l|z, -type (reflection maps). */
 static const struct {
     const char *name;
     int min, max;
@@ -141,13 +146,33 @@ static int parse_map(struct mparse *P, const char *p, const char *end)
     for (;;) {
         p = lex_skip_ws(p, end);
         const char *t = p, *te = lex_tok_end(p, end);
+        if (te - t < 2 || *t != '-' || is_number(t, te))
+            break; /* not an option: the file name starts here */
         size_t k, n_opt = sizeof map_options / sizeof map_options[0];
         for (k = 0; k < n_opt; k++)
             if (lex_tok_is(t, te, map_options[k].name))
                 break;
-        if (k == n_opt)
-            break; /* not an option: the file name starts here */
         p = te;
+        if (k == n_opt) {
+            /* an option the format does not define (exporters invent them: -colorspace
+             * sRGB): skip it and one value, keeping at least one word for the name */
+            const char *v = lex_skip_ws(p, end), *ve = lex_tok_end(v, end);
+            char q[MTL_QUOTE_TEXT + 8];
+            err_quote(t, (size_t)(te - t), MTL_QUOTE_TEXT, q, sizeof q);
+            if (v == end) { /* nothing follows: "-name.png" is the file name */
+                p = t;
+                break;
+            }
+            if (lex_skip_ws(ve, end) < end) {
+                warn_add(P->w, "%s:%lu: unknown map_Kd option '%s' skipped with its value",
+                         P->where, P->line, q);
+                p = ve;
+            } else {
+                warn_add(P->w, "%s:%lu: unknown map_Kd option '%s' skipped", P->where, P->line,
+                         q);
+            }
+            continue;
+        }
         for (int a = 0; a < map_options[k].max; a++) {
             const char *q = lex_skip_ws(p, end), *qe = lex_tok_end(q, end);
             if (q == end) {
@@ -168,19 +193,9 @@ static int parse_map(struct mparse *P, const char *p, const char *end)
         return err_set(P->e, "%s:%lu: map_Kd file name contains a NUL byte", P->where, P->line);
     struct mtl_lib *L = P->lib;
     /* relative names are relative to the MTL file's directory */
-    size_t dir = 0;
-    if (P->path && *p != '/') {
-        const char *slash = strrchr(P->path, '/');
-        dir = slash ? (size_t)(slash - P->path) + 1 : 0;
-    }
-    size_t nlen = (size_t)(end - p);
-    char *full = malloc(dir + nlen + 1);
+    char *full = material_path_beside(P->path, p, (size_t)(end - p));
     if (!full)
         return oom(P);
-    if (dir)
-        memcpy(full, P->path, dir);
-    memcpy(full + dir, p, nlen);
-    full[dir + nlen] = '\0';
     free(L->texture_paths[L->n - 1]);
     L->texture_paths[L->n - 1] = full;
     L->texture_lines[L->n - 1] = P->line;
@@ -204,8 +219,9 @@ static int parse_line(struct mparse *P, const char *p, const char *end)
     end = lex_rtrim(p, end);
     p = lex_skip_ws(p, end);
     if (lex_tok_is(kw, kwe, "newmtl")) {
-        if (p == end)
-            return err_set(P->e, "%s:%lu: newmtl needs a name", P->where, P->line);
+        if (p == end) /* its statements still belong to it, not to the one before */
+            warn_add(P->w, "%s:%lu: newmtl without a name (no usemtl can use it)", P->where,
+                     P->line);
         return add_material(P, p, (size_t)(end - p));
     }
     struct mtl_lib *L = P->lib;
@@ -232,15 +248,16 @@ static int parse_line(struct mparse *P, const char *p, const char *end)
     return 0;
 }
 
-int mtl_parse(const char *text, size_t len, const char *path, struct mtl_lib *out, struct err *e)
+int mtl_parse(const char *text, size_t len, const char *path, struct mtl_lib *out,
+              struct warnings *w, struct err *e)
 {
     memset(out, 0, sizeof *out);
-    struct mparse P = {.lib = out, .path = path, .e = e};
+    struct mparse P = {.lib = out, .path = path, .e = e, .w = w};
     const char *shown = path ? path : "<memory>";
     err_quote(shown, strlen(shown), MTL_QUOTE_PATH, P.where, sizeof P.where);
     if (path && !(out->path = dup_bytes(path, strlen(path))))
         return err_set(e, "%s: out of memory", P.where);
-    const char *p = text, *end = text + len;
+    const char *p = lex_skip_bom(text, text + len), *end = text + len;
     while (p < end) {
         const char *eol = lex_line_end(p, end);
         P.line++;
@@ -253,18 +270,18 @@ int mtl_parse(const char *text, size_t len, const char *path, struct mtl_lib *ou
     return 0;
 }
 
-int mtl_load(const char *path, struct mtl_lib *out, struct err *e)
+int mtl_load(const char *path, struct mtl_lib *out, struct warnings *w, struct err *e)
 {
     char *text;
     size_t len;
     memset(out, 0, sizeof *out);
-    int rc = lex_read_file(path, &text, &len);
+    int rc = file_read(path, FILE_MAX_TEXT, &text, &len);
     if (rc) {
         char q[MTL_QUOTE_PATH + 8];
         err_quote(path, strlen(path), MTL_QUOTE_PATH, q, sizeof q);
-        return err_set(e, "%s: cannot open material library: %s", q, strerror(rc));
+        return err_set(e, "%s: cannot open material library: %s", q, file_strerror(rc));
     }
-    rc = mtl_parse(text, len, path, out, e);
+    rc = mtl_parse(text, len, path, out, w, e);
     free(text);
     return rc;
 }
@@ -283,21 +300,81 @@ void mtl_free(struct mtl_lib *lib)
     memset(lib, 0, sizeof *lib);
 }
 
-int mtl_load_texture(const struct mtl_lib *lib, uint32_t i, struct texture *out, struct err *e)
+/* ---- resolving a model's material names against its libraries ------------------------- */
+
+struct libref {
+    uint32_t lib, idx;
+};
+
+int mtl_resolve(const struct mtl_lib *libs, size_t n_libs, const struct strmap_key *slots,
+                const bool *used, size_t n_slots, const struct model_ctx *ctx,
+                struct mesh *out, uint16_t *slot_mat, struct err *e)
 {
-    const char *tp = lib->texture_paths[i];
-    const char *shown = lib->path ? lib->path : "<memory>";
-    char where[MTL_QUOTE_PATH + 8], q[MTL_QUOTE_PATH + 8];
+    char where[MTL_QUOTE_PATH + 8];
+    const char *shown = ctx->path ? ctx->path : "<memory>";
     err_quote(shown, strlen(shown), MTL_QUOTE_PATH, where, sizeof where);
-    err_quote(tp, strlen(tp), MTL_QUOTE_PATH, q, sizeof q);
-    /* open it here first so the common failure reads as one clean sentence */
-    FILE *f = fopen(tp, "rb");
-    if (!f)
-        return err_set(e, "%s:%lu: cannot open texture '%s': %s", where, lib->texture_lines[i],
-                       q, strerror(errno));
-    fclose(f);
-    struct err te;
-    if (texture_load(tp, out, &te))
-        return err_set(e, "%s:%lu: bad texture (%s)", where, lib->texture_lines[i], te.msg);
-    return 0;
+    size_t n_lib_mats = 0;
+    for (size_t i = 0; i < n_libs; i++)
+        n_lib_mats += libs[i].n;
+    struct strmap_key *keys = malloc((n_lib_mats + 1) * sizeof *keys);
+    struct libref *refs = malloc((n_lib_mats + 1) * sizeof *refs);
+    struct libref *chosen = malloc(n_slots * sizeof *chosen);
+    out->materials = malloc(n_slots * sizeof *out->materials);
+    struct strmap names = {0};
+    int rc = -1;
+    if (!keys || !refs || !chosen || !out->materials) {
+        err_set(e, "%s: out of memory", where);
+        goto done;
+    }
+    /* every library name, first definition wins */
+    size_t nk = 0;
+    for (uint32_t l = 0; l < n_libs; l++)
+        for (uint32_t i = 0; i < libs[l].n; i++) {
+            const char *s = libs[l].names[i];
+            size_t n = strlen(s);
+            uint64_t h = strmap_hash(s, n);
+            if (strmap_find(&names, keys, s, n, h) >= 0)
+                continue;
+            keys[nk] = (struct strmap_key){s, n};
+            refs[nk] = (struct libref){l, i};
+            if (strmap_add(&names, h, (uint32_t)nk++)) {
+                err_set(e, "%s: out of memory", where);
+                goto done;
+            }
+        }
+    mtl_default(&out->materials[0], "default");
+    out->materials[0].implicit = true; /* faces naming no (known) material: light.h */
+    out->n_materials = 1;
+    slot_mat[0] = 0;
+    for (size_t s = 1; s < n_slots; s++) {
+        const struct strmap_key *k = &slots[s];
+        long id = used[s] ? strmap_find(&names, keys, k->s, k->n, strmap_hash(k->s, k->n)) : -1;
+        if (id < 0) {
+            slot_mat[s] = 0; /* unknown or unused name: the default material */
+            continue;
+        }
+        chosen[out->n_materials] = refs[id];
+        out->materials[out->n_materials] = libs[refs[id].lib].materials[refs[id].idx];
+        slot_mat[s] = (uint16_t)out->n_materials++;
+    }
+    if (material_reserve_textures(out, e))
+        goto done;
+    for (uint32_t m = 1; m < out->n_materials; m++) {
+        const struct mtl_lib *L = &libs[chosen[m].lib];
+        const char *tp = L->texture_paths[chosen[m].idx];
+        if (!tp)
+            continue;
+        char lw[MTL_QUOTE_PATH + 8];
+        err_quote(L->path ? L->path : "<memory>", strlen(L->path ? L->path : "<memory>"),
+                  MTL_QUOTE_PATH, lw, sizeof lw);
+        if (material_texture_file(out, m, tp, lw, L->texture_lines[chosen[m].idx], ctx, e))
+            goto done;
+    }
+    rc = 0;
+done:
+    free(keys);
+    free(refs);
+    free(chosen);
+    strmap_free(&names);
+    return rc;
 }

@@ -1,17 +1,25 @@
 /* obj.c: Wavefront OBJ text -> struct mesh (see obj.h).
  *
- * One pass over the text collects positions, uvs, normals and fanned triangles of corner
- * indices, with a material "slot" per distinct usemtl name. After the pass the slots are
- * resolved against the loaded MTL libraries (so mtllib may come late), the used textures are
- * decoded, and mesh_build (mesh.c) turns the corners into unique vertices. */
+ * One pass over the text collects positions, uvs, normals and triangles of corner indices
+ * (polygons through polygon.h: fans when convex, ear clipping otherwise), with a material
+ * "slot" per distinct usemtl name. After the pass the slots are resolved against the loaded
+ * MTL libraries (mtl_resolve, so mtllib may come late; textures via material.h), and
+ * mesh_build (mesh.c) turns the corners into unique vertices. */
 #include "obj.h"
 
+#include <errno.h>
 #include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
+#include "file.h"
 #include "lex.h"
+#include "material.h"
+#include "model.h"
 #include "mtl.h"
+#include "polygon.h"
+#include "strmap.h"
 
 #define OBJ_QUOTE_PATH 100
 #define OBJ_QUOTE_TEXT 40
@@ -19,77 +27,6 @@
 #define OBJ_MAX_TRIS (UINT32_MAX / 3)   /* mesh_build's limit */
 #define OBJ_MAX_MATERIALS 65535         /* tri_material is uint16_t; slot 0 is the default */
 #define OBJ_MEMORY_NAME "<memory>"
-
-/* ---- a small string -> id map (usemtl names, MTL names, texture paths) ----------------- */
-
-struct strkey {
-    const char *s;
-    size_t n;
-};
-
-struct strmap {
-    struct strmap_entry {
-        uint64_t hash;
-        uint32_t id1; /* id + 1; 0 = empty */
-    } *e;
-    size_t mask, count;
-};
-
-static uint64_t str_hash(const char *s, size_t n)
-{
-    uint64_t h = 0xcbf29ce484222325ULL; /* FNV-1a */
-    for (size_t i = 0; i < n; i++)
-        h = (h ^ (unsigned char)s[i]) * 0x100000001b3ULL;
-    return h;
-}
-
-/* id of the key equal to (s, n), or -1 */
-static long strmap_find(const struct strmap *m, const struct strkey *keys, const char *s,
-                        size_t n, uint64_t h)
-{
-    if (!m->e)
-        return -1;
-    for (size_t i = (size_t)h & m->mask; m->e[i].id1; i = (i + 1) & m->mask) {
-        const struct strkey *k = &keys[m->e[i].id1 - 1];
-        if (m->e[i].hash == h && k->n == n && memcmp(k->s, s, n) == 0)
-            return (long)m->e[i].id1 - 1;
-    }
-    return -1;
-}
-
-static void strmap_put(struct strmap *m, uint64_t h, uint32_t id)
-{
-    size_t i = (size_t)h & m->mask;
-    while (m->e[i].id1)
-        i = (i + 1) & m->mask;
-    m->e[i].hash = h;
-    m->e[i].id1 = id + 1;
-    m->count++;
-}
-
-/* Add id (the caller checked it is absent); keeps the load at most 1/2. */
-static int strmap_add(struct strmap *m, uint64_t h, uint32_t id)
-{
-    if (!m->e || (m->count + 1) * 2 > m->mask + 1) {
-        size_t cap = m->e ? (m->mask + 1) * 2 : 16;
-        struct strmap g = {calloc(cap, sizeof *g.e), cap - 1, 0};
-        if (!g.e)
-            return -1;
-        for (size_t i = 0; m->e && i <= m->mask; i++)
-            if (m->e[i].id1)
-                strmap_put(&g, m->e[i].hash, m->e[i].id1 - 1);
-        free(m->e);
-        *m = g;
-    }
-    strmap_put(m, h, id);
-    return 0;
-}
-
-static void strmap_free(struct strmap *m)
-{
-    free(m->e);
-    memset(m, 0, sizeof *m);
-}
 
 /* ---- OBJ-only lexing (the rules shared with MTL are in lex.h) ------------------------- */
 
@@ -129,6 +66,7 @@ static void *grow(void *p, size_t *cap, size_t need, size_t elem)
 
 struct oparse {
     struct err *e;
+    const struct model_ctx *ctx;
     const char *path; /* as given; NULL for in-memory text */
     char where[OBJ_QUOTE_PATH + 8];
     unsigned long line;
@@ -140,8 +78,14 @@ struct oparse {
     uint16_t *tri_slot;          /* per triangle: slot, later material */
     size_t n_tris, cap_corners, cap_tri_slot;
 
+    /* the face being read: its corners, position indices, triangulation scratch */
+    struct mesh_corner *face;
+    uint32_t *face_pos, *face_scratch, (*face_tris)[3];
+    size_t cap_face;
+    unsigned long n_lines, n_points; /* l and p statements: drawn by no one */
+
     /* slot 0 = default material; slot i > 0 = the i-th distinct usemtl name */
-    struct strkey *slot_names; /* point into the text */
+    struct strmap_key *slot_names; /* point into the text */
     bool *slot_used;
     size_t n_slots, cap_slot_names, cap_slot_used;
     struct strmap slot_map;
@@ -285,7 +229,17 @@ static int parse_corner(struct oparse *P, const char *t, const char *te, struct 
             int rc = parse_index(q, fe, count[field], &idx[field]);
             if (rc == IDX_SYNTAX)
                 return fail_text(P, "bad face corner", t, te);
-            if (rc != IDX_OK) {
+            if (rc == IDX_RANGE && field > 0) {
+                /* a uv or normal past the end: the corner goes without (as other readers do) */
+                char qt[OBJ_QUOTE_TEXT + 8];
+                err_quote(t, (size_t)(te - t), OBJ_QUOTE_TEXT, qt, sizeof qt);
+                warn_add(P->ctx->warn,
+                         "%s:%lu: face corner '%s': %s index out of range (%zu defined so "
+                         "far); the corner has no %s",
+                         P->where, P->line, qt, kind[field], count[field],
+                         field == 1 ? "uv" : "normal");
+                idx[field] = MESH_NONE;
+            } else if (rc != IDX_OK) {
                 char qt[OBJ_QUOTE_TEXT + 8];
                 err_quote(t, (size_t)(te - t), OBJ_QUOTE_TEXT, qt, sizeof qt);
                 if (rc == IDX_ZERO)
@@ -330,26 +284,57 @@ static int add_triangle(struct oparse *P, const struct mesh_corner *a,
     return 0;
 }
 
-/* f c0 c1 c2 ...: fanned as (0, i, i+1) while reading, so no per-face buffer. */
+/* f c0 c1 c2 ...: the corners, then polygon.h's triangles (a fan when convex). */
 static int parse_face(struct oparse *P, const char *p, const char *end)
 {
-    struct mesh_corner first = {0}, prev = {0}, cur;
     size_t n = 0;
     while ((p = num_next(p, end)) < end) {
         const char *t = p;
         p = num_end(p, end);
-        if (parse_corner(P, t, p, &cur))
+        if (n == P->cap_face) {
+            size_t cap = P->cap_face;
+            struct mesh_corner *nf = grow(P->face, &cap, n + 1, sizeof *nf);
+            if (!nf)
+                return oom(P);
+            P->face = nf;
+            size_t c2 = P->cap_face;
+            uint32_t *np = grow(P->face_pos, &c2, n + 1, sizeof *np);
+            if (!np)
+                return oom(P);
+            P->face_pos = np;
+            c2 = P->cap_face;
+            uint32_t *ns = grow(P->face_scratch, &c2, 2 * (n + 1), sizeof *ns);
+            if (!ns)
+                return oom(P);
+            P->face_scratch = ns;
+            c2 = P->cap_face;
+            uint32_t(*nt)[3] = grow(P->face_tris, &c2, n + 1, sizeof *nt);
+            if (!nt)
+                return oom(P);
+            P->face_tris = nt;
+            P->cap_face = cap;
+        }
+        if (parse_corner(P, t, p, &P->face[n]))
             return -1;
-        if (n == 0)
-            first = cur;
-        else if (n >= 2 && add_triangle(P, &first, &prev, &cur))
-            return -1;
-        prev = cur;
+        P->face_pos[n] = P->face[n].pos;
         n++;
     }
     if (n < 3)
         return err_set(P->e, "%s:%lu: face needs at least 3 corners, got %zu", P->where,
                        P->line, n);
+    if (n > UINT32_MAX / 4)
+        return fail(P, "face has too many corners");
+    enum polygon_how how =
+        polygon_triangulate(P->pos, P->face_pos, (uint32_t)n, P->face_tris, P->face_scratch);
+    if (how == POLYGON_FAN_TOO_BIG)
+        warn_add(P->ctx->warn,
+                 "%s:%lu: concave face of %zu corners fanned (ear clipping stops at %d)",
+                 P->where, P->line, n, POLYGON_MAX_EAR);
+    for (size_t i = 0; i + 2 < n; i++) {
+        const uint32_t *tr = P->face_tris[i];
+        if (add_triangle(P, &P->face[tr[0]], &P->face[tr[1]], &P->face[tr[2]]))
+            return -1;
+    }
     return 0;
 }
 
@@ -360,12 +345,12 @@ static int use_material(struct oparse *P, const char *p, const char *end)
         return 0;
     }
     size_t n = (size_t)(end - p);
-    uint64_t h = str_hash(p, n);
+    uint64_t h = strmap_hash(p, n);
     long id = strmap_find(&P->slot_map, P->slot_names, p, n, h);
     if (id < 0) {
         if (P->n_slots >= OBJ_MAX_MATERIALS)
             return fail(P, "too many materials (limit 65535)");
-        struct strkey *nk = grow(P->slot_names, &P->cap_slot_names, P->n_slots + 1, sizeof *nk);
+        struct strmap_key *nk = grow(P->slot_names, &P->cap_slot_names, P->n_slots + 1, sizeof *nk);
         if (!nk)
             return oom(P);
         P->slot_names = nk;
@@ -376,7 +361,7 @@ static int use_material(struct oparse *P, const char *p, const char *end)
         id = (long)P->n_slots;
         if (strmap_add(&P->slot_map, h, (uint32_t)id))
             return oom(P);
-        nk[id] = (struct strkey){p, n};
+        nk[id] = (struct strmap_key){p, n};
         nu[id] = false;
         P->n_slots++;
     }
@@ -384,25 +369,30 @@ static int use_material(struct oparse *P, const char *p, const char *end)
     return 0;
 }
 
-static int load_library(struct oparse *P, const char *name, size_t n)
+/* Does the file exist (as something stat can see)? */
+static bool exists(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0;
+}
+
+/* mtllib NAME: read and parse it. A missing, unreadable or malformed library is a warning:
+ * the faces then draw with the default material. 1 when name was found and read. */
+static int load_library(struct oparse *P, const char *name, size_t n, bool quiet)
 {
     if (memchr(name, '\0', n))
         return fail(P, "mtllib file name contains a NUL byte");
-    size_t dir = 0;
-    if (*name != '/') {
-        const char *slash = strrchr(P->path, '/');
-        dir = slash ? (size_t)(slash - P->path) + 1 : 0;
-    }
-    char *full = malloc(dir + n + 1);
+    char *full = material_path_beside(P->path, name, n);
     if (!full)
         return oom(P);
-    memcpy(full, P->path, dir);
-    memcpy(full + dir, name, n);
-    full[dir + n] = '\0';
+    if (quiet && !exists(full)) {
+        free(full);
+        return 0;
+    }
     for (size_t i = 0; i < P->n_libs; i++)
         if (strcmp(P->libs[i].path, full) == 0) {
             free(full); /* listed twice: once is enough */
-            return 0;
+            return 1;
         }
     struct mtl_lib *nl = grow(P->libs, &P->cap_libs, P->n_libs + 1, sizeof *nl);
     if (!nl) {
@@ -412,31 +402,57 @@ static int load_library(struct oparse *P, const char *name, size_t n)
     P->libs = nl;
     char *text;
     size_t len;
-    int rc = lex_read_file(full, &text, &len);
+    char q[OBJ_QUOTE_PATH + 8];
+    err_quote(full, strlen(full), OBJ_QUOTE_PATH, q, sizeof q);
+    int rc = file_read(full, FILE_MAX_TEXT, &text, &len);
     if (rc) {
-        char q[OBJ_QUOTE_PATH + 8];
-        err_quote(full, strlen(full), OBJ_QUOTE_PATH, q, sizeof q);
+        warn_add(P->ctx->warn, "%s:%lu: cannot open material library '%s': %s; default "
+                 "materials used", P->where, P->line, q, file_strerror(rc));
         free(full);
-        return err_set(P->e, "%s:%lu: cannot open material library '%s': %s", P->where,
-                       P->line, q, strerror(rc));
+        return 1;
     }
-    rc = mtl_parse(text, len, full, &P->libs[P->n_libs], P->e);
+    struct err me;
+    rc = mtl_parse(text, len, full, &P->libs[P->n_libs], P->ctx->warn, &me);
     free(text);
     free(full);
-    if (rc)
-        return -1;
+    if (rc) {
+        warn_add(P->ctx->warn, "%s; material library ignored", me.msg);
+        return 1;
+    }
     P->n_libs++;
-    return 0;
+    return 1;
 }
 
+/* mtllib names: the whole rest of the line first ("my cube.mtl", as Blender writes names
+ * with spaces), then with "\ " read as a space, then each word as its own file. */
 static int parse_libraries(struct oparse *P, const char *p, const char *end)
 {
     if (!P->path)
         return 0; /* in-memory text has no directory to look in */
+    if (p == end)
+        return 0;
+    int rc = load_library(P, p, (size_t)(end - p), true);
+    if (rc)
+        return rc < 0 ? -1 : 0;
+    if (memchr(p, '\\', (size_t)(end - p))) {
+        char *un = malloc((size_t)(end - p) + 1);
+        if (!un)
+            return oom(P);
+        size_t k = 0;
+        for (const char *c = p; c < end; c++) {
+            if (*c == '\\' && c + 1 < end && c[1] == ' ')
+                c++;
+            un[k++] = *c;
+        }
+        rc = load_library(P, un, k, true);
+        free(un);
+        if (rc)
+            return rc < 0 ? -1 : 0;
+    }
     while ((p = lex_skip_ws(p, end)) < end) {
         const char *t = p;
         p = lex_tok_end(p, end);
-        if (load_library(P, t, (size_t)(p - t)))
+        if (load_library(P, t, (size_t)(p - t), false) < 0)
             return -1;
     }
     return 0;
@@ -459,7 +475,9 @@ static int parse_line(struct oparse *P, const char *p, const char *end)
             return add_normal(P, p, end);
         if (lex_tok_is(kw, kwe, "f"))
             return parse_face(P, p, end);
-        return 0; /* o, g, s, l, p, vp, ... */
+        P->n_lines += lex_tok_is(kw, kwe, "l");
+        P->n_points += lex_tok_is(kw, kwe, "p");
+        return 0; /* o, g, s, vp, ... */
     }
     end = lex_rtrim(p, lex_comment_start(p, end));
     p = lex_skip_ws(p, end);
@@ -472,103 +490,19 @@ static int parse_line(struct oparse *P, const char *p, const char *end)
 
 /* ---- after the pass: materials, textures, the mesh ------------------------------------ */
 
-struct libref {
-    uint32_t lib, idx;
-};
-
-/* Slots -> mesh materials; decodes the textures they use. */
-static int resolve_materials(struct oparse *P, struct mesh *out, uint16_t *slot_mat)
-{
-    struct err *e = P->e;
-    size_t n_lib_mats = 0;
-    for (size_t i = 0; i < P->n_libs; i++)
-        n_lib_mats += P->libs[i].n;
-    struct strkey *keys = malloc((n_lib_mats + 1) * sizeof *keys);
-    struct libref *refs = malloc((n_lib_mats + 1) * sizeof *refs);
-    struct libref *chosen = malloc(P->n_slots * sizeof *chosen);
-    struct strkey *tex_keys = malloc(P->n_slots * sizeof *tex_keys);
-    out->materials = malloc(P->n_slots * sizeof *out->materials);
-    out->textures = calloc(P->n_slots, sizeof *out->textures);
-    struct strmap names = {0}, tex_map = {0};
-    int rc = -1;
-    if (!keys || !refs || !chosen || !tex_keys || !out->materials || !out->textures) {
-        err_set(e, "%s: out of memory", P->where);
-        goto done;
-    }
-
-    /* every library name, first definition wins */
-    size_t nk = 0;
-    for (uint32_t l = 0; l < P->n_libs; l++)
-        for (uint32_t i = 0; i < P->libs[l].n; i++) {
-            const char *s = P->libs[l].names[i];
-            size_t n = strlen(s);
-            uint64_t h = str_hash(s, n);
-            if (strmap_find(&names, keys, s, n, h) >= 0)
-                continue;
-            keys[nk] = (struct strkey){s, n};
-            refs[nk] = (struct libref){l, i};
-            if (strmap_add(&names, h, (uint32_t)nk++)) {
-                err_set(e, "%s: out of memory", P->where);
-                goto done;
-            }
-        }
-
-    mtl_default(&out->materials[0], "default");
-    out->materials[0].implicit = true;
-    out->n_materials = 1;
-    slot_mat[0] = 0;
-    for (size_t s = 1; s < P->n_slots; s++) {
-        const struct strkey *k = &P->slot_names[s];
-        long id = P->slot_used[s] ? strmap_find(&names, keys, k->s, k->n, str_hash(k->s, k->n))
-                                  : -1;
-        if (id < 0) {
-            slot_mat[s] = 0; /* unknown or unused name: the default material */
-            continue;
-        }
-        chosen[out->n_materials] = refs[id];
-        out->materials[out->n_materials] = P->libs[refs[id].lib].materials[refs[id].idx];
-        slot_mat[s] = (uint16_t)out->n_materials++;
-    }
-
-    for (uint32_t m = 1; m < out->n_materials; m++) {
-        const struct mtl_lib *L = &P->libs[chosen[m].lib];
-        const char *tp = L->texture_paths[chosen[m].idx];
-        if (!tp)
-            continue;
-        size_t n = strlen(tp);
-        uint64_t h = str_hash(tp, n);
-        long id = strmap_find(&tex_map, tex_keys, tp, n, h);
-        if (id < 0) {
-            if (mtl_load_texture(L, chosen[m].idx, &out->textures[out->n_textures], e))
-                goto done;
-            id = (long)out->n_textures++;
-            tex_keys[id] = (struct strkey){tp, n};
-            if (strmap_add(&tex_map, h, (uint32_t)id)) {
-                err_set(e, "%s: out of memory", P->where);
-                goto done;
-            }
-        }
-        out->materials[m].texture = (int)id;
-    }
-    rc = 0;
-done:
-    free(keys);
-    free(refs);
-    free(chosen);
-    free(tex_keys);
-    strmap_free(&names);
-    strmap_free(&tex_map);
-    return rc;
-}
-
 static int finish(struct oparse *P, struct mesh *out)
 {
-    if (P->n_tris == 0)
+    if (P->n_tris == 0) {
+        if (P->n_lines || P->n_points)
+            return err_set(P->e, "%s: no faces, only %lu line and %lu point elements (rastty "
+                           "draws surfaces)", P->where, P->n_lines, P->n_points);
         return err_set(P->e, "%s: no faces", P->where);
+    }
     uint16_t *slot_mat = malloc(P->n_slots * sizeof *slot_mat);
     if (!slot_mat)
         return err_set(P->e, "%s: out of memory", P->where);
-    if (resolve_materials(P, out, slot_mat)) {
+    if (mtl_resolve(P->libs, P->n_libs, P->slot_names, P->slot_used, P->n_slots, P->ctx, out,
+                    slot_mat, P->e)) {
         free(slot_mat);
         return -1;
     }
@@ -594,6 +528,10 @@ static void parser_free(struct oparse *P)
     free(P->nrm);
     free(P->corners);
     free(P->tri_slot);
+    free(P->face);
+    free(P->face_pos);
+    free(P->face_scratch);
+    free(P->face_tris);
     free(P->slot_names);
     free(P->slot_used);
     strmap_free(&P->slot_map);
@@ -602,12 +540,15 @@ static void parser_free(struct oparse *P)
     free(P->libs);
 }
 
-int obj_parse(const char *text, size_t len, const char *path, struct mesh *out, struct err *e)
+int obj_read(const char *text, size_t len, const struct model_ctx *ctx, struct mesh *out,
+             struct err *e)
 {
     memset(out, 0, sizeof *out);
-    struct oparse P = {.e = e, .path = path};
-    const char *shown = path ? path : OBJ_MEMORY_NAME;
+    struct oparse P = {.e = e, .ctx = ctx, .path = ctx->path};
+    const char *shown = ctx->path ? ctx->path : OBJ_MEMORY_NAME;
     err_quote(shown, strlen(shown), OBJ_QUOTE_PATH, P.where, sizeof P.where);
+    if (len >= 2 && (memcmp(text, "\xff\xfe", 2) == 0 || memcmp(text, "\xfe\xff", 2) == 0))
+        return err_set(e, "%s: UTF-16 text (save the file as UTF-8 or ASCII)", P.where);
     int rc = -1;
     /* slot 0, the default material, exists before any usemtl */
     P.slot_names = grow(NULL, &P.cap_slot_names, 1, sizeof *P.slot_names);
@@ -616,11 +557,11 @@ int obj_parse(const char *text, size_t len, const char *path, struct mesh *out, 
         err_set(e, "%s: out of memory", P.where);
         goto done;
     }
-    P.slot_names[0] = (struct strkey){"", 0};
+    P.slot_names[0] = (struct strmap_key){"", 0};
     P.slot_used[0] = false;
     P.n_slots = 1;
 
-    const char *p = text, *end = text + len;
+    const char *p = lex_skip_bom(text, text + len), *end = text + len;
     while (p < end) {
         const char *eol = lex_line_end(p, end);
         P.line++;
@@ -636,16 +577,22 @@ done:
     return rc;
 }
 
+int obj_parse(const char *text, size_t len, const char *path, struct mesh *out, struct err *e)
+{
+    struct model_ctx ctx = {.path = path};
+    return model_parse_as(MODEL_OBJ, text, len, &ctx, out, e);
+}
+
 int obj_load(const char *path, struct mesh *out, struct err *e)
 {
     char *text;
     size_t len;
     memset(out, 0, sizeof *out);
-    int rc = lex_read_file(path, &text, &len);
+    int rc = file_read(path, FILE_MAX_MODEL, &text, &len);
     if (rc) {
         char q[OBJ_QUOTE_PATH + 8];
         err_quote(path, strlen(path), OBJ_QUOTE_PATH, q, sizeof q);
-        return err_set(e, "%s: cannot read: %s", q, strerror(rc));
+        return err_set(e, "%s: cannot read: %s", q, file_strerror(rc));
     }
     rc = obj_parse(text, len, path, out, e);
     free(text);

@@ -7,8 +7,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "file.h"
 #include "lex.h"
-#include "obj.h"
+#include "model.h"
 
 #define MAX_TOKENS 32
 #define MAX_PATH 4096
@@ -46,8 +47,10 @@ int scene_load_model(const char *obj_path, struct scene *s, struct err *e)
 {
     memset(s, 0, sizeof *s);
     set_name(s, obj_path);
-    if (obj_load(obj_path, &s->meshes[0], e))
+    if (model_load(obj_path, &s->textures, &s->warnings, &s->meshes[0], e)) {
+        scene_free(s);
         return -1;
+    }
     s->n_meshes = 1;
     s->items[0].mesh = &s->meshes[0];
     s->items[0].model = m4_identity();
@@ -58,11 +61,11 @@ int scene_load_model(const char *obj_path, struct scene *s, struct err *e)
 
 int scene_set_texture(struct scene *s, const char *path, struct err *e)
 {
-    texture_free(&s->texture_all);
-    if (texture_load(path, &s->texture_all, e))
+    const struct texture *t;
+    if (texture_cache_load(&s->textures, path, &t, &s->warnings, e))
         return -1;
     for (int i = 0; i < s->n_items; i++)
-        s->items[i].texture_override = &s->texture_all;
+        s->items[i].texture_override = t;
     return 0;
 }
 
@@ -218,7 +221,7 @@ static int st_model(struct parser *p, struct scene *s, char (*names)[MAX_PATH])
     }
     if (m < 0) {
         m = s->n_meshes;
-        if (obj_load(path, &s->meshes[m], p->e))
+        if (model_load(path, &s->textures, &s->warnings, &s->meshes[m], p->e))
             return prefix_err(p);
         memcpy(names[m], path, MAX_PATH);
         s->n_meshes++;
@@ -227,9 +230,10 @@ static int st_model(struct parser *p, struct scene *s, char (*names)[MAX_PATH])
         char tpath[MAX_PATH];
         if (resolve(p, tex, tpath))
             return -1;
-        if (texture_load(tpath, &s->overrides[item], p->e))
+        const struct texture *t;
+        if (texture_cache_load(&s->textures, tpath, &t, &s->warnings, p->e))
             return prefix_err(p);
-        it->texture_override = &s->overrides[item];
+        it->texture_override = t;
     }
     it->mesh = &s->meshes[m];
     mat4 r = m4_mul(m4_rotate(v3(0, 0, 1), rot.z),
@@ -342,16 +346,17 @@ int scene_load_file(const char *path, struct scene *s, struct err *e)
     p.dir[dl] = '\0';
     char *text;
     size_t len;
-    int err_no = lex_read_file(path, &text, &len);
+    int err_no = file_read(path, FILE_MAX_TEXT, &text, &len);
     if (err_no)
-        return err_set(e, "%s: cannot open scene: %s", qpath, strerror(err_no));
+        return err_set(e, "%s: cannot open scene: %s", qpath, file_strerror(err_no));
     char(*names)[MAX_PATH] = calloc(SCENE_MAX_ITEMS, MAX_PATH); /* resolved OBJ path per mesh */
     if (!names) {
         free(text);
         return err_set(e, "out of memory");
     }
     int rc = 0;
-    for (char *line = text, *end = text + len; rc == 0 && line < end;) {
+    for (char *line = (char *)lex_skip_bom(text, text + len), *end = text + len;
+         rc == 0 && line < end;) {
         char *eol = (char *)lex_line_end(line, end);
         p.line++;
         if (memchr(line, '\0', (size_t)(eol - line))) {
@@ -395,11 +400,9 @@ int scene_load(const char *path, struct scene *s, struct err *e)
 
 void scene_free(struct scene *s)
 {
-    for (int i = 0; i < SCENE_MAX_ITEMS; i++) {
+    for (int i = 0; i < SCENE_MAX_ITEMS; i++)
         mesh_free(&s->meshes[i]);
-        texture_free(&s->overrides[i]);
-    }
-    texture_free(&s->texture_all);
+    texture_cache_free(&s->textures); /* after the meshes: they borrow from it */
     skybox_free(&s->sky);
     memset(s, 0, sizeof *s);
 }

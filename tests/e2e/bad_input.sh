@@ -31,7 +31,21 @@ head -c 4096 /dev/urandom > $D/random.obj
 check malformed_obj_index expect 2 "bad_index.obj:4:" "$BIN" render $D/bad_index.obj --out $OUT/x.png
 check malformed_obj_number expect 2 "bad_number.obj:4:" "$BIN" render $D/bad_number.obj --out $OUT/x.png
 check control_bytes_never_echoed expect 2 "control.obj:6:" "$BIN" render $D/control.obj --out $OUT/x.png
-check missing_mtllib_names_obj_line expect 2 "missing_mtl.obj:4:.*nothere.mtl" "$BIN" render $D/missing_mtl.obj --out $OUT/x.png
+# a material's missing file is a warning naming the line; the model draws (exit 0)
+check missing_mtllib_is_a_warning expect 0 "^warning: .*missing_mtl.obj:4: cannot open material library '.*nothere.mtl'" "$BIN" render $D/missing_mtl.obj --out $OUT/x.png
+printf 'newmtl red\nKd 1 0 0\nmap_Kd gone.png\n' > $D/gone.mtl
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nmtllib gone.mtl\nusemtl red\nf 1/1 2/1 3/1\n' > $D/gone.obj
+missing_map_kd() {
+    expect 0 "^warning: .*gone.mtl:3: cannot open texture '.*gone.png': No such file or directory; drawn without it$" \
+        "$BIN" render $D/gone.obj --eye 0.3,0.3,1 --shade unlit --out $OUT/gone.ppm || return 1
+    # drawn with the material's Kd: red pixels
+    local px; px=$(ppmstat $OUT/gone.ppm 0,0,0); echo "ppmstat: $px"; set -- $px
+    [ "$3" -gt 100 ]
+}
+check missing_map_kd_draws_with_kd missing_map_kd
+# files named on the command line stay errors
+check missing_texture_flag expect 2 "nothere.png: cannot open texture: No such file" "$BIN" render assets/cube.obj --texture $D/nothere.png --out $OUT/x.png
+check not_a_model expect 2 "checker2x2.png: not a model \(PNG image\)" "$BIN" render tests/data/obj/checker2x2.png --out $OUT/x.png
 check missing_model_file expect 2 "nope.obj" "$BIN" render $D/nope.obj --out $OUT/x.png
 check corrupt_texture expect 2 "fake.png" "$BIN" render assets/cube.obj --texture $D/fake.png --out $OUT/x.png
 check scene_file_error_names_line expect 2 "bad.rsc:3:" "$BIN" render $D/bad.rsc --out $OUT/x.png
@@ -51,6 +65,17 @@ check ansi2ppm_rejects_garbage expect 2 "byte" sh -c "printf '\033[H\033[38;2;1;
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 1e38 1e38\nvt 1e38 0\nvt 0 1e38\nf 1/1 2/2 3/3\n' > $D/huge_uv.obj
 huge_uv() { "$BIN" render $D/huge_uv.obj --texture assets/checker.png --filter bilinear --out $OUT/huge.ppm; }
 check huge_uvs_render_cleanly huge_uv
+# the --out path is quoted like any other: an ESC in a file name never reaches stderr
+check out_path_escaped expect 2 "x\?\[31m.jpg: use a .ppm or .png" "$BIN" render assets/cube.obj --out $'x\e[31m.jpg'
+check out_path_escaped_on_create expect 1 "/nonexistent/\?\]0;x\?.png: cannot create" "$BIN" render assets/cube.obj --out $'/nonexistent/\e]0;x\a.png'
+# --help and --version report a failed write (exit 1), not success
+help_full() {
+    "$BIN" --help > /dev/full 2> $OUT/help.err; local rc=$?
+    "$BIN" --version > /dev/full 2>> $OUT/help.err; local rc2=$?
+    echo "exit $rc $rc2: $(cat $OUT/help.err)"
+    [ $rc -eq 1 ] && [ $rc2 -eq 1 ] && grep -q "write failed: No space left on device" $OUT/help.err
+}
+check help_to_a_full_disk_fails help_full
 check viewer_bad_file_before_terminal expect 2 "bad_index.obj:4:" "$BIN" $D/bad_index.obj
 
 finish

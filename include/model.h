@@ -1,0 +1,61 @@
+/* model.h: opening a model file of any format: detection, then one loader interface.
+ *
+ * A loader turns a file's bytes into a struct mesh (mesh.h) and its materials, with
+ * "file:line: message" errors (binary formats: "file: byte N: message"). The format is
+ * chosen by content before the name:
+ *   magic "glTF" (GLB), "ply", "Kaydara FBX", JSON with "asset" (glTF), XML <COLLADA ...>,
+ *   a binary STL (80-byte header, count, exactly 50 bytes per triangle), "solid ... facet"
+ *   (ASCII STL); then the extension (.obj .stl .ply .gltf .glb .fbx .dae .3ds ...);
+ *   then OBJ, the text format with no magic.
+ *   Images and archives are named: "posx.jpg: not a model (JPEG image)"; UTF-16 text says
+ *   so instead of failing line by line.
+ * Loaders: obj.c, stl.c, ply.c (rastty's own parsers) and import.c (assimp, for glTF/GLB,
+ * FBX, COLLADA, 3DS and the other formats it reads, in a child process with limits).
+ * Materials and their textures are resolved by material.c for every format; a material's
+ * missing or corrupt file is a warning, never an error. */
+#ifndef RASTTY_MODEL_H
+#define RASTTY_MODEL_H
+
+#include <stddef.h>
+
+#include "err.h"
+#include "mesh.h"
+#include "texture.h"
+
+/* What every loader gets besides the bytes. */
+struct model_ctx {
+    const char *path;            /* the file: for messages, and other files (MTL, textures,
+                                    glTF buffers) are relative to its directory; NULL = in
+                                    memory: messages say "<memory>", no other file is opened */
+    struct texture_cache *cache; /* textures load through it; NULL: the mesh owns them */
+    struct warnings *warn;       /* NULL: warnings are dropped */
+};
+
+enum model_format { MODEL_OBJ, MODEL_STL, MODEL_PLY, MODEL_IMPORT, MODEL_FORMAT_COUNT };
+
+/* Which loader reads these bytes; -1 with "name: not a model (JPEG image)" and the like. */
+int model_detect(const char *data, size_t len, const char *path, enum model_format *fmt_out,
+                 struct err *e);
+const char *model_format_name(enum model_format f);
+
+/* Detect and load from memory (ctx->path as above). On failure *out is zeroed. */
+int model_parse(const char *data, size_t len, const struct model_ctx *ctx, struct mesh *out,
+                struct err *e);
+/* The same with the format given. */
+int model_parse_as(enum model_format f, const char *data, size_t len,
+                   const struct model_ctx *ctx, struct mesh *out, struct err *e);
+/* Read the file (regular files only, FILE_MAX_MODEL) and model_parse it. */
+int model_load(const char *path, struct texture_cache *cache, struct warnings *w,
+               struct mesh *out, struct err *e);
+
+/* The loaders (same contract as model_parse, format already chosen). */
+int obj_read(const char *data, size_t len, const struct model_ctx *ctx, struct mesh *out,
+             struct err *e);
+int stl_read(const char *data, size_t len, const struct model_ctx *ctx, struct mesh *out,
+             struct err *e);
+int ply_read(const char *data, size_t len, const struct model_ctx *ctx, struct mesh *out,
+             struct err *e);
+int import_read(const char *data, size_t len, const struct model_ctx *ctx, struct mesh *out,
+                struct err *e);
+
+#endif

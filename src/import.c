@@ -1,0 +1,749 @@
+/* import.c: glTF 2.0 / GLB, FBX, COLLADA, 3DS and the other formats assimp reads, as a
+ * loader behind model.h.
+ *
+ * Why assimp (Debian's libassimp-dev): glTF alone means JSON, base64 data URIs, binary
+ * chunks, accessors with strides and sparse storage, node hierarchies; assimp reads it and
+ * a dozen other formats people download, is maintained and fuzzed upstream. OBJ, STL and
+ * PLY stay on rastty's own parsers (verified against the oracle, with file:line errors).
+ *
+ * Isolation: assimp is a large C++ library and malformed files have crashed it before. It
+ * runs in a child process (fork) with limits — address space IMPORT_MAX_MEMORY, CPU time
+ * IMPORT_MAX_SECONDS, no terminal (stdin/stdout/stderr on /dev/null) — that sends the
+ * flattened mesh back through a pipe; the parent waits at most IMPORT_MAX_SECONDS too. A
+ * crash, a hang or an allocation storm in the importer becomes one error line
+ * ("x.glb: the importer failed (killed by signal 11)"), never a dead viewer or a full
+ * machine. Files the model names (glTF buffers and images) are opened through the same
+ * rules as everything else (file.h: regular files only, with size limits); a model read
+ * from memory may name none.
+ *
+ * What is used: triangles (points and lines dropped), positions, normals when given (else
+ * smooth ones, mesh.h), the first uv channel, every node's transform (meshes placed by
+ * their node chain, instanced as often as nodes name them), per material the base colour
+ * factor (glTF) or diffuse colour as Kd and the base colour / diffuse texture (a file
+ * beside the model, or an image embedded in it) through material.h. Cameras, lights,
+ * animations and skins are ignored. uv: assimp flips glTF's v so that v = 0 is the bottom
+ * row, as in OBJ. */
+#include <errno.h>
+#include <math.h>
+#include <poll.h>
+#include <signal.h>
+#include <stdbool.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+#include <fcntl.h>
+
+#include <assimp/cfileio.h>
+#include <assimp/cimport.h>
+#include <assimp/material.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include "file.h"
+#include "import.h"
+#include "material.h"
+#include "model.h"
+#include "mtl.h"
+
+#define IMPORT_MAX_SECONDS 60
+#define IMPORT_MAX_MEMORY ((rlim_t)4 << 30)
+#define IMPORT_MAX_TRIS 50000000u   /* after instancing */
+#define IMPORT_MAX_DEPTH 256        /* node nesting */
+#define IMPORT_MAX_MATERIALS 65535
+#define IMPORT_MAX_REPLY ((size_t)3 << 30)
+
+/* ---- the flattened result (what crosses the pipe) ---- */
+
+struct blob {
+    uint8_t *p;
+    size_t n, cap;
+    bool failed;
+};
+
+static void put(struct blob *b, const void *p, size_t n);
+static void put_reply(struct import_result *r, const void *p, size_t n)
+{
+    put((struct blob *)&r->reply, p, n);
+}
+
+static void put(struct blob *b, const void *p, size_t n)
+{
+    if (b->failed)
+        return;
+    if (n > b->cap - b->n) {
+        size_t cap = b->cap ? b->cap : 1 << 16;
+        while (cap - b->n < n) {
+            if (cap > IMPORT_MAX_REPLY) {
+                b->failed = true;
+                return;
+            }
+            cap *= 2;
+        }
+        uint8_t *np = realloc(b->p, cap);
+        if (!np) {
+            b->failed = true;
+            return;
+        }
+        b->p = np;
+        b->cap = cap;
+    }
+    memcpy(b->p + b->n, p, n);
+    b->n += n;
+}
+
+static void put_u32(struct blob *b, uint32_t v)
+{
+    put(b, &v, sizeof v);
+}
+
+/* ---- in the child: assimp with our file rules ---- */
+
+struct io_file {
+    char *data;
+    size_t len, pos;
+};
+
+struct io_ctx {
+    const char *main_name; /* served from main_data */
+    const char *main_data;
+    size_t main_len;
+    bool others; /* may other files be opened? */
+};
+
+static size_t io_read(struct aiFile *f, char *buf, size_t size, size_t count)
+{
+    struct io_file *h = (struct io_file *)f->UserData;
+    if (size == 0)
+        return 0;
+    size_t n = count, left = h->len - h->pos;
+    if (n > left / size)
+        n = left / size;
+    memcpy(buf, h->data + h->pos, n * size);
+    h->pos += n * size;
+    return n;
+}
+
+static size_t io_write(struct aiFile *f, const char *buf, size_t size, size_t count)
+{
+    (void)f, (void)buf, (void)size, (void)count;
+    return 0;
+}
+
+static size_t io_tell(struct aiFile *f)
+{
+    return ((struct io_file *)f->UserData)->pos;
+}
+
+static size_t io_size(struct aiFile *f)
+{
+    return ((struct io_file *)f->UserData)->len;
+}
+
+static enum aiReturn io_seek(struct aiFile *f, size_t off, enum aiOrigin how)
+{
+    struct io_file *h = (struct io_file *)f->UserData;
+    size_t base = how == aiOrigin_SET ? 0 : how == aiOrigin_CUR ? h->pos : h->len;
+    if (off > h->len || base > h->len - off)
+        return aiReturn_FAILURE;
+    h->pos = base + off;
+    return aiReturn_SUCCESS;
+}
+
+static void io_flush(struct aiFile *f)
+{
+    (void)f;
+}
+
+static struct aiFile *io_open(struct aiFileIO *io, const char *name, const char *mode)
+{
+    struct io_ctx *c = (struct io_ctx *)io->UserData;
+    if (!mode || strchr(mode, 'w') || strchr(mode, 'a'))
+        return NULL; /* importers only read */
+    struct io_file *h = calloc(1, sizeof *h);
+    struct aiFile *f = calloc(1, sizeof *f);
+    if (!h || !f)
+        goto fail;
+    if (strcmp(name, c->main_name) == 0) {
+        if (!(h->data = malloc(c->main_len + 1)))
+            goto fail;
+        memcpy(h->data, c->main_data, c->main_len);
+        h->len = c->main_len;
+    } else if (!c->others || file_read(name, FILE_MAX_MODEL, &h->data, &h->len) != 0) {
+        goto fail;
+    }
+    f->ReadProc = io_read;
+    f->WriteProc = io_write;
+    f->TellProc = io_tell;
+    f->FileSizeProc = io_size;
+    f->SeekProc = io_seek;
+    f->FlushProc = io_flush;
+    f->UserData = (aiUserData)h;
+    return f;
+fail:
+    if (h)
+        free(h->data);
+    free(h);
+    free(f);
+    return NULL;
+}
+
+static void io_close(struct aiFileIO *io, struct aiFile *f)
+{
+    (void)io;
+    struct io_file *h = (struct io_file *)f->UserData;
+    free(h->data);
+    free(h);
+    free(f);
+}
+
+struct walk {
+    const struct aiScene *sc;
+    struct blob pos, nrm, uv, corners, mats;
+    uint32_t n_pos, n_tris;
+    bool any_nrm, any_uv, too_big;
+    unsigned long visits;
+};
+
+typedef struct {
+    double m[4][4];
+} m44;
+
+static m44 m44_mul(const m44 *a, const struct aiMatrix4x4 *b)
+{
+    const double bb[4][4] = {{b->a1, b->a2, b->a3, b->a4},
+                             {b->b1, b->b2, b->b3, b->b4},
+                             {b->c1, b->c2, b->c3, b->c4},
+                             {b->d1, b->d2, b->d3, b->d4}};
+    m44 r;
+    for (int i = 0; i < 4; i++)
+        for (int j = 0; j < 4; j++) {
+            double s = 0;
+            for (int k = 0; k < 4; k++)
+                s += a->m[i][k] * bb[k][j];
+            r.m[i][j] = s;
+        }
+    return r;
+}
+
+/* inverse transpose of the upper 3x3 (for normals; scale does not matter, mesh_build
+ * normalises) */
+static void normal_matrix(const m44 *a, double n[3][3])
+{
+    const double(*m)[4] = a->m;
+    n[0][0] = m[1][1] * m[2][2] - m[1][2] * m[2][1];
+    n[0][1] = m[1][2] * m[2][0] - m[1][0] * m[2][2];
+    n[0][2] = m[1][0] * m[2][1] - m[1][1] * m[2][0];
+    n[1][0] = m[0][2] * m[2][1] - m[0][1] * m[2][2];
+    n[1][1] = m[0][0] * m[2][2] - m[0][2] * m[2][0];
+    n[1][2] = m[0][1] * m[2][0] - m[0][0] * m[2][1];
+    n[2][0] = m[0][1] * m[1][2] - m[0][2] * m[1][1];
+    n[2][1] = m[0][2] * m[1][0] - m[0][0] * m[1][2];
+    n[2][2] = m[0][0] * m[1][1] - m[0][1] * m[1][0];
+}
+
+static int finite3(const float *v)
+{
+    return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]);
+}
+
+static void add_mesh(struct walk *W, const struct aiMesh *am, const m44 *xf)
+{
+    if (!(am->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) || !am->mVertices ||
+        am->mNumVertices == 0)
+        return;
+    uint32_t nf = 0;
+    for (unsigned i = 0; i < am->mNumFaces; i++)
+        nf += am->mFaces[i].mNumIndices == 3;
+    if ((uint64_t)W->n_tris + nf > IMPORT_MAX_TRIS ||
+        (uint64_t)W->n_pos + am->mNumVertices > IMPORT_MAX_TRIS) {
+        W->too_big = true;
+        return;
+    }
+    double nm[3][3];
+    normal_matrix(xf, nm);
+    const struct aiVector3D *uvs = am->mTextureCoords[0];
+    uint32_t base = W->n_pos;
+    for (unsigned i = 0; i < am->mNumVertices; i++) {
+        const struct aiVector3D *v = &am->mVertices[i];
+        float p[3], n[3] = {0, 0, 0}, t[2] = {0, 0};
+        for (int k = 0; k < 3; k++)
+            p[k] = (float)(xf->m[k][0] * v->x + xf->m[k][1] * v->y + xf->m[k][2] * v->z +
+                           xf->m[k][3]);
+        if (!finite3(p))
+            p[0] = p[1] = p[2] = 0;
+        if (am->mNormals) {
+            const struct aiVector3D *a = &am->mNormals[i];
+            for (int k = 0; k < 3; k++)
+                n[k] = (float)(nm[k][0] * a->x + nm[k][1] * a->y + nm[k][2] * a->z);
+            if (!finite3(n))
+                n[0] = n[1] = n[2] = 0;
+        }
+        if (uvs) {
+            t[0] = isfinite(uvs[i].x) ? uvs[i].x : 0;
+            t[1] = isfinite(uvs[i].y) ? uvs[i].y : 0;
+        }
+        put(&W->pos, p, sizeof p);
+        put(&W->nrm, n, sizeof n);
+        put(&W->uv, t, sizeof t);
+    }
+    W->n_pos += am->mNumVertices;
+    W->any_nrm |= am->mNormals != NULL;
+    W->any_uv |= uvs != NULL;
+    uint32_t mat = am->mMaterialIndex < W->sc->mNumMaterials &&
+                           am->mMaterialIndex < IMPORT_MAX_MATERIALS
+                       ? am->mMaterialIndex + 1 /* 0 = the default material */
+                       : 0;
+    for (unsigned i = 0; i < am->mNumFaces; i++) {
+        const struct aiFace *f = &am->mFaces[i];
+        if (f->mNumIndices != 3)
+            continue;
+        bool ok = true;
+        for (int k = 0; k < 3; k++)
+            ok &= f->mIndices[k] < am->mNumVertices;
+        if (!ok)
+            continue;
+        for (int k = 0; k < 3; k++) {
+            uint32_t v = base + f->mIndices[k];
+            uint32_t c[3] = {v, uvs ? v : MESH_NONE, am->mNormals ? v : MESH_NONE};
+            put(&W->corners, c, sizeof c);
+        }
+        put_u32(&W->mats, mat);
+        W->n_tris++;
+    }
+}
+
+static void walk_node(struct walk *W, const struct aiNode *node, m44 xf, int depth)
+{
+    if (!node || depth > IMPORT_MAX_DEPTH || W->too_big || ++W->visits > 10000000)
+        return;
+    xf = m44_mul(&xf, &node->mTransformation);
+    for (unsigned i = 0; i < node->mNumMeshes; i++)
+        if (node->mMeshes[i] < W->sc->mNumMeshes)
+            add_mesh(W, W->sc->mMeshes[node->mMeshes[i]], &xf);
+    for (unsigned i = 0; i < node->mNumChildren; i++)
+        walk_node(W, node->mChildren[i], xf, depth + 1);
+}
+
+/* materials: kd, then a texture reference: 0 none, 1 file (path follows), 2 embedded
+ * (compressed bytes follow) */
+static void put_materials(struct blob *b, const struct aiScene *sc)
+{
+    uint32_t n = sc->mNumMaterials < IMPORT_MAX_MATERIALS ? sc->mNumMaterials
+                                                            : IMPORT_MAX_MATERIALS;
+    put_u32(b, n);
+    for (uint32_t i = 0; i < n; i++) {
+        const struct aiMaterial *m = sc->mMaterials[i];
+        struct aiColor4D c = {1, 1, 1, 1};
+        if (aiGetMaterialColor(m, AI_MATKEY_BASE_COLOR, &c) != aiReturn_SUCCESS &&
+            aiGetMaterialColor(m, AI_MATKEY_COLOR_DIFFUSE, &c) != aiReturn_SUCCESS)
+            c = (struct aiColor4D){1, 1, 1, 1};
+        float kd[3] = {c.r, c.g, c.b};
+        for (int k = 0; k < 3; k++)
+            kd[k] = isfinite(kd[k]) ? (kd[k] < 0 ? 0 : kd[k] > 1 ? 1 : kd[k]) : 1;
+        put(b, kd, sizeof kd);
+        struct aiString path;
+        path.length = 0;
+        if (aiGetMaterialTexture(m, aiTextureType_BASE_COLOR, 0, &path, NULL, NULL, NULL, NULL,
+                                 NULL, NULL) != aiReturn_SUCCESS &&
+            aiGetMaterialTexture(m, aiTextureType_DIFFUSE, 0, &path, NULL, NULL, NULL, NULL,
+                                 NULL, NULL) != aiReturn_SUCCESS)
+            path.length = 0;
+        size_t len = path.length < MAXLEN ? path.length : 0;
+        if (len == 0) {
+            put_u32(b, 0);
+            continue;
+        }
+        const struct aiTexture *t = NULL;
+        if (path.data[0] == '*') {
+            long k = strtol(path.data + 1, NULL, 10);
+            if (k >= 0 && (unsigned long)k < sc->mNumTextures)
+                t = sc->mTextures[k];
+        }
+        if (t && t->mHeight == 0 && t->pcData && t->mWidth > 0) { /* compressed image */
+            put_u32(b, 2);
+            put_u32(b, t->mWidth);
+            put(b, t->pcData, t->mWidth);
+        } else if (!t && path.data[0] != '*') {
+            put_u32(b, 1);
+            put_u32(b, (uint32_t)len);
+            put(b, path.data, len);
+        } else {
+            put_u32(b, 0); /* uncompressed embedded texels: rare, not supported */
+        }
+    }
+}
+
+int import_flatten(const char *data, size_t len, const char *name, bool others,
+                   struct import_result *r)
+{
+    memset(r, 0, sizeof *r);
+    struct io_ctx ioc = {name, data, len, others};
+    struct aiFileIO io = {io_open, io_close, (aiUserData)&ioc};
+    struct aiPropertyStore *props = aiCreatePropertyStore();
+    aiSetImportPropertyInteger(props, AI_CONFIG_PP_SBP_REMOVE,
+                               aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+    const struct aiScene *sc = aiImportFileExWithProperties(
+        name,
+        aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_ValidateDataStructure,
+        &io, props);
+    aiReleasePropertyStore(props);
+    if (!sc) {
+        const char *why = aiGetErrorString();
+        err_quote(why ? why : "unknown error", why ? strlen(why) : 13, 200, r->msg,
+                  sizeof r->msg);
+        return -1;
+    }
+    struct walk W = {.sc = sc};
+    m44 id = {{{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}}};
+    walk_node(&W, sc->mRootNode, id, 0);
+    struct blob mats = {0};
+    put_materials(&mats, sc);
+    aiReleaseImport(sc);
+    int rc = 0;
+    if (W.too_big) {
+        snprintf(r->msg, sizeof r->msg, "more than %u triangles or vertices after instancing",
+                 IMPORT_MAX_TRIS);
+        rc = -1;
+    } else if (W.pos.failed || W.nrm.failed || W.uv.failed || W.corners.failed ||
+               W.mats.failed || mats.failed) {
+        snprintf(r->msg, sizeof r->msg, "out of memory");
+        rc = -1;
+    }
+    /* one reply: counts, then the arrays */
+    struct blob *out = (struct blob *)&r->reply;
+    uint32_t head[4] = {W.n_pos, W.n_tris, W.any_nrm, W.any_uv};
+    if (rc == 0) {
+        put(out, head, sizeof head);
+        put(out, W.pos.p, W.pos.n);
+        put(out, W.nrm.p, W.nrm.n);
+        put(out, W.uv.p, W.uv.n);
+        put(out, W.corners.p, W.corners.n);
+        put(out, W.mats.p, W.mats.n);
+        put(out, mats.p, mats.n);
+        if (out->failed) {
+            snprintf(r->msg, sizeof r->msg, "out of memory");
+            rc = -1;
+        }
+    }
+    free(W.pos.p);
+    free(W.nrm.p);
+    free(W.uv.p);
+    free(W.corners.p);
+    free(W.mats.p);
+    free(mats.p);
+    return rc;
+}
+
+void import_result_free(struct import_result *r)
+{
+    free(r->reply.p);
+    memset(r, 0, sizeof *r);
+}
+
+/* ---- in the parent: the reply back into a mesh ---- */
+
+struct reader {
+    const uint8_t *p, *end;
+    bool bad;
+};
+
+static const void *take(struct reader *R, size_t n)
+{
+    if (R->bad || (size_t)(R->end - R->p) < n) {
+        R->bad = true;
+        return NULL;
+    }
+    const void *at = R->p;
+    R->p += n;
+    return at;
+}
+
+static uint32_t take_u32(struct reader *R)
+{
+    const void *p = take(R, 4);
+    uint32_t v = 0;
+    if (p)
+        memcpy(&v, p, 4);
+    return v;
+}
+
+int import_build(const uint8_t *reply, size_t n, const struct model_ctx *ctx,
+                 const char *where, struct mesh *out, struct err *e)
+{
+    struct reader R = {reply, reply + n, false};
+    uint32_t n_pos = take_u32(&R), n_tris = take_u32(&R);
+    bool any_nrm = take_u32(&R) != 0, any_uv = take_u32(&R) != 0;
+    if (R.bad || (size_t)n_pos > n / 12 || (size_t)n_tris > n / 36)
+        return err_set(e, "%s: bad reply from the importer", where);
+    if (n_tris == 0)
+        return err_set(e, "%s: no triangles (the file has no surfaces rastty can draw)", where);
+    const float *pos = take(&R, (size_t)n_pos * 12);
+    const float *nrm = take(&R, (size_t)n_pos * 12);
+    const float *uv = take(&R, (size_t)n_pos * 8);
+    const struct mesh_corner *corners = take(&R, (size_t)n_tris * 36);
+    const uint32_t *tmat = take(&R, (size_t)n_tris * 4);
+    uint32_t n_mats = take_u32(&R);
+    if (R.bad || n_mats > IMPORT_MAX_MATERIALS)
+        return err_set(e, "%s: bad reply from the importer", where);
+    out->materials = calloc((size_t)n_mats + 1, sizeof *out->materials);
+    uint16_t *tri_material = malloc((size_t)n_tris * sizeof *tri_material);
+    /* copies: the reply is not aligned for floats in general */
+    float *apos = malloc((size_t)n_pos * 12 + 1), *anrm = malloc((size_t)n_pos * 12 + 1);
+    float *auv = malloc((size_t)n_pos * 8 + 1);
+    struct mesh_corner *ac = malloc((size_t)n_tris * 36);
+    int rc = -1;
+    if (!out->materials || !tri_material || !apos || !anrm || !auv || !ac) {
+        err_set(e, "%s: out of memory", where);
+        goto done;
+    }
+    memcpy(apos, pos, (size_t)n_pos * 12);
+    memcpy(anrm, nrm, (size_t)n_pos * 12);
+    memcpy(auv, uv, (size_t)n_pos * 8);
+    memcpy(ac, corners, (size_t)n_tris * 36);
+    for (uint32_t t = 0; t < n_tris; t++) {
+        uint32_t m;
+        memcpy(&m, &tmat[t], 4);
+        tri_material[t] = (uint16_t)(m <= n_mats ? m : 0);
+    }
+    mtl_default(&out->materials[0], "default");
+    out->materials[0].implicit = true; /* meshes without a material */
+    out->n_materials = n_mats + 1;
+    /* material i+1: kd and a texture reference (kept until textures are loaded) */
+    struct texref {
+        uint32_t kind, len;
+        const uint8_t *p;
+    } *refs = calloc((size_t)n_mats + 1, sizeof *refs);
+    if (!refs) {
+        err_set(e, "%s: out of memory", where);
+        goto done;
+    }
+    for (uint32_t i = 1; i <= n_mats; i++) {
+        struct material *m = &out->materials[i];
+        char name[32];
+        snprintf(name, sizeof name, "material%u", i - 1);
+        mtl_default(m, name);
+        const float *kd = take(&R, 12);
+        if (kd)
+            memcpy(m->kd, kd, 12);
+        refs[i].kind = take_u32(&R);
+        if (refs[i].kind == 1 || refs[i].kind == 2) {
+            refs[i].len = take_u32(&R);
+            refs[i].p = take(&R, refs[i].len);
+        }
+        for (int k = 0; k < 3; k++)
+            if (!(m->kd[k] >= 0 && m->kd[k] <= 1))
+                m->kd[k] = 1;
+    }
+    if (R.bad) {
+        free(refs);
+        err_set(e, "%s: bad reply from the importer", where);
+        goto done;
+    }
+    struct mesh_source src = {.pos = apos, .nrm = any_nrm ? anrm : NULL,
+                              .uv = any_uv ? auv : NULL, .n_pos = n_pos,
+                              .n_nrm = any_nrm ? n_pos : 0, .n_uv = any_uv ? n_pos : 0,
+                              .corners = ac, .tri_material = tri_material, .n_tris = n_tris};
+    for (size_t i = 0; i < (size_t)n_tris * 3; i++) {
+        if (!any_nrm)
+            ac[i].nrm = MESH_NONE;
+        if (!any_uv)
+            ac[i].uv = MESH_NONE;
+    }
+    struct err be;
+    if (mesh_build(&src, out, &be)) {
+        free(refs);
+        err_set(e, "%s: %s", where, be.msg);
+        goto done;
+    }
+    if (material_reserve_textures(out, e)) {
+        free(refs);
+        goto done;
+    }
+    rc = 0;
+    for (uint32_t i = 1; i <= n_mats && rc == 0; i++) {
+        if (refs[i].kind == 1 && ctx->path && !memchr(refs[i].p, '\0', refs[i].len)) {
+            char *path = material_path_beside(ctx->path, (const char *)refs[i].p, refs[i].len);
+            /* glTF URIs escape spaces and the like as %20: undo the common case */
+            if (path)
+                for (char *c = path; (c = strstr(c, "%20"));)
+                    memmove(c + 1, c + 3, strlen(c + 3) + 1), *c = ' ';
+            rc = path ? material_texture_file(out, i, path, where, 0, ctx, e)
+                      : err_set(e, "%s: out of memory", where);
+            free(path);
+        } else if (refs[i].kind == 2) {
+            char name[FILE_QUOTE_SIZE + 32];
+            snprintf(name, sizeof name, "%s: embedded image %u", where, i - 1);
+            rc = material_texture_bytes(out, i, refs[i].p, refs[i].len, name, ctx, e);
+        }
+    }
+    free(refs);
+done:
+    free(tri_material);
+    free(apos);
+    free(anrm);
+    free(auv);
+    free(ac);
+    return rc;
+}
+
+/* ---- the child process ---- */
+
+static void child(const char *data, size_t len, const char *name, bool others, int fd)
+{
+    int null = open("/dev/null", O_RDWR);
+    if (null >= 0) {
+        dup2(null, 0);
+        dup2(null, 1);
+        dup2(null, 2);
+    }
+    struct rlimit cpu = {IMPORT_MAX_SECONDS, IMPORT_MAX_SECONDS + 1};
+    setrlimit(RLIMIT_CPU, &cpu);
+#if !defined(__SANITIZE_ADDRESS__)
+#if defined(__has_feature)
+#if !__has_feature(address_sanitizer)
+    struct rlimit as = {IMPORT_MAX_MEMORY, IMPORT_MAX_MEMORY};
+    setrlimit(RLIMIT_AS, &as);
+#endif
+#else
+    struct rlimit as = {IMPORT_MAX_MEMORY, IMPORT_MAX_MEMORY};
+    setrlimit(RLIMIT_AS, &as);
+#endif
+#endif
+    struct import_result r;
+    uint8_t status;
+    if (import_flatten(data, len, name, others, &r) == 0) {
+        status = 0;
+    } else {
+        status = 1;
+        r.reply.n = 0;
+        put_reply(&r, r.msg, strlen(r.msg));
+    }
+    if (write(fd, &status, 1) != 1)
+        _exit(3);
+    for (size_t off = 0; off < r.reply.n;) {
+        ssize_t w = write(fd, r.reply.p + off, r.reply.n - off);
+        if (w < 0 && errno == EINTR)
+            continue;
+        if (w <= 0)
+            _exit(3);
+        off += (size_t)w;
+    }
+    _exit(0);
+}
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+int import_read(const char *data, size_t len, const struct model_ctx *ctx, struct mesh *out,
+                struct err *e)
+{
+    memset(out, 0, sizeof *out);
+    char where[FILE_QUOTE_SIZE];
+    file_quote(ctx->path ? ctx->path : "<memory>", where, sizeof where);
+    char name[64];
+    const char *iname = ctx->path;
+    if (!iname) { /* assimp picks importers by name: give it one that fits the bytes */
+        snprintf(name, sizeof name, "memory.%s", import_guess_ext(data, len));
+        iname = name;
+    }
+    int fds[2];
+    if (pipe(fds) != 0)
+        return err_set(e, "%s: cannot start the importer: %s", where, strerror(errno));
+    fflush(NULL);
+    pid_t pid = fork();
+    if (pid < 0) {
+        close(fds[0]);
+        close(fds[1]);
+        return err_set(e, "%s: cannot start the importer: %s", where, strerror(errno));
+    }
+    if (pid == 0) {
+        close(fds[0]);
+        child(data, len, iname, ctx->path != NULL, fds[1]);
+    }
+    close(fds[1]);
+    struct blob in = {0};
+    double deadline = now_s() + IMPORT_MAX_SECONDS + 5;
+    bool timed_out = false;
+    for (;;) {
+        double left = deadline - now_s();
+        if (left <= 0) {
+            timed_out = true;
+            break;
+        }
+        struct pollfd pf = {fds[0], POLLIN, 0};
+        int pr = poll(&pf, 1, (int)(left * 1000) + 1);
+        if (pr < 0 && errno == EINTR)
+            continue;
+        if (pr <= 0)
+            continue;
+        uint8_t buf[65536];
+        ssize_t got = read(fds[0], buf, sizeof buf);
+        if (got < 0 && errno == EINTR)
+            continue;
+        if (got <= 0)
+            break;
+        put(&in, buf, (size_t)got);
+        if (in.failed)
+            break;
+    }
+    close(fds[0]);
+    if (timed_out || in.failed)
+        kill(pid, SIGKILL);
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    int rc = -1;
+    if (timed_out) {
+        err_set(e, "%s: the importer took longer than %d s; stopped", where,
+                IMPORT_MAX_SECONDS);
+    } else if (in.failed) {
+        err_set(e, "%s: the importer's result is too large", where);
+    } else if (WIFSIGNALED(status)) {
+        int sig = WTERMSIG(status);
+        err_set(e, "%s: the importer failed (killed by signal %d%s)", where, sig,
+                sig == SIGXCPU ? ": CPU time limit" : sig == SIGKILL ? "" : "");
+    } else if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || in.n < 1) {
+        err_set(e, "%s: the importer failed (exit status %d%s)", where,
+                WIFEXITED(status) ? WEXITSTATUS(status) : -1,
+                in.n < 1 ? ", no reply: perhaps out of memory" : "");
+    } else if (in.p[0] != 0) {
+        char msg[220];
+        err_quote((const char *)in.p + 1, in.n - 1, 200, msg, sizeof msg);
+        err_set(e, "%s: %s", where, msg);
+    } else {
+        rc = import_build(in.p + 1, in.n - 1, ctx, where, out, e);
+    }
+    free(in.p);
+    if (rc)
+        mesh_free(out);
+    return rc;
+}
+
+const char *import_guess_ext(const char *data, size_t len)
+{
+    if (len >= 4 && memcmp(data, "glTF", 4) == 0)
+        return "glb";
+    if (len >= 18 && memcmp(data, "Kaydara FBX Binary", 18) == 0)
+        return "fbx";
+    for (size_t i = 0; i < len && i < 4096; i++) {
+        if (data[i] == '{')
+            return "gltf";
+        if (data[i] == '<')
+            return "dae";
+        if (data[i] == ';')
+            return "fbx";
+        if (data[i] != ' ' && data[i] != '\t' && data[i] != '\r' && data[i] != '\n' &&
+            (unsigned char)data[i] != 0xef && (unsigned char)data[i] != 0xbb &&
+            (unsigned char)data[i] != 0xbf)
+            break;
+    }
+    return "3ds";
+}

@@ -1,0 +1,194 @@
+/* model.c: which loader reads a file, and the one entry point for all of them (model.h). */
+#include "model.h"
+
+#include <stdbool.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#include "file.h"
+#include "imgdec.h"
+
+static const char *const format_names[MODEL_FORMAT_COUNT] = {"OBJ", "STL", "PLY", "assimp"};
+
+const char *model_format_name(enum model_format f)
+{
+    return format_names[f];
+}
+
+static bool starts(const char *d, size_t n, const char *s)
+{
+    size_t k = strlen(s);
+    return n >= k && memcmp(d, s, k) == 0;
+}
+
+/* does the text's first KB hold s? (memmem on a bounded window) */
+static bool early(const char *d, size_t n, const char *s)
+{
+    size_t k = strlen(s), w = n < 4096 ? n : 4096;
+    for (size_t i = 0; i + k <= w; i++)
+        if (memcmp(d + i, s, k) == 0)
+            return true;
+    return false;
+}
+
+static const char *extension(const char *path)
+{
+    if (!path)
+        return "";
+    const char *slash = strrchr(path, '/'), *dot = strrchr(path, '.');
+    return dot && (!slash || dot > slash) ? dot + 1 : "";
+}
+
+static bool ext_in(const char *ext, const char *const *list)
+{
+    for (; *list; list++)
+        if (strcasecmp(ext, *list) == 0)
+            return true;
+    return false;
+}
+
+/* formats assimp reads that rastty hands to it (OBJ, STL and PLY stay on our own parsers) */
+static const char *const import_exts[] = {
+    "gltf", "glb", "fbx", "dae", "3ds", "x", "lwo", "lws", "ase", "ms3d", "off", "ac", "ac3d",
+    "3mf", "amf", "md2", "md3", "md5mesh", "mdl", "smd", "irrmesh", "xgl", "zgl", "cob", "q3o",
+    "q3s", "nff", "raw", "ter", "hmp", "ndo", "b3d", "csm", "bvh", "ogex", "x3d", "m3d", NULL};
+static const char *const image_exts[] = {"png", "jpg", "jpeg", "tga", "bmp", "gif", "psd",
+                                         "hdr", "ppm", "pgm", "pnm", "pic", NULL};
+
+int model_detect(const char *data, size_t len, const char *path, enum model_format *fmt,
+                 struct err *e)
+{
+    char q[FILE_QUOTE_SIZE];
+    file_quote(path ? path : "<memory>", q, sizeof q);
+    const uint8_t *u = (const uint8_t *)data;
+    const char *ext = extension(path);
+    /* binary formats with magic */
+    if (starts(data, len, "glTF") || starts(data, len, "Kaydara FBX Binary")) {
+        *fmt = MODEL_IMPORT;
+        return 0;
+    }
+    if (starts(data, len, "ply\n") || starts(data, len, "ply\r\n")) {
+        *fmt = MODEL_PLY;
+        return 0;
+    }
+    /* binary STL: an 80-byte header, a count, exactly 50 bytes per triangle */
+    if (len >= 84) {
+        uint32_t n = (uint32_t)u[80] | (uint32_t)u[81] << 8 | (uint32_t)u[82] << 16 |
+                     (uint32_t)u[83] << 24;
+        if ((len - 84) % 50 == 0 && (len - 84) / 50 == n) {
+            *fmt = MODEL_STL;
+            return 0;
+        }
+    }
+    /* files that are no model at all */
+    const char *kind = imgdec_kind(u, len);
+    if (!kind && ext_in(ext, image_exts) && !starts(data, len, "solid"))
+        kind = "an image, by its name";
+    if (!kind) {
+        static const struct {
+            const char *magic, *what;
+        } other[] = {
+            {"\x1f\x8b", "gzip-compressed data: decompress it first"},
+            {"PK\x03\x04", "ZIP archive: extract it first"},
+            {"7z\xbc\xaf\x27\x1c", "7-Zip archive: extract it first"},
+            {"Rar!", "RAR archive: extract it first"},
+            {"%PDF", "PDF document"},
+            {"\x7f" "ELF", "ELF executable"},
+            {"BLENDER", "Blender file: export it as glTF, OBJ or STL"},
+        };
+        for (size_t i = 0; i < sizeof other / sizeof other[0]; i++)
+            if (starts(data, len, other[i].magic))
+                kind = other[i].what;
+    }
+    if (kind)
+        return err_set(e, "%s: not a model (%s)", q, kind);
+    if (starts(data, len, "\xff\xfe") || starts(data, len, "\xfe\xff"))
+        return err_set(e, "%s: UTF-16 text (save the file as UTF-8 or ASCII)", q);
+    /* text formats: skip a byte-order mark and blanks */
+    const char *t = data, *end = data + len;
+    if (starts(t, len, "\xef\xbb\xbf"))
+        t += 3;
+    while (t < end && (*t == ' ' || *t == '\t' || *t == '\r' || *t == '\n'))
+        t++;
+    size_t tn = (size_t)(end - t);
+    if ((starts(t, tn, "{") && early(t, tn, "\"asset\"")) || early(t, tn, "<COLLADA") ||
+        starts(t, tn, "; FBX")) {
+        *fmt = MODEL_IMPORT;
+        return 0;
+    }
+    if (starts(t, tn, "solid") && (early(t, tn, "facet") || early(t, tn, "endsolid"))) {
+        *fmt = MODEL_STL;
+        return 0;
+    }
+    /* then the name */
+    if (strcasecmp(ext, "stl") == 0)
+        *fmt = MODEL_STL;
+    else if (strcasecmp(ext, "ply") == 0)
+        *fmt = MODEL_PLY;
+    else if (ext_in(ext, import_exts))
+        *fmt = MODEL_IMPORT;
+    else
+        *fmt = MODEL_OBJ; /* the text format without magic */
+    return 0;
+}
+
+typedef int (*model_reader)(const char *, size_t, const struct model_ctx *, struct mesh *,
+                            struct err *);
+static const model_reader readers[MODEL_FORMAT_COUNT] = {obj_read, stl_read, ply_read,
+                                                         import_read};
+
+int model_parse_as(enum model_format f, const char *data, size_t len,
+                   const struct model_ctx *ctx, struct mesh *out, struct err *e)
+{
+    /* loaders always load textures through a cache (one decode per file, one budget);
+     * without the caller's, a private one whose textures the mesh then owns */
+    struct texture_cache local = {0};
+    struct model_ctx c = *ctx;
+    if (!c.cache)
+        c.cache = &local;
+    int rc = readers[f](data, len, &c, out, e);
+    if (!ctx->cache) {
+        for (int i = 0; i < local.n; i++) {
+            bool moved = false;
+            for (uint32_t k = 0; rc == 0 && k < out->n_textures; k++)
+                if (out->textures[k].rgba == local.entries[i]->tex.rgba) {
+                    out->textures[k].borrowed = false; /* the mesh owns it now */
+                    moved = true;
+                }
+            if (moved)
+                local.entries[i]->tex.borrowed = true;
+        }
+        texture_cache_free(&local);
+    }
+    return rc;
+}
+
+int model_parse(const char *data, size_t len, const struct model_ctx *ctx, struct mesh *out,
+                struct err *e)
+{
+    memset(out, 0, sizeof *out);
+    enum model_format f;
+    if (model_detect(data, len, ctx->path, &f, e))
+        return -1;
+    return model_parse_as(f, data, len, ctx, out, e);
+}
+
+int model_load(const char *path, struct texture_cache *cache, struct warnings *w,
+               struct mesh *out, struct err *e)
+{
+    memset(out, 0, sizeof *out);
+    char *data;
+    size_t len;
+    int rc = file_read(path, FILE_MAX_MODEL, &data, &len);
+    if (rc) {
+        char q[FILE_QUOTE_SIZE];
+        return err_set(e, "%s: cannot read: %s", file_quote(path, q, sizeof q),
+                       file_strerror(rc));
+    }
+    struct model_ctx ctx = {.path = path, .cache = cache, .warn = w};
+    rc = model_parse(data, len, &ctx, out, e);
+    free(data);
+    return rc;
+}
