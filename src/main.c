@@ -1,13 +1,27 @@
 /* main.c: rastty's entry point — parse the command line, hand over to a subcommand, print
  * the one error line if it failed. Follow a frame from here: cmd_render() (cmd_render.c)
  * loads a scene (scene.c -> obj.c), draws it (pipeline.c) and writes the image (image.c). */
+#include <errno.h>
 #include <stdio.h>
+#include <string.h>
 
 #include "cmd.h"
 #include "options.h"
 #include "view.h"
 
 #define RASTTY_VERSION "0.1.0"
+
+/* --help and --version: a write error (a full disk, a closed pipe) is a failure, exit 1 */
+static int flush_stdout(void)
+{
+    errno = 0;
+    if (fflush(stdout) != 0 || ferror(stdout)) {
+        fprintf(stderr, "rastty: standard output: write failed: %s\n",
+                strerror(errno ? errno : EIO));
+        return 1;
+    }
+    return 0;
+}
 
 int main(int argc, char **argv)
 {
@@ -21,10 +35,10 @@ int main(int argc, char **argv)
     switch (o.cmd) {
     case CMD_HELP:
         options_usage(stdout);
-        return 0;
+        return flush_stdout();
     case CMD_VERSION:
         printf("rastty %s\n", RASTTY_VERSION);
-        return 0;
+        return flush_stdout();
     case CMD_RENDER:
         rc = cmd_render(&o, &e);
         break;

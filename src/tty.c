@@ -17,8 +17,10 @@ static struct termios saved_termios;
 static volatile sig_atomic_t have_saved, quit_signal, stop_requested;
 static SCREEN *screen_handle;
 
+/* ... and leave keypad-transmit mode (xterm rmkx: normal cursor keys, numeric keypad), which
+ * keypad(stdscr, TRUE) entered: without it a shell after SIGABRT gets ESC O A for the arrows */
 static const char RESET_BYTES[] = "\033[?2026l\033[0m\033[?1000l\033[?1002l\033[?1003l"
-                                  "\033[?1006l\033[?25h\033[?1049l";
+                                  "\033[?1006l\033[?25h\033[?1l\033>\033[?1049l";
 
 /* ncurses asks for press/release reports only (?1000); ?1002 adds motion while a button is
  * held, so a drag orbits live instead of on release. ?1006 asks for SGR reports
