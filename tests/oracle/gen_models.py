@@ -10,12 +10,20 @@ build/oracle/models). Small, deterministic, regenerated on every run; nothing he
                 --size 64x64 --ortho 64 (window = world + 32): every edge runs through centres
   tie.ppm       32x32 texture of distinct colours; each tie triangle samples one texel centre
   checker.ppm   64x64 coloured checker for the ground plane
+  grid.stl      grid.obj's triangles (quads fanned as the readers do) as binary STL
+  globe.obj/.mtl/.png  textured UV sphere (vt, vn, map_Kd) placed in the world
+  globe.glb     the same sphere as glTF binary: local coordinates under a node with
+                rotation, scale and translation, normals, uvs (v flipped, as glTF stores
+                them), the PNG embedded: rendered by rastty, compared with Mesa's globe.obj
 No object colour is ever magenta (255,0,255): the crack scenes rely on it.
 """
+import json
 import math
 import os
 import random
+import struct
 import sys
+import zlib
 
 
 def write(path, lines):
@@ -154,6 +162,134 @@ def tie(path, tex_path, size=64, tex=32):
     ppm(tex_path, tex, tex, colour)
 
 
+def grid_stl(obj_path, stl_path):
+    """Binary STL of an OBJ's faces (fanned (0, i, i+1)), normals from the winding."""
+    pos, tris = [], []
+    for line in open(obj_path):
+        w = line.split()
+        if not w:
+            continue
+        if w[0] == "v":
+            pos.append(tuple(float(x) for x in w[1:4]))
+        elif w[0] == "f":
+            idx = [int(c.split("/")[0]) for c in w[1:]]
+            idx = [i - 1 if i > 0 else len(pos) + i for i in idx]
+            for k in range(1, len(idx) - 1):
+                tris.append((idx[0], idx[k], idx[k + 1]))
+    out = bytearray(b"binary STL of " + os.path.basename(obj_path).encode())
+    out += b"\0" * (80 - len(out))
+    out += struct.pack("<I", len(tris))
+    for a, b, c in tris:
+        p0, p1, p2 = pos[a], pos[b], pos[c]
+        u = [p1[i] - p0[i] for i in range(3)]
+        v = [p2[i] - p0[i] for i in range(3)]
+        n = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
+        out += struct.pack("<3f", *n)
+        for p in (p0, p1, p2):
+            out += struct.pack("<3f", *p)
+        out += b"\0\0"
+    with open(stl_path, "wb") as f:
+        f.write(out)
+
+
+def png_bytes(w, h, pixel):
+    raw = b"".join(b"\0" + bytes(c for x in range(w) for c in pixel(x, y)) for y in range(h))
+
+    def chunk(t, d):
+        return struct.pack(">I", len(d)) + t + d + struct.pack(">I", zlib.crc32(t + d) & 0xffffffff)
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 2, 0, 0, 0))
+            + chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
+
+
+def globe(d, seg=48, rings=24):
+    """A textured UV sphere twice: globe.obj in world coordinates, globe.glb in local ones
+    under a node transform. Same vertices, same triangles, same texture."""
+    local = []  # (position, normal, uv)
+    for r in range(rings + 1):
+        th = math.pi * r / rings
+        for s in range(seg + 1):
+            ph = 2 * math.pi * s / seg
+            n = (math.sin(th) * math.cos(ph), math.cos(th), -math.sin(th) * math.sin(ph))
+            local.append((n, n, (s / seg, 1 - r / rings)))
+    tris = []
+    for r in range(rings):
+        for s in range(seg):
+            a, b = r * (seg + 1) + s, (r + 1) * (seg + 1) + s
+            if r > 0:
+                tris.append((a, b, a + 1))
+            if r < rings - 1:
+                tris.append((a + 1, b, b + 1))
+    ang, scale, move = math.radians(30), 0.8, (0.1, 0.05, 0.0)
+    c, s_ = math.cos(ang), math.sin(ang)
+
+    def rot(v):  # about +Y
+        return (c * v[0] + s_ * v[2], v[1], -s_ * v[0] + c * v[2])
+
+    # float32 first, so both files hold the same numbers before the transform
+    f32 = lambda x: struct.unpack("<f", struct.pack("<f", x))[0]
+    local = [(tuple(map(f32, p)), tuple(map(f32, n)), tuple(map(f32, t))) for p, n, t in local]
+    lines = ["# textured sphere (globe.glb's node transform applied)", "mtllib globe.mtl"]
+    for p, n, t in local:
+        q = rot(tuple(scale * x for x in p))
+        lines.append("v %.9f %.9f %.9f" % tuple(q[i] + move[i] for i in range(3)))
+    for p, n, t in local:
+        lines.append("vn %.9f %.9f %.9f" % rot(n))
+    for p, n, t in local:
+        lines.append("vt %.9f %.9f" % t)
+    lines.append("usemtl globe")
+    for a, b, cc in tris:
+        lines.append("f %d/%d/%d %d/%d/%d %d/%d/%d" % (a + 1, a + 1, a + 1, b + 1, b + 1, b + 1,
+                                                       cc + 1, cc + 1, cc + 1))
+    write(os.path.join(d, "globe.obj"), lines)
+    write(os.path.join(d, "globe.mtl"), ["newmtl globe", "Kd 1 1 1", "map_Kd globe.png"])
+    png = png_bytes(32, 16, lambda x, y: (230, 200, 60) if ((x // 4) + (y // 4)) % 2 else
+                    (40 + 5 * x, 60 + 9 * y, 160))
+    with open(os.path.join(d, "globe.png"), "wb") as f:
+        f.write(png)
+    # glTF binary: one buffer holding positions, normals, uvs (v flipped), indices, the PNG
+    posb = b"".join(struct.pack("<3f", *p) for p, n, t in local)
+    nrmb = b"".join(struct.pack("<3f", *n) for p, n, t in local)
+    uvb = b"".join(struct.pack("<2f", t[0], 1 - t[1]) for p, n, t in local)
+    idxb = b"".join(struct.pack("<3I", *t) for t in tris)
+    views, blob = [], b""
+    for part in (posb, nrmb, uvb, idxb, png):
+        blob += b"\0" * (-len(blob) % 4)
+        views.append({"buffer": 0, "byteOffset": len(blob), "byteLength": len(part)})
+        blob += part
+    blob += b"\0" * (-len(blob) % 4)
+    nv = len(local)
+    lo = [min(p[i] for p, n, t in local) for i in range(3)]
+    hi = [max(p[i] for p, n, t in local) for i in range(3)]
+    gl = {
+        "asset": {"version": "2.0", "generator": "rastty gen_models.py"},
+        "scene": 0, "scenes": [{"nodes": [0]}],
+        "nodes": [{"name": "placed", "children": [1], "translation": list(move)},
+                  {"mesh": 0, "rotation": [0, math.sin(ang / 2), 0, math.cos(ang / 2)],
+                   "scale": [scale] * 3}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2},
+                                    "indices": 3, "material": 0}]}],
+        "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1],
+                                                "baseColorTexture": {"index": 0},
+                                                "metallicFactor": 0}}],
+        "textures": [{"source": 0}],
+        "images": [{"bufferView": 4, "mimeType": "image/png"}],
+        "buffers": [{"byteLength": len(blob)}],
+        "bufferViews": views,
+        "accessors": [
+            {"bufferView": 0, "componentType": 5126, "count": nv, "type": "VEC3", "min": lo, "max": hi},
+            {"bufferView": 1, "componentType": 5126, "count": nv, "type": "VEC3"},
+            {"bufferView": 2, "componentType": 5126, "count": nv, "type": "VEC2"},
+            {"bufferView": 3, "componentType": 5125, "count": 3 * len(tris), "type": "SCALAR"},
+        ],
+    }
+    js = json.dumps(gl).encode()
+    js += b" " * (-len(js) % 4)
+    glb = (struct.pack("<4sII", b"glTF", 2, 12 + 8 + len(js) + 8 + len(blob))
+           + struct.pack("<I4s", len(js), b"JSON") + js + struct.pack("<I4s", len(blob), b"BIN\0") + blob)
+    with open(os.path.join(d, "globe.glb"), "wb") as f:
+        f.write(glb)
+
+
 def main():
     d = sys.argv[1] if len(sys.argv) > 1 else "build/oracle/models"
     os.makedirs(d, exist_ok=True)
@@ -162,6 +298,8 @@ def main():
     ground(os.path.join(d, "ground.obj"))
     huge(os.path.join(d, "huge.obj"))
     tie(os.path.join(d, "tie.obj"), os.path.join(d, "tie.ppm"))
+    grid_stl(os.path.join(d, "grid.obj"), os.path.join(d, "grid.stl"))
+    globe(d)
     ppm(os.path.join(d, "checker.ppm"), 64, 64,
         lambda x, y: (230, 200, 60) if ((x // 8) + (y // 8)) % 2 else
         (40 + 3 * x, 60 + 2 * y, 140))

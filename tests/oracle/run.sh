@@ -116,17 +116,25 @@ for l in "${lines[@]}"; do
     fi
     args=${args//\$SHARED/$shared}
     args=${args//\$GEN/$gen}
+    checks=${checks//\$GEN/$gen}
     read -r -a argv <<<"$args"
+    # ref=MODEL: Mesa draws MODEL (the OBJ) where rastty draws the first argument (its STL
+    # or glTF twin); everything else is the same
+    refargv=("${argv[@]}")
+    if [[ $checks == *ref=* ]]; then
+        refmodel=${checks#*ref=}
+        refargv=("${refmodel%%+*}" "${argv[@]:1}")
+    fi
     ref=$out/$name.mesa test=$out/$name.rastty
     rm -f "$ref".* "$test".* "$out/$name.diff.png"
-    if ! "$glref" "${argv[@]}" --out "$ref.ppm" --depth-out "$ref.pfm" 2>"$ref.err"; then
+    if ! "$glref" "${refargv[@]}" --out "$ref.ppm" --depth-out "$ref.pfm" 2>"$ref.err"; then
         echo "$name FAIL (reference renderer: $(head -n 1 "$ref.err"))"
         failed=$((failed + 1))
         continue
     fi
     if [ "$mode" = calibrate ]; then
         test=$out/$name.softpipe
-        if ! GALLIUM_DRIVER=softpipe "$glref" "${argv[@]}" --out "$test.ppm" \
+        if ! GALLIUM_DRIVER=softpipe "$glref" "${refargv[@]}" --out "$test.ppm" \
             --depth-out "$test.pfm" 2>"$test.err"; then
             echo "$name FAIL (softpipe: $(head -n 1 "$test.err"))"
             failed=$((failed + 1))
@@ -134,7 +142,7 @@ for l in "${lines[@]}"; do
         fi
     elif [ "$mode" = calibrate-clip ]; then
         test=$out/$name.glclip
-        if ! "$glref" "${argv[@]}" --gl-clip --out "$test.ppm" --depth-out "$test.pfm" \
+        if ! "$glref" "${refargv[@]}" --gl-clip --out "$test.ppm" --depth-out "$test.pfm" \
             2>"$test.err"; then
             echo "$name FAIL (glref --gl-clip: $(head -n 1 "$test.err"))"
             failed=$((failed + 1))
