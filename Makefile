@@ -17,10 +17,10 @@ MAINOBJ := $(BUILD)/obj/main.o
 UNITSRC := $(wildcard tests/unit/*.c)
 UNITOBJ := $(patsubst tests/unit/%.c,$(BUILD)/tests/%.o,$(UNITSRC))
 
-# build: the first four; tests: OSMesa (the oracle), tmux and procps (pkill) for the
+# build: the first seven; tests: OSMesa (the oracle), tmux and procps (pkill) for the
 # end-to-end tests, ncurses-term (xterm-direct terminfo), python3 (asset checks)
-DEBIAN_PKGS := build-essential pkg-config libncurses-dev libstb-dev libosmesa6-dev tmux \
-               ncurses-term procps python3
+DEBIAN_PKGS := build-essential pkg-config libncurses-dev libstb-dev libpng-dev \
+               libjpeg62-turbo-dev libassimp-dev libosmesa6-dev tmux ncurses-term procps python3
 
 .PHONY: all test unit check-asan asan-build bench deps install uninstall clean help fuzz
 
@@ -34,7 +34,7 @@ help:
 	@echo "make test       unit + oracle (Mesa) + end-to-end tests, then the same under ASan+UBSan"
 	@echo "make check-asan unit + end-to-end tests built with -fsanitize=address,undefined"
 	@echo "make bench      speed and bytes/frame benchmarks (not a test)"
-	@echo "make fuzz       libFuzzer on the OBJ, MTL and ANSI parsers (FUZZ_SECONDS=60 each)"
+	@echo "make fuzz       libFuzzer on every parser and decoder (FUZZ_SECONDS=60 each)"
 	@echo "make deps       install Debian build/test packages (root) or print the apt-get line"
 	@echo "make install    PREFIX=/usr/local: binary, man page, built-in assets"
 
@@ -88,15 +88,16 @@ bench: rastty assets oracle-build
 
 # libFuzzer targets for every parser (clang); FUZZ_SECONDS each. See tests/fuzz/README.
 FUZZ_SECONDS ?= 60
-FUZZ_TARGETS := obj mtl decode scene
+FUZZ_TARGETS := obj mtl decode scene texture stl ply import
 FUZZ_CFLAGS  := -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
-                -std=c11 $(DEFS) -Iinclude $(shell pkg-config --cflags stb 2>/dev/null)
-build/fuzz_%: tests/fuzz/fuzz_%.c $(SRCS)
+                -std=c11 $(DEFS) -Iinclude $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
+build/fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/fuzz_mesh.h tests/fuzz/stb_impl.c $(SRCS)
 	@mkdir -p build/fuzz-work/$*
-	clang $(FUZZ_CFLAGS) $< $(filter-out src/main.c,$(SRCS)) -o $@ $(LDLIBS)
+	clang $(FUZZ_CFLAGS) $< tests/fuzz/stb_impl.c $(filter-out src/main.c,$(SRCS)) -o $@ $(LDLIBS)
 fuzz: $(addprefix build/fuzz_,$(FUZZ_TARGETS))
 	@for t in $(FUZZ_TARGETS); do \
 	    echo "== fuzz_$$t ($(FUZZ_SECONDS) s)"; \
+	    LSAN_OPTIONS=suppressions=tests/fuzz/lsan_assimp.supp \
 	    build/fuzz_$$t build/fuzz-work/$$t tests/fuzz/corpus/$$t -max_total_time=$(FUZZ_SECONDS) \
 	        -max_len=4096 -print_final_stats=1 2>&1 | grep -E "stat::number_of_executed_units|ERROR|SUMMARY" || exit 1; \
 	done

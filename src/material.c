@@ -18,7 +18,8 @@ char *material_path_beside(const char *from, const char *name, size_t name_len)
     char *full = malloc(dir + name_len + 1);
     if (!full)
         return NULL;
-    memcpy(full, from, dir);
+    if (dir)
+        memcpy(full, from, dir);
     memcpy(full + dir, name, name_len);
     full[dir + name_len] = '\0';
     return full;

@@ -45,7 +45,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     const char *text = (const char *)data;
     struct mtl_lib lib;
     struct err e = {{0}};
-    if (mtl_parse(text, size, NULL, &lib, &e) == 0) {
+    if (mtl_parse(text, size, NULL, &lib, NULL, &e) == 0) {
         for (uint32_t i = 0; i < lib.n; i++) {
             const struct material *m = &lib.materials[i];
             if (!lib.names[i] || m->texture != -1 || !(m->ns >= 0) || !isfinite(m->ns))
