@@ -551,6 +551,24 @@ static int decode_hdr(const uint8_t *d, size_t len, const char *name, int max_si
 
 /* ---- TGA, BMP, PSD, GIF (stb_image, after checks) -------------------------------------- */
 
+/* The fewest bytes a file of px pixels can take: TGA RLE packets hold at most 128 pixels
+ * (1 byte + 1 pixel), BMP RLE at most 255 per 2 bytes, PSD PackBits 128 bytes per 2 per
+ * channel (at least 1 channel), GIF's LZW at most 4096 pixels per 12-bit code. */
+static size_t stb_min_bytes(const uint8_t *d, size_t len, const char *kind, size_t px)
+{
+    if (strcmp(kind, "TGA") == 0 && len >= 18 && d[2] >= 9) {
+        size_t bpp = (size_t)(d[16] + 7) / 8;
+        return 18 + (px + 127) / 128 * (1 + bpp);
+    }
+    if (strcmp(kind, "BMP") == 0)
+        return 26 + (px + 254) / 255 * 2;
+    if (strcmp(kind, "PSD") == 0)
+        return 26 + (px + 127) / 128 * 2;
+    if (strcmp(kind, "GIF") == 0)
+        return 13 + (px + 4095) / 4096 * 3 / 2;
+    return 0;
+}
+
 static int decode_stb(const uint8_t *d, size_t len, const char *kind, const char *name,
                       int max_side, struct texture *out, struct warnings *w, struct err *e)
 {
@@ -565,6 +583,12 @@ static int decode_stb(const uint8_t *d, size_t len, const char *kind, const char
         return err_set(e, "%s: %s of %dx%d (%s images are limited to %d per side; PNG and JPEG "
                           "are downscaled)",
                        name, kind, iw, ih, kind, IMGDEC_MAX_WHOLE);
+    /* the file must be long enough for its size even at the format's best compression, so a
+     * few hundred bytes cannot ask for 16 million decoded pixels */
+    size_t need = stb_min_bytes(d, len, kind, (size_t)iw * (size_t)ih);
+    if (len < need)
+        return err_set(e, "%s: %s of %dx%d cannot fit in %zu bytes (at least %zu): truncated",
+                       name, kind, iw, ih, len, need);
     /* stb tries its decoders in turn: make sure it takes the one we checked */
     if (stbi_is_hdr_from_memory(d, (int)len))
         return err_set(e, "%s: not a readable image", name);

@@ -307,3 +307,20 @@ TEST(not_an_image_is_named)
     CHECK(strcmp(imgdec_kind((const uint8_t *)"\xff\xd8\xff\xe0", 4), "JPEG image") == 0);
     CHECK(imgdec_kind(text, sizeof text - 1) == NULL);
 }
+
+/* a 65-byte TGA whose RLE header asks for 3855x3855: stb would decode 15 million pixels
+ * from it (25 s under the sanitizers, found by fuzz_texture); refused by its size */
+TEST(stb_formats_checked_against_file_size)
+{
+    static const uint8_t tga[] = {0, 0, 10, 0, 0, 15, 15, 15, 15, 15, 90, 15, 15, 15, 15, 15,
+                                  15, 15, 15, 58, 15, 52, 53, 56, 0, 0, 0, 5, 0, 4, 0, 24};
+    uint8_t d[65] = {0};
+    memcpy(d, tga, sizeof tga);
+    d[12] = 0x0f, d[13] = 0x0f, d[14] = 0x0f, d[15] = 0x0f, d[16] = 24, d[17] = 0;
+    struct texture tx;
+    struct err e;
+    CHECK_EQ_INT(decode(d, sizeof d, &tx, NULL, &e), -1);
+    CHECK(strcmp(e.msg, "t: TGA of 3855x3855 cannot fit in 65 bytes (at least 464426): "
+                        "truncated") == 0);
+    CHECK(tx.rgba == NULL);
+}
