@@ -1,8 +1,8 @@
 /* options.h: the command line, parsed once into one struct for every subcommand.
  *
- * rastty [view] [MODEL.obj|SCENE.rsc ...]  interactive viewer (default)
- * rastty render MODEL.obj --out FILE        one frame to PPM/PNG (+ PFM depth)
- * rastty dump MODEL.obj                     frames as ANSI text
+ * rastty [view] [MODEL|SCENE.rsc ...]      interactive viewer (default)
+ * rastty render MODEL --out FILE            one frame to PPM/PNG (+ PFM depth)
+ * rastty dump MODEL                         frames as ANSI text
  * rastty ansi2ppm FILE.ans --out FILE.ppm   decode our ANSI output back to pixels
  * rastty bench                              benchmarks
  * Flags are defined in one table (options.c) that also prints --help, so the two cannot

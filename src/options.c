@@ -55,7 +55,7 @@ static const struct flag flags[] = {
     {"--frame", F_FRAME, ARG_NONE, C_RENDER | C_DUMP, NULL, "move the camera to fit the model (keeps the view direction)", NULL, 0},
     {"--light", F_LIGHT, ARG_VALUE, C_DRAW, "X,Y,Z", "direction toward the light (default 1,1,1)", NULL, 0},
     ENUM_FLAG("--shade", C_DRAW | C_BENCH, "shading", render_shade_names, render.shade),
-    {"--texture", F_TEXTURE, ARG_VALUE, C_DRAW, "FILE", "diffuse texture replacing the MTL's map_Kd", NULL, 0},
+    {"--texture", F_TEXTURE, ARG_VALUE, C_DRAW, "FILE", "diffuse texture replacing the materials' (PNG, JPEG, TGA, BMP, GIF, PSD, PNM, HDR)", NULL, 0},
     {"--no-texture", F_NO_TEXTURE, ARG_NONE, C_DRAW, NULL, "ignore all textures (albedo = Kd)", NULL, 0},
     ENUM_FLAG("--filter", C_DRAW | C_BENCH, "texture filter", render_filter_names, render.filter),
     ENUM_FLAG("--raster", C_DRAW | C_BENCH, "rasterizer", render_raster_names, render.raster),
@@ -332,7 +332,7 @@ static int validate(struct options *o, struct err *e)
     switch (o->cmd) {
     case CMD_RENDER:
         if (o->n_inputs != 1)
-            return err_set(e, "rastty render: expected one MODEL.obj (see rastty --help)");
+            return err_set(e, "rastty render: expected one MODEL or SCENE.rsc (see rastty --help)");
         if (!o->out)
             return err_set(e, "rastty render: --out FILE.ppm|FILE.png is required");
         if (o->width == 0)
@@ -340,7 +340,7 @@ static int validate(struct options *o, struct err *e)
         break;
     case CMD_DUMP:
         if (o->n_inputs != 1)
-            return err_set(e, "rastty dump: expected one MODEL.obj (see rastty --help)");
+            return err_set(e, "rastty dump: expected one MODEL or SCENE.rsc (see rastty --help)");
         break;
     case CMD_ANSI2PPM:
         if (o->n_inputs != 1 || !o->out)
@@ -422,9 +422,9 @@ void options_usage(FILE *out)
     struct options dflt;
     defaults(&dflt);
     fprintf(out,
-            "usage: rastty [view] [MODEL.obj|SCENE.rsc ...]   interactive viewer (no file: demo)\n"
-            "       rastty render MODEL.obj --out FILE.ppm|FILE.png [options]\n"
-            "       rastty dump MODEL.obj [--out FILE.ans] [options]\n"
+            "usage: rastty [view] [MODEL|SCENE.rsc ...]   interactive viewer (no file: demo)\n"
+            "       rastty render MODEL --out FILE.ppm|FILE.png [options]\n"
+            "       rastty dump MODEL [--out FILE.ans] [options]\n"
             "       rastty ansi2ppm FILE.ans --out FILE.ppm [--frame K]\n"
             "       rastty bench [options]\n\noptions:\n");
     for (size_t k = 0; k < sizeof flags / sizeof flags[0]; k++) {
@@ -450,6 +450,8 @@ void options_usage(FILE *out)
             }
         fprintf(out, "%s]\n", f->cmds == ~0u ? "all" : "");
     }
-    fprintf(out, "\nExit status: 0 success, 1 runtime failure, 2 bad usage or bad input file.\n"
+    fprintf(out, "\nMODEL: OBJ, STL, PLY, glTF/GLB, FBX, COLLADA, 3DS, ... (format by content).\n"
+                 "Exit status: 0 success (a material's missing texture or library is only a\n"
+                 "warning), 1 runtime failure, 2 bad usage or a bad file named on the command line.\n"
                  "See rastty(1) for keys, the scene format and examples.\n");
 }
