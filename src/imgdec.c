@@ -55,9 +55,22 @@ static void shrink_row(struct shrink *s, const uint8_t *rgba)
         s->row++;
         return;
     }
-    for (int x = 0; x < s->w; x++)
-        for (int c = 0; c < 4; c++)
-            s->acc[(x / s->f) * 4 + c] += rgba[x * 4 + c];
+    const uint8_t *p = rgba;
+    uint32_t *a = s->acc;
+    for (int ox = 0; ox < s->ow; ox++, a += 4) {
+        int n = ox == s->ow - 1 ? s->w - ox * s->f : s->f;
+        uint32_t r = 0, g = 0, b = 0, al = 0;
+        for (int k = 0; k < n; k++, p += 4) {
+            r += p[0];
+            g += p[1];
+            b += p[2];
+            al += p[3];
+        }
+        a[0] += r;
+        a[1] += g;
+        a[2] += b;
+        a[3] += al;
+    }
     s->row++;
     if (s->row % s->f == 0 || s->row == s->h) {
         int oy = (s->row - 1) / s->f, rows = s->row - oy * s->f;
