@@ -602,6 +602,11 @@ static int decode_stb(const uint8_t *d, size_t len, const char *kind, const char
     if (len < need)
         return err_set(e, "%s: %s of %dx%d cannot fit in %zu bytes (at least %zu): truncated",
                        name, kind, iw, ih, len, need);
+    /* stb "removes the white matte" of PSDs with 4+ channels by dividing by alpha and
+     * casting out-of-range floats to bytes (undefined behaviour, found by fuzz_texture) */
+    if (strcmp(kind, "PSD") == 0 && len >= 14 && (d[12] << 8 | d[13]) >= 4)
+        return err_set(e, "%s: PSD with an alpha channel (%d channels) is not supported", name,
+                       d[12] << 8 | d[13]);
     /* stb tries its decoders in turn: make sure it takes the one we checked */
     if (stbi_is_hdr_from_memory(d, (int)len))
         return err_set(e, "%s: not a readable image", name);

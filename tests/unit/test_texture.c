@@ -324,3 +324,15 @@ TEST(stb_formats_checked_against_file_size)
                         "truncated") == 0);
     CHECK(tx.rgba == NULL);
 }
+
+/* a 151-byte PSD with 4 channels: stb's matte removal casts -12750 to a byte (UBSan, found by
+ * fuzz_texture with stb compiled in); refused before stb sees it */
+TEST(psd_with_alpha_is_refused)
+{
+    static const uint8_t psd[] = {'8', 'B', 'P', 'S', 0, 1, 'B', '/', 10, 24, 0, 0, 0, 7, 0, 0,
+                                  0, 4, 0, 0, 0, 4, 0, 16, 0, 3, 0, 0, 0, 0, 0, 0, 0, 0};
+    struct texture tx;
+    struct err e;
+    CHECK_EQ_INT(decode(psd, sizeof psd, &tx, NULL, &e), -1);
+    CHECK(strcmp(e.msg, "t: PSD with an alpha channel (7 channels) is not supported") == 0);
+}
