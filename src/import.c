@@ -56,6 +56,14 @@
 #define IMPORT_MAX_MATERIALS 65535
 #define IMPORT_MAX_REPLY ((size_t)3 << 30)
 
+#if defined(__SANITIZE_ADDRESS__)
+#define IMPORT_UNDER_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define IMPORT_UNDER_ASAN 1
+#endif
+#endif
+
 /* ---- the flattened result (what crosses the pipe) ---- */
 
 struct blob {
@@ -602,16 +610,9 @@ static void child(const char *data, size_t len, const char *name, bool others, i
     }
     struct rlimit cpu = {IMPORT_MAX_SECONDS, IMPORT_MAX_SECONDS + 1};
     setrlimit(RLIMIT_CPU, &cpu);
-#if !defined(__SANITIZE_ADDRESS__)
-#if defined(__has_feature)
-#if !__has_feature(address_sanitizer)
+#ifndef IMPORT_UNDER_ASAN /* ASan reserves terabytes of address space: no RLIMIT_AS there */
     struct rlimit as = {IMPORT_MAX_MEMORY, IMPORT_MAX_MEMORY};
     setrlimit(RLIMIT_AS, &as);
-#endif
-#else
-    struct rlimit as = {IMPORT_MAX_MEMORY, IMPORT_MAX_MEMORY};
-    setrlimit(RLIMIT_AS, &as);
-#endif
 #endif
     struct import_result r;
     uint8_t status;
