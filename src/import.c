@@ -643,12 +643,43 @@ static double now_s(void)
     return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
 }
 
+static uint32_t le32(const char *p)
+{
+    const uint8_t *u = (const uint8_t *)p;
+    return (uint32_t)u[0] | (uint32_t)u[1] << 8 | (uint32_t)u[2] << 16 | (uint32_t)u[3] << 24;
+}
+
+/* A GLB's header and chunk lengths must agree with the file: assimp would otherwise
+ * allocate what a 20-byte file claims (2 GB). */
+static int check_glb(const char *d, size_t len, const char *where, struct err *e)
+{
+    if (len < 20)
+        return err_set(e, "%s: byte 0: GLB too short for its header", where);
+    if (le32(d + 4) != 2)
+        return err_set(e, "%s: byte 4: GLB version %u (only glTF 2.0)", where, le32(d + 4));
+    if (le32(d + 8) != len)
+        return err_set(e, "%s: byte 8: GLB says %u bytes, the file has %zu", where, le32(d + 8),
+                       len);
+    for (size_t off = 12; off < len;) {
+        if (len - off < 8)
+            return err_set(e, "%s: byte %zu: truncated GLB chunk header", where, off);
+        uint32_t n = le32(d + off);
+        if (n > len - off - 8)
+            return err_set(e, "%s: byte %zu: GLB chunk of %u bytes, %zu left in the file", where,
+                           off, n, len - off - 8);
+        off += 8 + (size_t)n;
+    }
+    return 0;
+}
+
 int import_read(const char *data, size_t len, const struct model_ctx *ctx, struct mesh *out,
                 struct err *e)
 {
     memset(out, 0, sizeof *out);
     char where[FILE_QUOTE_SIZE];
     file_quote(ctx->path ? ctx->path : "<memory>", where, sizeof where);
+    if (len >= 4 && memcmp(data, "glTF", 4) == 0 && check_glb(data, len, where, e))
+        return -1;
     char name[64];
     const char *iname = ctx->path;
     if (!iname) { /* assimp picks importers by name: give it one that fits the bytes */

@@ -338,6 +338,20 @@ TEST(gltf_external_files_follow_the_file_rules)
                  -1);
 }
 
+/* a 20-byte GLB whose JSON chunk claims 2 GB: assimp allocated it (2.1 GB, 7 s) */
+TEST(glb_lengths_checked_before_assimp)
+{
+    static const char bomb[] = "glTF\x02\0\0\0\x14\0\0\0\xf0\xff\xff\x7fJSON";
+    struct mesh m;
+    struct err e;
+    CHECK_EQ_INT(parse_as(bomb, 20, NULL, &m, NULL, &e), -1);
+    CHECK(strcmp(e.msg, "<memory>: byte 12: GLB chunk of 2147483632 bytes, 0 left in the "
+                        "file") == 0);
+    static const char wrong_total[] = "glTF\x02\0\0\0\xff\xff\xff\x7f\0\0\0\0JSON";
+    CHECK_EQ_INT(parse_as(wrong_total, 20, NULL, &m, NULL, &e), -1);
+    CHECK(strcmp(e.msg, "<memory>: byte 8: GLB says 2147483647 bytes, the file has 20") == 0);
+}
+
 TEST(gltf_garbage_is_an_error_not_a_crash)
 {
     static const char *junk[] = {
