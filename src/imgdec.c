@@ -157,9 +157,29 @@ static void png_read_mem(png_structp png, png_bytep out, size_t n)
     c->pos += n;
 }
 
+/* Every chunk's length must fit in the file: libpng allocates what a chunk header claims
+ * before reading it (a 65-byte file with a tEXt chunk of 1.9 GB cost 1.9 GB). */
+static int png_chunks_fit(const uint8_t *d, size_t len, const char *name, struct err *e)
+{
+    for (size_t off = 8; off + 8 <= len;) {
+        uint32_t n = (uint32_t)d[off] << 24 | (uint32_t)d[off + 1] << 16 |
+                     (uint32_t)d[off + 2] << 8 | d[off + 3];
+        if (n > len - off - 8 || len - off - 8 - n < 4)
+            return err_set(e, "%s: byte %zu: PNG chunk of %u bytes, %zu left in the file: "
+                              "truncated",
+                           name, off, n, len - off - 8);
+        if (memcmp(d + off + 4, "IEND", 4) == 0)
+            break;
+        off += 12 + (size_t)n;
+    }
+    return 0;
+}
+
 static int decode_png(const uint8_t *data, size_t len, const char *name, int max_side,
                       struct texture *out, struct warnings *w, struct err *e)
 {
+    if (png_chunks_fit(data, len, name, e))
+        return -1;
     struct png_ctx *c = calloc(1, sizeof *c);
     if (!c)
         return oom(name, e);

@@ -336,3 +336,19 @@ TEST(psd_with_alpha_is_refused)
     CHECK_EQ_INT(decode(psd, sizeof psd, &tx, NULL, &e), -1);
     CHECK(strcmp(e.msg, "t: PSD with an alpha channel (7 channels) is not supported") == 0);
 }
+
+/* a 65-byte PNG whose tEXt chunk claims 1.9 GB: libpng allocated it (found by fuzz_texture:
+ * out of memory); every chunk must now fit in the file */
+TEST(png_chunk_lengths_checked_against_the_file)
+{
+    static const uint8_t png[] = {
+        0x89, 'P', 'N', 'G', 0x0d, 0x0a, 0x1a, 0x0a, 0, 0, 0, 0x0d, 'I', 'H', 'D', 'R',
+        0, 0, 0, 9, 0, 0, 0, 7, 8, 3, 0, 0, 1, 0x9a, 0x42, 0xa7, 0xc4,
+        0, 0, 0, 4, 'g', 'A', 'M', 'A', 0x2c, 0xe8, 0x94, 0x34, 0x42, 0x3e, 0, 0x25,
+        0x74, 0x3e, 0, 0x25, 't', 'E', 'X', 't', 'd', 'a', 't', '2', '0', '0', ':', 0x82};
+    struct texture tx;
+    struct err e;
+    CHECK_EQ_INT(decode(png, sizeof png, &tx, NULL, &e), -1);
+    CHECK(strcmp(e.msg, "t: byte 49: PNG chunk of 1950220325 bytes, 8 left in the file: "
+                        "truncated") == 0);
+}
