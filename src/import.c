@@ -50,7 +50,7 @@
 #include "mtl.h"
 
 #define IMPORT_MAX_SECONDS 60
-#define IMPORT_MAX_MEMORY ((rlim_t)4 << 30)
+#define IMPORT_MAX_MEMORY ((rlim_t)2 << 30)
 #define IMPORT_MAX_TRIS 50000000u   /* after instancing */
 #define IMPORT_MAX_DEPTH 256        /* node nesting */
 #define IMPORT_MAX_MATERIALS 65535
