@@ -291,24 +291,19 @@ static int parse_face(struct oparse *P, const char *p, const char *end)
     while ((p = num_next(p, end)) < end) {
         const char *t = p;
         p = num_end(p, end);
-        if (n == P->cap_face) {
+        if (n == P->cap_face) { /* every per-face array holds cap corners (scratch 2x) */
             size_t cap = P->cap_face;
             struct mesh_corner *nf = grow(P->face, &cap, n + 1, sizeof *nf);
             if (!nf)
                 return oom(P);
             P->face = nf;
-            size_t c2 = P->cap_face;
-            uint32_t *np = grow(P->face_pos, &c2, n + 1, sizeof *np);
-            if (!np)
-                return oom(P);
-            P->face_pos = np;
-            c2 = P->cap_face;
-            uint32_t *ns = grow(P->face_scratch, &c2, 2 * (n + 1), sizeof *ns);
-            if (!ns)
-                return oom(P);
-            P->face_scratch = ns;
-            c2 = P->cap_face;
-            uint32_t(*nt)[3] = grow(P->face_tris, &c2, n + 1, sizeof *nt);
+            uint32_t *np = realloc(P->face_pos, cap * sizeof *np);
+            if (np)
+                P->face_pos = np;
+            uint32_t *ns = np ? realloc(P->face_scratch, 2 * cap * sizeof *ns) : NULL;
+            if (ns)
+                P->face_scratch = ns;
+            uint32_t(*nt)[3] = ns ? realloc(P->face_tris, cap * sizeof *nt) : NULL;
             if (!nt)
                 return oom(P);
             P->face_tris = nt;

@@ -879,3 +879,35 @@ TEST(models_without_normals_get_unit_normals)
     }
     mesh_free(&m);
 }
+
+/* a concave face of 200 corners after smaller faces: the per-face scratch must grow with the
+ * face (fuzz_obj found a heap overflow in polygon.c here) */
+TEST(large_concave_face_after_small_ones)
+{
+    size_t cap = 1 << 16, n = 0;
+    char *text = malloc(cap);
+    REQUIRE(text);
+    const int k = 200; /* a star: every other corner pulled in, so the face is concave */
+    for (int i = 0; i < k; i++) {
+        double r = i % 2 ? 0.5 : 1.0, a = 2 * M_PI * i / k;
+        n += (size_t)snprintf(text + n, cap - n, "v %.9f %.9f 0\n", r * cos(a), r * sin(a));
+    }
+    n += (size_t)snprintf(text + n, cap - n, "f 1 2 3\nf");
+    for (int i = 1; i <= k; i++)
+        n += (size_t)snprintf(text + n, cap - n, " %d", i);
+    n += (size_t)snprintf(text + n, cap - n, "\n");
+    struct mesh m;
+    struct err e;
+    int rc = obj_parse(text, n, "star.obj", &m, &e);
+    free(text);
+    REQUIRE(rc == 0);
+    CHECK_EQ_INT(m.n_tris, 1 + k - 2);
+    double sum = 0;
+    for (uint32_t i = 1; i < m.n_tris; i++) {
+        CHECK(area2(&m, i) >= -1e-9); /* ears keep the winding */
+        sum += area2(&m, i) / 2;
+    }
+    /* star area: k triangles (centre, outer i, inner i+1) of 1 * 0.5 * sin(2 pi / k) / 2 */
+    CHECK_NEAR(sum, k * 0.25 * sin(2 * M_PI / k), 1e-5);
+    mesh_free(&m);
+}
