@@ -239,7 +239,9 @@ TEST(jpeg_and_png_use_their_libraries)
                  -1);
     CHECK(strcmp(e.msg, "tests/data/tex/stb_jpeg_ub.jpg: bad JPEG (Bogus Huffman table "
                         "definition)") == 0);
-    static const uint8_t notpng[] = "\x89PNG\r\n\x1a\n\x00\x00\x00\x0dIHDR";
+    /* a complete IHDR chunk with a wrong checksum: libpng's words */
+    static const uint8_t notpng[] = "\x89PNG\r\n\x1a\n\x00\x00\x00\x0dIHDR\x00\x00\x00\x01"
+                                    "\x00\x00\x00\x01\x08\x02\x00\x00\x00\x00\x00\x00\x00";
     CHECK_EQ_INT(decode(notpng, sizeof notpng - 1, &tx, NULL, &e), -1);
     CHECK_STR_CONTAINS(e.msg, "t: bad PNG (");
     if (!dir) {
