@@ -382,7 +382,7 @@ static int read_vertices(struct pparse *P, const struct element *el)
             const struct prop *pr = &el->props[k];
             double v;
             if (pr->count_type) { /* a list on a vertex: skip it */
-                long cnt;
+                long cnt = 0;
                 if (read_count(P, pr->count_type, PLY_MAX_FACE, &cnt))
                     return -1;
                 for (long j = 0; j < cnt; j++)
@@ -456,7 +456,7 @@ static int read_faces(struct pparse *P, const struct element *el, long index)
                     return -1;
                 continue;
             }
-            long cnt;
+            long cnt = 0;
             if (read_count(P, pr->count_type, pr->role == R_TEXCOORD ? 2 * PLY_MAX_FACE
                                                                       : PLY_MAX_FACE, &cnt))
                 return -1;
