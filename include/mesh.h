@@ -78,7 +78,8 @@ struct mesh_source {
 
 /* Fill out's geometry (verts, tris, tri_material, vert_material, n_verts, n_tris, has_uvs,
  * has_normals, bounds) from src: one vertex per distinct (pos, uv, nrm, material) corner
- * (hash map, expected O(corners)), in order of first use; triangles keep their winding;
+ * (chained per position, O(corners); a position with more than 32 distinct corners may get
+ * duplicate vertices), in order of first use; triangles keep their winding;
  * missing normals and uvs as described at the top of this file; a zero-length given normal
  * also becomes (0,0,1). Leaves materials and textures alone (the caller sets them; every
  * tri_material value must index them). Errors: no triangles, an index out of range, out of

@@ -33,7 +33,8 @@
 /* Numbers and indices: a token also ends at '#', which ends the line. */
 static const char *num_end(const char *p, const char *end)
 {
-    while (p < end && !lex_is_ws(*p) && *p != '#')
+    /* every whitespace byte and '#' is below '$': one comparison for a digit or sign */
+    while (p < end && ((unsigned char)*p > '#' || (!lex_is_ws(*p) && *p != '#')))
         p++;
     return p;
 }
@@ -215,16 +216,13 @@ static int parse_corner(struct oparse *P, const char *t, const char *te, struct 
     static const char *const kind[3] = {"v", "vt", "vn"};
     const size_t count[3] = {P->n_pos, P->n_uv, P->n_nrm};
     uint32_t idx[3] = {MESH_NONE, MESH_NONE, MESH_NONE};
-    int slashes = 0;
-    for (const char *q = t; q < te; q++)
-        slashes += *q == '/';
-    if (slashes > 2)
-        return fail_text(P, "bad face corner", t, te);
     const char *q = t;
     for (int field = 0;; field++) {
         const char *fe = q;
         while (fe < te && *fe != '/')
             fe++;
+        if (field == 2 && fe < te) /* a third slash */
+            return fail_text(P, "bad face corner", t, te);
         if (fe > q || field == 0) {
             int rc = parse_index(q, fe, count[field], &idx[field]);
             if (rc == IDX_SYNTAX)

@@ -45,7 +45,8 @@ enum polygon_how polygon_triangulate(const float *pos, const uint32_t *idx, uint
     /* Newell normal: robust for any planar (or nearly planar) polygon */
     double nx = 0, ny = 0, nz = 0;
     for (uint32_t i = 0; i < n; i++) {
-        const float *a = pos + 3 * (size_t)idx[i], *b = pos + 3 * (size_t)idx[(i + 1) % n];
+        uint32_t j = i + 1 == n ? 0 : i + 1; /* no division in these loops */
+        const float *a = pos + 3 * (size_t)idx[i], *b = pos + 3 * (size_t)idx[j];
         nx += ((double)a[1] - b[1]) * ((double)a[2] + b[2]);
         ny += ((double)a[2] - b[2]) * ((double)a[0] + b[0]);
         nz += ((double)a[0] - b[0]) * ((double)a[1] + b[1]);
@@ -61,8 +62,12 @@ enum polygon_how polygon_triangulate(const float *pos, const uint32_t *idx, uint
 #define PT(k) ((struct p2){pos[3 * (size_t)idx[k] + u], pos[3 * (size_t)idx[k] + v]})
     /* convex: no turn against the polygon's orientation */
     bool convex = true;
-    for (uint32_t i = 0; i < n && convex; i++)
-        convex = sign * cross3(PT(i), PT((i + 1) % n), PT((i + 2) % n)) >= 0;
+    struct p2 p0 = PT(n - 2), p1 = PT(n - 1);
+    for (uint32_t i = 0; i < n && convex; i++) { /* each corner's turn, walking round */
+        struct p2 p2 = PT(i);
+        convex = sign * cross3(p0, p1, p2) >= 0;
+        p0 = p1, p1 = p2;
+    }
     if (convex) {
         fan(n, out);
         return POLYGON_FAN;

@@ -911,3 +911,30 @@ TEST(large_concave_face_after_small_ones)
     CHECK_NEAR(sum, k * 0.25 * sin(2 * M_PI / k), 1e-5);
     mesh_free(&m);
 }
+
+TEST(a_position_with_many_uvs_stays_linear_and_correct)
+{
+    /* position 1 gets 300 different uvs, then 300 faces that all use its first uv again:
+     * vertex sharing may give up after a few comparisons (no quadratic time on such files),
+     * but every triangle corner must still carry its own position and uv */
+    size_t cap = 64 * 1024, len = 0;
+    char *text = malloc(cap);
+    REQUIRE(text);
+    len += (size_t)snprintf(text + len, cap - len, "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+    for (int i = 0; i < 300; i++)
+        len += (size_t)snprintf(text + len, cap - len, "vt %d 0\n", i);
+    for (int i = 0; i < 600; i++)
+        len += (size_t)snprintf(text + len, cap - len, "f 1/%d 2/1 3/1\n", i < 300 ? i + 1 : 1);
+    struct mesh m;
+    struct err e = {""};
+    REQUIRE(parse(text, &m, &e) == 0);
+    free(text);
+    CHECK_EQ_INT(m.n_tris, 600);
+    CHECK(m.n_verts >= 302 && m.n_verts <= 310); /* 300 + two shared, a few duplicates */
+    for (uint32_t tri = 0; tri < m.n_tris; tri++) {
+        const struct mesh_vertex *a = corner(&m, tri, 0);
+        CHECK(a->pos[0] == 0 && a->pos[1] == 0);
+        CHECK_NEAR(a->uv[0], tri < 300 ? (double)tri : 0.0, 0);
+    }
+    mesh_free(&m);
+}
