@@ -39,6 +39,9 @@ enum cull_mode { CULL_NONE, CULL_BACK, CULL_FRONT, CULL_COUNT };
 enum raster_method { RASTER_EDGE, RASTER_SCANLINE, RASTER_TILED, RASTER_COUNT };
 enum persp_method { PERSP_CORRECT, PERSP_AFFINE, PERSP_SPAN8, PERSP_SPAN16, PERSP_SPAN32,
                     PERSP_COUNT };
+/* Supersampling (--ssaa N; ssaa.h does it around pipeline_draw, which ignores the field):
+ * k x k samples per pixel with k = render_ssaa_factor(), averaged with a box filter. */
+enum ssaa_method { SSAA_1, SSAA_2, SSAA_4, SSAA_8, SSAA_COUNT };
 
 /* What the framebuffer's colour shows after the frame (the viewer's `v` key). */
 enum debug_view { VIEW_COLOR, VIEW_DEPTH, VIEW_NORMALS, VIEW_OVERDRAW, VIEW_WIRE_OVERLAY,
@@ -56,6 +59,7 @@ struct render_opts {
     enum persp_method persp;    /* --persp: how varyings are interpolated */
     enum depth_mode depth;      /* --depth: what the depth buffer stores */
     int threads;                /* --threads: 0 = one per core; the picture never depends on it */
+    enum ssaa_method ssaa;      /* --ssaa: samples per pixel (ssaa.h) */
     enum cull_mode cull;
     enum debug_view view;
     bool textures;       /* sample material / override textures (else albedo = kd) */
@@ -80,9 +84,19 @@ struct frame_stats {
 };
 
 /* Defaults from the conventions: phong, nearest, edge rasterizer, perspective-correct, float
- * window depth, no culling, textures on, black background, white wire colour, one white
- * light toward (1,1,1). */
+ * window depth, no supersampling, no culling, textures on, black background, white wire
+ * colour, one white light toward (1,1,1). */
 void render_opts_default(struct render_opts *o);
+/* The ideal image's methods — rastty's most accurate setting, the reference every method is
+ * measured against (bench --chart): perspective-correct, bilinear, --ssaa 8. Everything else
+ * (shading, lights, depth method, rasterizer, ...) is left as it is. */
+void render_opts_ideal(struct render_opts *o);
+
+/* --ssaa's k: 1, 2, 4 or 8 samples per axis */
+static inline int render_ssaa_factor(enum ssaa_method m)
+{
+    return 1 << (int)m;
+}
 
 /* Every enum-valued option by name: the flag parser, --help, the HUD and the viewer's cycle
  * keys all read these tables. names[v] is the spelling of value v; n is the count. */
@@ -91,7 +105,8 @@ struct render_enum {
     int n;
 };
 extern const struct render_enum render_shade_names, render_cull_names, render_filter_names,
-    render_view_names, render_raster_names, render_persp_names, render_depth_names;
+    render_view_names, render_raster_names, render_persp_names, render_depth_names,
+    render_ssaa_names;
 
 const char *render_shade_name(enum shade_mode m);
 const char *render_cull_name(enum cull_mode m);
@@ -100,6 +115,7 @@ const char *render_view_name(enum debug_view v);
 const char *render_raster_name(enum raster_method m);
 const char *render_persp_name(enum persp_method m);
 const char *render_depth_name(enum depth_mode m);
+const char *render_ssaa_name(enum ssaa_method m);
 /* Parse a name back; -1 if unknown. */
 int render_enum_parse(const struct render_enum *t, const char *s);
 int render_shade_parse(const char *s);

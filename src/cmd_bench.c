@@ -17,6 +17,7 @@
 #include "decode.h"
 #include "encode.h"
 #include "pipeline.h"
+#include "ssaa.h"
 
 struct config {
     const char *name;
@@ -91,6 +92,7 @@ static int bench_scene(const struct options *o, const char *path, int cols, int 
     struct render_opts ro;
     cmd_view_setup(o, &scene, (double)cols / (2.0 * rows), !scene.has_camera, &cam, &ro);
     struct fb fb = {0};
+    struct ssaa ss = {0};
     struct pipeline *p = pipeline_new();
     struct track t[N_CONFIGS];
     memset(t, 0, sizeof t);
@@ -112,8 +114,8 @@ static int bench_scene(const struct options *o, const char *path, int cols, int 
         struct camera c = cam;
         camera_turn(&c, o->orbit_deg * (k < frames ? k : frames - 1), 0, 1);
         struct frame_stats st;
-        if (pipeline_draw(p, scene.items, scene.n_items, scene.has_sky ? &scene.sky : NULL, &c,
-                          &ro, &fb, &st, e))
+        if (ssaa_draw(&ss, p, scene.items, scene.n_items, scene.has_sky ? &scene.sky : NULL, &c,
+                      &ro, &fb, &st, e))
             goto done;
         if (k < frames)
             render_ms[k] = st.render_ms;
@@ -172,6 +174,7 @@ done:
     }
     free(render_ms);
     fb_free(&fb);
+    ssaa_free(&ss);
     pipeline_destroy(p);
     scene_free(&scene);
     return rc;

@@ -20,6 +20,7 @@
 #include "file.h"
 #include "image.h"
 #include "pipeline.h"
+#include "ssaa.h"
 #include "termcaps.h"
 
 /* Camera for frame k: from the path file, or the start camera orbited k * orbit degrees. */
@@ -156,6 +157,7 @@ int cmd_dump(const struct options *o, struct err *e)
     int rc = 1;
     struct fb fb = {0};
     struct encode_screen es = {0};
+    struct ssaa ss = {0};
     struct pipeline *p = pipeline_new();
     if (!p) {
         err_set(e, "out of memory");
@@ -178,8 +180,8 @@ int cmd_dump(const struct options *o, struct err *e)
             camera_turn(&c, o->orbit_deg * k, 0, 1);
         }
         struct frame_stats st;
-        if (pipeline_draw(p, scene.items, scene.n_items, scene.has_sky ? &scene.sky : NULL, &c,
-                          &ro, &fb, &st, e))
+        if (ssaa_draw(&ss, p, scene.items, scene.n_items, scene.has_sky ? &scene.sky : NULL, &c,
+                      &ro, &fb, &st, e))
             goto done;
         eo.diff = o->diff && k > 0;
         size_t n;
@@ -214,6 +216,7 @@ done:
         file_out_abort(&fo); /* the old --out file stays as it was */
     encode_screen_free(&es);
     fb_free(&fb);
+    ssaa_free(&ss);
     pipeline_destroy(p);
     scene_free(&scene);
     path_free(&cp);

@@ -9,6 +9,7 @@
 #include "image.h"
 #include "pipeline.h"
 #include "scene.h"
+#include "ssaa.h"
 
 void cmd_view_setup(const struct options *o, const struct scene *s, double aspect, bool frame,
                     struct camera *cam, struct render_opts *ro)
@@ -86,6 +87,7 @@ int cmd_render(const struct options *o, struct err *e)
     struct render_opts ro;
     cmd_view_setup(o, &scene, (double)o->width / o->height, o->frame, &cam, &ro);
     struct fb fb;
+    struct ssaa ss = {0};
     struct pipeline *p = pipeline_new();
     struct frame_stats st;
     double *ms = NULL;
@@ -97,8 +99,8 @@ int cmd_render(const struct options *o, struct err *e)
     else if (fb_init(&fb, o->width, o->height, ro.view == VIEW_OVERDRAW, e) == 0) {
         int drawn = 0;
         for (; drawn < o->repeat; drawn++) { /* --repeat: the same frame again, for timing */
-            if (pipeline_draw(p, scene.items, scene.n_items, scene.has_sky ? &scene.sky : NULL,
-                              &cam, &ro, &fb, &st, e))
+            if (ssaa_draw(&ss, p, scene.items, scene.n_items, scene.has_sky ? &scene.sky : NULL,
+                          &cam, &ro, &fb, &st, e))
                 break;
             ms[drawn] = st.render_ms;
         }
@@ -118,6 +120,7 @@ int cmd_render(const struct options *o, struct err *e)
         fb_free(&fb);
     }
     free(ms);
+    ssaa_free(&ss);
     pipeline_destroy(p);
     scene_free(&scene);
     return rc;

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "fb.h"
+#include "ssaa.h"
 
 /* ARG_ENUM: the value is one of a render_enum's names, stored as an int at `field` (offset
  * into struct options); its --help line lists the names and the default from the table. */
@@ -62,6 +63,7 @@ static const struct flag flags[] = {
     ENUM_FLAG("--persp", C_DRAW | C_BENCH, "varying interpolation", render_persp_names, render.persp),
     ENUM_FLAG("--depth", C_DRAW | C_BENCH, "depth buffer", render_depth_names, render.depth),
     {"--threads", F_THREADS, ARG_VALUE, C_DRAW | C_BENCH, "N", "rendering threads, 1..64 (default: $RASTTY_THREADS, else one per core)", NULL, 0},
+    ENUM_FLAG("--ssaa", C_DRAW | C_BENCH, "supersampling, N x N samples a pixel, box filter", render_ssaa_names, render.ssaa),
     {"--background", F_BACKGROUND, ARG_VALUE, C_DRAW, "R,G,B", "background colour, 0..255 each (default 0,0,0)", NULL, 0},
     ENUM_FLAG("--cull", C_DRAW | C_BENCH, "face culling", render_cull_names, render.cull),
     {"--hidden-lines", F_HIDDEN_LINES, ARG_NONE, C_DRAW, NULL, "wire: hide edges behind the model's surfaces", NULL, 0},
@@ -337,10 +339,14 @@ static int validate(struct options *o, struct err *e)
             return err_set(e, "rastty render: --out FILE.ppm|FILE.png is required");
         if (o->width == 0)
             o->width = 160, o->height = 96;
+        if (ssaa_check(o->render.ssaa, o->width, o->height, e))
+            return -1;
         break;
     case CMD_DUMP:
         if (o->n_inputs != 1)
             return err_set(e, "rastty dump: expected one MODEL or SCENE.rsc (see rastty --help)");
+        if (o->cols && o->rows && ssaa_check(o->render.ssaa, o->cols, 2 * o->rows, e))
+            return -1;
         break;
     case CMD_ANSI2PPM:
         if (o->n_inputs != 1 || !o->out)

@@ -10,6 +10,7 @@ static const char *const view_names[] = {"color", "depth", "normals", "overdraw"
 static const char *const raster_names[] = {"edge", "scanline", "tiled"};
 static const char *const persp_names[] = {"correct", "affine", "span8", "span16", "span32"};
 static const char *const depth_names[] = {"z", "w", "z16", "rz"};
+static const char *const ssaa_names[] = {"1", "2", "4", "8"};
 #define COUNT(a) ((int)(sizeof a / sizeof *a))
 _Static_assert(COUNT(shade_names) == SHADE_COUNT, "shade names");
 _Static_assert(COUNT(cull_names) == CULL_COUNT, "cull names");
@@ -18,6 +19,7 @@ _Static_assert(COUNT(view_names) == VIEW_COUNT, "view names");
 _Static_assert(COUNT(raster_names) == RASTER_COUNT, "raster names");
 _Static_assert(COUNT(persp_names) == PERSP_COUNT, "persp names");
 _Static_assert(COUNT(depth_names) == DEPTH_COUNT, "depth names");
+_Static_assert(COUNT(ssaa_names) == SSAA_COUNT, "ssaa names");
 
 const struct render_enum render_shade_names = {shade_names, SHADE_COUNT};
 const struct render_enum render_cull_names = {cull_names, CULL_COUNT};
@@ -26,6 +28,7 @@ const struct render_enum render_view_names = {view_names, VIEW_COUNT};
 const struct render_enum render_raster_names = {raster_names, RASTER_COUNT};
 const struct render_enum render_persp_names = {persp_names, PERSP_COUNT};
 const struct render_enum render_depth_names = {depth_names, DEPTH_COUNT};
+const struct render_enum render_ssaa_names = {ssaa_names, SSAA_COUNT};
 
 void render_opts_default(struct render_opts *o)
 {
@@ -35,6 +38,7 @@ void render_opts_default(struct render_opts *o)
     o->raster = RASTER_EDGE;
     o->persp = PERSP_CORRECT;
     o->depth = DEPTH_Z;
+    o->ssaa = SSAA_1;
     o->cull = CULL_NONE;
     o->view = VIEW_COLOR;
     o->textures = true;
@@ -44,6 +48,13 @@ void render_opts_default(struct render_opts *o)
     o->lights[0].color = v3(1, 1, 1);
 }
 
+void render_opts_ideal(struct render_opts *o)
+{
+    o->persp = PERSP_CORRECT;
+    o->filter = TEX_BILINEAR;
+    o->ssaa = SSAA_8;
+}
+
 const char *render_shade_name(enum shade_mode m) { return shade_names[m]; }
 const char *render_cull_name(enum cull_mode m) { return cull_names[m]; }
 const char *render_filter_name(enum tex_filter f) { return filter_names[f]; }
@@ -51,6 +62,7 @@ const char *render_view_name(enum debug_view v) { return view_names[v]; }
 const char *render_raster_name(enum raster_method m) { return raster_names[m]; }
 const char *render_persp_name(enum persp_method m) { return persp_names[m]; }
 const char *render_depth_name(enum depth_mode m) { return depth_names[m]; }
+const char *render_ssaa_name(enum ssaa_method m) { return ssaa_names[m]; }
 
 int render_enum_parse(const struct render_enum *t, const char *s)
 {

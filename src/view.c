@@ -12,6 +12,7 @@
 #include "input.h"
 #include "pipeline.h"
 #include "scene.h"
+#include "ssaa.h"
 #include "termcaps.h"
 #include "tty.h"
 
@@ -61,6 +62,7 @@ struct view {
     struct encode_screen es;
     struct encode_opts eo;
     struct pipeline *pipe;
+    struct ssaa ssaa;     /* --ssaa's big framebuffer */
     struct skybox default_sky;
     int fb_cols, fb_rows; /* cells used by the picture */
     bool dirty, hud_dirty;
@@ -240,13 +242,16 @@ static void hud_compose(struct view *v, char *out, size_t n)
         snprintf(out, n, " %s ", v->message);
         return;
     }
+    char ssaa[16] = "";
+    if (v->ro.ssaa != SSAA_1)
+        snprintf(ssaa, sizeof ssaa, " ssaa%d", render_ssaa_factor(v->ro.ssaa));
     snprintf(out, n,
-             " %s [%d/%d] | %s %s cull:%s%s | %s | %.0f fps | %s %s %s | render %.1f ms "
+             " %s [%d/%d] | %s %s cull:%s%s | %s | %.0f fps | %s %s %s%s | render %.1f ms "
              "enc %.2f ms | %.1f KB | tris %llu clip %llu cull %llu | %s | h: help",
              s->name, v->cur + 1, v->n_scenes, shade, render_filter_name(v->ro.filter),
              render_cull_name(v->ro.cull), extra, v->orbit ? "orbit" : "fly", v->fps,
              render_raster_name(v->ro.raster), render_persp_name(v->ro.persp),
-             render_depth_name(v->ro.depth),
+             render_depth_name(v->ro.depth), ssaa,
              v->st.render_ms, v->encode_ms, v->last_bytes / 1024.0,
              (unsigned long long)v->st.tris_drawn, (unsigned long long)v->st.tris_clipped,
              (unsigned long long)(v->st.tris_culled + v->st.tris_rejected),
@@ -322,8 +327,8 @@ static int draw_frame(struct view *v, struct err *e)
         return out_flush(v) ? err_set(e, "rastty: cannot write to the terminal") : 0;
     }
     const struct scene *s = v->scenes[v->cur];
-    if (pipeline_draw(v->pipe, s->items, s->n_items, scene_sky(v), &v->cam, &v->ro, &v->fb,
-                      &v->st, e))
+    if (ssaa_draw(&v->ssaa, v->pipe, s->items, s->n_items, scene_sky(v), &v->cam, &v->ro,
+                  &v->fb, &v->st, e))
         return -1;
     double t0 = now_s();
     size_t n;
@@ -632,6 +637,7 @@ out:
         }
     encode_screen_free(&v->es);
     fb_free(&v->fb);
+    ssaa_free(&v->ssaa);
     pipeline_destroy(v->pipe);
     skybox_free(&v->default_sky);
     free(v->out);
