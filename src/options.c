@@ -63,7 +63,7 @@ static const struct flag flags[] = {
     ENUM_FLAG("--persp", C_DRAW | C_BENCH, "varying interpolation", render_persp_names, render.persp),
     ENUM_FLAG("--depth", C_DRAW | C_BENCH, "depth buffer", render_depth_names, render.depth),
     {"--threads", F_THREADS, ARG_VALUE, C_DRAW | C_BENCH, "N", "rendering threads, 1..64 (default: $RASTTY_THREADS, else one per core)", NULL, 0},
-    ENUM_FLAG("--ssaa", C_DRAW | C_BENCH, "supersampling, N x N samples a pixel, box filter", render_ssaa_names, render.ssaa),
+    ENUM_FLAG("--ssaa", C_DRAW | C_BENCH, "supersampling: M x M samples a pixel, box filter", render_ssaa_names, render.ssaa),
     {"--background", F_BACKGROUND, ARG_VALUE, C_DRAW, "R,G,B", "background colour, 0..255 each (default 0,0,0)", NULL, 0},
     ENUM_FLAG("--cull", C_DRAW | C_BENCH, "face culling", render_cull_names, render.cull),
     {"--hidden-lines", F_HIDDEN_LINES, ARG_NONE, C_DRAW, NULL, "wire: hide edges behind the model's surfaces", NULL, 0},

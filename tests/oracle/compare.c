@@ -1,7 +1,7 @@
 /* compare.c: the oracle's image comparison — one tested render against one reference render.
  *
- *   compare [--name NAME] [--magenta] [--exact] [--diff OUT.png] [--list N]
- *           TEST.ppm TEST.pfm REF.ppm REF.pfm
+ *   compare [--name NAME] [--magenta] [--exact] [--diff OUT.png] [--list N] [--reduce K]
+ *           [--psnr-bar DB] TEST.ppm TEST.pfm REF.ppm REF.pfm
  *
  * Colour images are PPM or PNG (anything stb_image reads), depth is PFM ("Pf", rows
  * bottom-to-top, 1.0 where nothing was drawn). Prints ONE line:
@@ -15,6 +15,11 @@
  *            count for REF (a sanity check of the scene, not judged)
  * Bars: cov <= min(10, 0.02% of the pixels), diff8 <= 0.05% of the pixels, psnr >= 45 dB,
  * enclosed == 0. --exact: no pixel may differ at all (tie-rule scenes).
+ * --reduce K: REF was drawn K times larger on each side (the ideal image's check: Mesa at 8x
+ * against rastty --ssaa 8); it is box-filtered down first, as rastty's ssaa.h resolves:
+ * colour = (sum of the K*K values + K*K/2) / (K*K), depth = the nearest sample's (so a pixel
+ * is covered when any sample is). Written from ssaa.h's description, not from its code.
+ * --psnr-bar DB: judge PSNR against DB instead of 45 (the ideal's bar is 40).
  * --diff writes a picture of the differences when the scene fails (always with --diff-always):
  *   red = covered only in TEST, cyan = covered only in REF, yellow = colour differs > 8,
  *   blue = differs 1..8, grey = identical (TEST's luminance, darkened).
@@ -84,6 +89,41 @@ static int load_pfm(const char *path, const struct pic *p, float **out)
     return 0;
 }
 
+/* --reduce: p (k*w x k*h) -> w x h in place, colour and depth */
+static int reduce(struct pic *p, int k)
+{
+    int w = p->w / k, h = p->h / k;
+    unsigned char *rgb = malloc((size_t)w * h * 3);
+    float *depth = malloc((size_t)w * h * sizeof *depth);
+    if (!rgb || !depth) {
+        free(rgb), free(depth);
+        return -1;
+    }
+    unsigned n = (unsigned)(k * k);
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            unsigned sum[3] = {0, 0, 0};
+            float d = INFINITY;
+            for (int j = 0; j < k; j++)
+                for (int i = 0; i < k; i++) {
+                    size_t s = (size_t)(y * k + j) * p->w + (size_t)(x * k + i);
+                    for (int c = 0; c < 3; c++)
+                        sum[c] += p->rgb[3 * s + c];
+                    d = p->depth[s] < d ? p->depth[s] : d;
+                }
+            size_t o = (size_t)y * w + x;
+            for (int c = 0; c < 3; c++)
+                rgb[3 * o + c] = (unsigned char)((sum[c] + n / 2) / n);
+            depth[o] = d;
+        }
+    stbi_image_free(p->rgb);
+    free(p->depth);
+    p->rgb = rgb; /* stbi_image_free is free() */
+    p->depth = depth;
+    p->w = w, p->h = h;
+    return 0;
+}
+
 /* Magenta pixels not 4-connected to the border through magenta. */
 static long enclosed_magenta(const struct pic *p)
 {
@@ -133,7 +173,8 @@ static long enclosed_magenta(const struct pic *p)
 int main(int argc, char **argv)
 {
     const char *name = "scene", *diff_path = NULL, *files[4];
-    int magenta = 0, exact = 0, list = 0, diff_always = 0, nfiles = 0;
+    int magenta = 0, exact = 0, list = 0, diff_always = 0, nfiles = 0, factor = 1;
+    double psnr_bar = 45.0;
     for (int i = 1; i < argc; i++) {
         if (strcmp(argv[i], "--magenta") == 0)
             magenta = 1;
@@ -147,24 +188,33 @@ int main(int argc, char **argv)
             diff_path = argv[++i];
         else if (strcmp(argv[i], "--list") == 0 && i + 1 < argc)
             list = atoi(argv[++i]);
+        else if (strcmp(argv[i], "--reduce") == 0 && i + 1 < argc)
+            factor = atoi(argv[++i]);
+        else if (strcmp(argv[i], "--psnr-bar") == 0 && i + 1 < argc)
+            psnr_bar = atof(argv[++i]);
         else if (argv[i][0] != '-' && nfiles < 4)
             files[nfiles++] = argv[i];
         else
             nfiles = 99;
     }
-    if (nfiles != 4) {
+    if (nfiles != 4 || factor < 1 || factor > 64) {
         fprintf(stderr, "usage: compare [--name NAME] [--magenta] [--exact] [--diff OUT.png] "
-                        "[--diff-always] [--list N] TEST.ppm TEST.pfm REF.ppm REF.pfm\n");
+                        "[--diff-always] [--list N] [--reduce K] [--psnr-bar DB] "
+                        "TEST.ppm TEST.pfm REF.ppm REF.pfm\n");
         return 2;
     }
     struct pic t = {0}, r = {0};
     int bad = load_rgb(files[0], &t) || load_rgb(files[2], &r);
-    if (!bad && (t.w != r.w || t.h != r.h)) {
-        fprintf(stderr, "compare: %s is %dx%d but %s is %dx%d\n", files[0], t.w, t.h, files[2],
-                r.w, r.h);
+    if (!bad && (t.w * factor != r.w || t.h * factor != r.h)) {
+        fprintf(stderr, "compare: %s is %dx%d but %s is %dx%d (expected %d times that)\n",
+                files[0], t.w, t.h, files[2], r.w, r.h, factor);
         bad = 1;
     }
     bad = bad || load_pfm(files[1], &t, &t.depth) || load_pfm(files[3], &r, &r.depth);
+    if (!bad && factor > 1 && reduce(&r, factor)) {
+        fprintf(stderr, "compare: out of memory\n");
+        bad = 1;
+    }
     if (bad) {
         stbi_image_free(t.rgb);
         stbi_image_free(r.rgb);
@@ -223,7 +273,7 @@ int main(int argc, char **argv)
             strcat(why, " coverage");
         if (diff8 > diff8_bar)
             strcat(why, " diff8");
-        if (!(psnr >= 45.0))
+        if (!(psnr >= psnr_bar))
             strcat(why, " psnr");
     }
     if (magenta && enc != 0)

@@ -120,10 +120,22 @@ for l in "${lines[@]}"; do
     read -r -a argv <<<"$args"
     # ref=MODEL: Mesa draws MODEL (the OBJ) where rastty draws the first argument (its STL
     # or glTF twin); everything else is the same
-    refargv=("${argv[@]}")
+    refargv=("${argv[@]}") testargv=("${argv[@]}") cmpflags=()
     if [[ $checks == *ref=* ]]; then
         refmodel=${checks#*ref=}
         refargv=("${refmodel%%+*}" "${argv[@]:1}")
+    fi
+    # ideal: rastty draws its ideal image (--ssaa 8; the scene line gives --filter bilinear),
+    # Mesa draws 8 times the size, and compare box-filters Mesa's picture down the same way
+    if [[ $checks == *ideal* ]]; then
+        for i in "${!refargv[@]}"; do
+            if [ "${refargv[$i]}" = --size ]; then
+                sz=${refargv[$((i + 1))]}
+                refargv[$((i + 1))]=$((${sz%x*} * 8))x$((${sz#*x} * 8))
+            fi
+        done
+        testargv+=(--ssaa 8)
+        cmpflags+=(--reduce 8 --psnr-bar 40)
     fi
     ref=$out/$name.mesa test=$out/$name.rastty
     rm -f "$ref".* "$test".* "$out/$name.diff.png"
@@ -148,7 +160,7 @@ for l in "${lines[@]}"; do
             failed=$((failed + 1))
             continue
         fi
-    elif ! "$rastty" render "${argv[@]}" --out "$test.ppm" --depth-out "$test.pfm" \
+    elif ! "$rastty" render "${testargv[@]}" --out "$test.ppm" --depth-out "$test.pfm" \
         2>"$test.err" >/dev/null; then
         echo "$name FAIL (rastty render exited non-zero: $(head -n 1 "$test.err"))"
         failed=$((failed + 1))
@@ -158,7 +170,7 @@ for l in "${lines[@]}"; do
     raster_bad=
     if [ "$mode" = rastty ]; then
         for r in scanline tiled; do
-            if ! "$rastty" render "${argv[@]}" --raster "$r" --out "$test.$r.ppm" \
+            if ! "$rastty" render "${testargv[@]}" --raster "$r" --out "$test.$r.ppm" \
                 --depth-out "$test.$r.pfm" 2>/dev/null >/dev/null ||
                 ! cmp -s "$test.ppm" "$test.$r.ppm" || ! cmp -s "$test.pfm" "$test.$r.pfm"; then
                 raster_bad="$raster_bad $r"
@@ -170,6 +182,7 @@ for l in "${lines[@]}"; do
     flags=()
     [[ $checks == *magenta* ]] && flags+=(--magenta)
     [[ $checks == *exact* ]] && flags+=(--exact)
+    [ "$mode" = rastty ] && flags+=("${cmpflags[@]}")
     if "$compare" --name "$name" "${flags[@]}" --list "$list" --diff "$out/$name.diff.png" \
         "$test.ppm" "$test.pfm" "$ref.ppm" "$ref.pfm" && [ -z "$raster_bad" ]; then
         passed=$((passed + 1))
