@@ -3,6 +3,8 @@
 #ifndef RASTTY_CMD_H
 #define RASTTY_CMD_H
 
+#include <stddef.h>
+
 #include "err.h"
 #include "options.h"
 #include "scene.h"
@@ -19,6 +21,12 @@ int cmd_bench(const struct options *o, struct err *e);
 void cmd_view_setup(const struct options *o, const struct scene *s, double aspect, bool frame,
                     struct camera *cam_out, struct render_opts *ro_out);
 void cmd_print_stats(const struct frame_stats *st);
+/* A built-in asset (demo.rsc, floor.obj, ...) by name into out: $RASTTY_ASSETS, else
+ * assets/ next to the binary (a build tree), else ../share/rastty from the binary (an
+ * installed tree, wherever PREFIX was), else ./assets (running from the source tree), else
+ * the compiled-in RASTTY_DATADIR. Returns 0 when the file is readable there, else -1 (out
+ * holds the last place tried). */
+int cmd_find_asset(const char *name, char *out, size_t n);
 /* scene_load, then --texture over every item, then the scene's warnings to stderr (one line
  * each, "warning: file:line: ..."); on failure nothing is left allocated. */
 int cmd_load_scene(const struct options *o, const char *path, struct scene *s, struct err *e);

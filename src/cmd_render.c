@@ -4,12 +4,44 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <time.h>
+#include <string.h>
+#include <unistd.h>
 
 #include "file.h"
 #include "image.h"
 #include "pipeline.h"
 #include "scene.h"
 #include "ssaa.h"
+
+#ifndef RASTTY_DATADIR
+#define RASTTY_DATADIR "/usr/local/share/rastty"
+#endif
+
+int cmd_find_asset(const char *name, char *out, size_t n)
+{
+    const char *env = getenv("RASTTY_ASSETS");
+    if (env && *env) {
+        snprintf(out, n, "%s/%s", env, name);
+        return access(out, R_OK);
+    }
+    char exe[4096];
+    ssize_t len = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    char *slash = len > 0 ? (exe[len] = '\0', strrchr(exe, '/')) : NULL;
+    if (slash) {
+        *slash = '\0';
+        snprintf(out, n, "%s/assets/%s", exe, name);
+        if (access(out, R_OK) == 0)
+            return 0;
+        snprintf(out, n, "%s/../share/rastty/%s", exe, name);
+        if (access(out, R_OK) == 0)
+            return 0;
+    }
+    snprintf(out, n, "assets/%s", name);
+    if (access(out, R_OK) == 0)
+        return 0;
+    snprintf(out, n, "%s/%s", RASTTY_DATADIR, name);
+    return access(out, R_OK);
+}
 
 void cmd_view_setup(const struct options *o, const struct scene *s, double aspect, bool frame,
                     struct camera *cam, struct render_opts *ro)

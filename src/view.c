@@ -131,34 +131,6 @@ static void method_message(struct view *v, const char *axis, const struct render
 
 /* ---- scenes ---- */
 
-/* demo.rsc: $RASTTY_ASSETS, else assets/ next to the binary (a build tree), else
- * ../share/rastty from the binary (an installed tree, wherever PREFIX was), else ./assets
- * (running from the source tree), else the compiled-in RASTTY_DATADIR. */
-static int find_demo(char *out, size_t n)
-{
-    const char *env = getenv("RASTTY_ASSETS");
-    if (env && *env) {
-        snprintf(out, n, "%s/demo.rsc", env);
-        return access(out, R_OK);
-    }
-    char exe[4096];
-    ssize_t len = readlink("/proc/self/exe", exe, sizeof exe - 1);
-    char *slash = len > 0 ? (exe[len] = '\0', strrchr(exe, '/')) : NULL;
-    if (slash) {
-        *slash = '\0';
-        snprintf(out, n, "%s/assets/demo.rsc", exe);
-        if (access(out, R_OK) == 0)
-            return 0;
-        snprintf(out, n, "%s/../share/rastty/demo.rsc", exe);
-        if (access(out, R_OK) == 0)
-            return 0;
-    }
-    snprintf(out, n, "assets/demo.rsc");
-    if (access(out, R_OK) == 0)
-        return 0;
-    snprintf(out, n, "%s/demo.rsc", RASTTY_DATADIR);
-    return access(out, R_OK);
-}
 
 /* The viewer's default sky for scenes that set neither a sky nor a background (and no
  * --background): the procedural one, sun toward the first light. render and dump keep the
@@ -565,7 +537,7 @@ static int load_scenes(struct view *v, struct err *e)
 {
     static char demo[4200];
     if (v->o->n_inputs == 0) {
-        if (find_demo(demo, sizeof demo))
+        if (cmd_find_asset("demo.rsc", demo, sizeof demo))
             return err_set(e, "rastty: cannot find the demo scene (looked in $RASTTY_ASSETS, "
                               "assets/ next to the binary, ./assets and %s); run 'make' first",
                            RASTTY_DATADIR);
