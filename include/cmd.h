@@ -13,6 +13,9 @@ int cmd_render(const struct options *o, struct err *e);
 int cmd_dump(const struct options *o, struct err *e);
 int cmd_ansi2ppm(const struct options *o, struct err *e);
 int cmd_bench(const struct options *o, struct err *e);
+/* bench --chart (chart.h) and bench --sweep NAME (sweep.h) */
+int cmd_bench_chart(const struct options *o, struct err *e);
+int cmd_bench_sweep(const struct options *o, struct err *e);
 
 /* Shared by the subcommands: the camera and render options for a scene. The command line
  * wins over the scene file (camera, near/far, lights, background); `frame` fits the camera

@@ -4,7 +4,7 @@
  * rastty render MODEL --out FILE            one frame to PPM/PNG (+ PFM depth)
  * rastty dump MODEL                         frames as ANSI text
  * rastty ansi2ppm FILE.ans --out FILE.ppm   decode our ANSI output back to pixels
- * rastty bench                              benchmarks
+ * rastty bench [--chart | --sweep NAME]      benchmarks, the methods chart, stress sweeps
  * Flags are defined in one table (options.c) that also prints --help, so the two cannot
  * drift apart. Bad flags or values: err "rastty: --flag: problem", exit status 2. */
 #ifndef RASTTY_OPTIONS_H
@@ -37,7 +37,12 @@ struct options {
     const char *out;          /* --out */
     const char *depth_out;    /* --depth-out */
     bool stats;               /* --stats: print frame statistics to stderr */
-    int repeat;               /* --repeat: render this many times (timing) */
+    int repeat;               /* --repeat: render this many times (timing); 0 = not given */
+    /* bench */
+    bool chart;               /* --chart: speed against accuracy of every method */
+    const char *sweep;        /* --sweep NAME: where each method fails */
+    const char *csv, *svg;    /* --csv FILE, --svg FILE */
+    const char *models;       /* --models DIR: the shared models (default ../shared/models) */
     /* dump / view */
     int cols, rows;           /* 0 = terminal size or 80x24 */
     int frames;

@@ -182,6 +182,10 @@ done:
 
 int cmd_bench(const struct options *o, struct err *e)
 {
+    if (o->chart)
+        return cmd_bench_chart(o, e);
+    if (o->sweep)
+        return cmd_bench_sweep(o, e);
     int cols = o->cols ? o->cols : 160, rows = o->rows ? o->rows : 48;
     int frames = o->frames ? o->frames : 180;
     if (o->n_inputs == 0)

@@ -8,6 +8,7 @@
 
 #include "fb.h"
 #include "ssaa.h"
+#include "sweep.h"
 
 /* ARG_ENUM: the value is one of a render_enum's names, stored as an int at `field` (offset
  * into struct options); its --help line lists the names and the default from the table. */
@@ -24,8 +25,9 @@ enum arg { ARG_NONE, ARG_VALUE, ARG_ENUM };
 enum flag_id {
     F_SIZE, F_EYE, F_TARGET, F_UP, F_FOV, F_NEAR, F_FAR, F_ORTHO, F_FRAME, F_LIGHT, F_ENUM,
     F_TEXTURE, F_NO_TEXTURE, F_BACKGROUND, F_HIDDEN_LINES, F_OUT,
-    F_DEPTH_OUT, F_STATS, F_REPEAT, F_THREADS, F_COLS, F_ROWS, F_FRAMES, F_ORBIT, F_CAMERA_PATH, F_COLORS,
-    F_TOLERANCE, F_DITHER, F_DIFF, F_PPM_DIR, F_FRAME_INDEX, F_FPS, F_NO_HUD, F_HELP, F_VERSION,
+    F_DEPTH_OUT, F_STATS, F_REPEAT, F_THREADS, F_COLS, F_ROWS, F_FRAMES, F_ORBIT, F_CAMERA_PATH,
+    F_COLORS, F_TOLERANCE, F_DITHER, F_DIFF, F_PPM_DIR, F_FRAME_INDEX, F_FPS, F_NO_HUD, F_CHART,
+    F_SWEEP, F_CSV, F_SVG, F_MODELS, F_HELP, F_VERSION,
 };
 
 struct flag {
@@ -45,7 +47,7 @@ _Static_assert(sizeof(enum shade_mode) == sizeof(int) && sizeof(enum raster_meth
     {flag, F_ENUM, ARG_ENUM, cmds, "M", what, &table, offsetof(struct options, member)}
 
 static const struct flag flags[] = {
-    {"--size", F_SIZE, ARG_VALUE, C_RENDER, "WxH", "framebuffer size in pixels (default 160x96)", NULL, 0},
+    {"--size", F_SIZE, ARG_VALUE, C_RENDER | C_BENCH, "WxH", "framebuffer size in pixels (default 160x96; bench --chart: 160x96 and 640x480)", NULL, 0},
     {"--eye", F_EYE, ARG_VALUE, C_DRAW, "X,Y,Z", "camera position (default 0,0,3)", NULL, 0},
     {"--target", F_TARGET, ARG_VALUE, C_DRAW, "X,Y,Z", "point looked at (default 0,0,0)", NULL, 0},
     {"--up", F_UP, ARG_VALUE, C_DRAW, "X,Y,Z", "up direction (default 0,1,0)", NULL, 0},
@@ -71,7 +73,7 @@ static const struct flag flags[] = {
     {"--out", F_OUT, ARG_VALUE, C_RENDER | C_DUMP | C_A2P, "FILE", "output file (.ppm/.png; dump: .ans)", NULL, 0},
     {"--depth-out", F_DEPTH_OUT, ARG_VALUE, C_RENDER, "FILE.pfm", "also write the depth buffer as PFM", NULL, 0},
     {"--stats", F_STATS, ARG_NONE, C_RENDER | C_DUMP, NULL, "print triangle/pixel counts and timings to stderr", NULL, 0},
-    {"--repeat", F_REPEAT, ARG_VALUE, C_RENDER, "N", "render the frame N times (timing; --stats prints median_ms=)", NULL, 0},
+    {"--repeat", F_REPEAT, ARG_VALUE, C_RENDER | C_BENCH, "N", "render the frame N times (timing; --stats prints median_ms=; bench --chart: frames timed per method, default 9)", NULL, 0},
     {"--cols", F_COLS, ARG_VALUE, C_DUMP | C_BENCH, "C", "terminal columns (dump: 80 or the terminal's; bench: 160)", NULL, 0},
     {"--rows", F_ROWS, ARG_VALUE, C_DUMP | C_BENCH, "R", "terminal rows (dump: 24 or the terminal's; bench: 48)", NULL, 0},
     {"--frames", F_FRAMES, ARG_VALUE, C_DUMP | C_BENCH, "N", "number of frames (dump: 1 or the camera path's length; bench: 180)", NULL, 0},
@@ -85,6 +87,11 @@ static const struct flag flags[] = {
     {"--frame", F_FRAME_INDEX, ARG_VALUE, C_A2P, "K", "which frame to decode, 0-based (default: the last)", NULL, 0},
     {"--fps", F_FPS, ARG_VALUE, C_VIEW, "N", "cap the frame rate (default 60)", NULL, 0},
     {"--no-hud", F_NO_HUD, ARG_NONE, C_VIEW, NULL, "hide the status line", NULL, 0},
+    {"--chart", F_CHART, ARG_NONE, C_BENCH, NULL, "speed against accuracy of every method on the scene set", NULL, 0},
+    {"--sweep", F_SWEEP, ARG_VALUE, C_BENCH, "NAME", "where methods fail: grazing|depthrange|magnitude|sliver|nearplane|minification", NULL, 0},
+    {"--csv", F_CSV, ARG_VALUE, C_BENCH, "FILE", "--chart/--sweep: also write the numbers as CSV", NULL, 0},
+    {"--svg", F_SVG, ARG_VALUE, C_BENCH, "FILE", "--chart/--sweep: draw the chart as SVG (chart: else in the terminal)", NULL, 0},
+    {"--models", F_MODELS, ARG_VALUE, C_BENCH, "DIR", "--chart: the shared models (default $RASTTY_SHARED/models or ../shared/models)", NULL, 0},
     {"--help", F_HELP, ARG_NONE, ~0u, NULL, "show this help", NULL, 0},
     {"--version", F_VERSION, ARG_NONE, ~0u, NULL, "show the version", NULL, 0},
 };
@@ -198,7 +205,6 @@ static void defaults(struct options *o)
     o->frame_index = -1;
     o->tolerance = -1; /* not given: each subcommand picks its default */
     o->fps = 60;
-    o->repeat = 1;
 }
 
 static int apply(struct options *o, const struct flag *f, const char *v, struct err *e)
@@ -315,6 +321,16 @@ static int apply(struct options *o, const struct flag *f, const char *v, struct 
             return bad(e, f->name, "expected 1..1000 frames per second", v);
         return 0;
     case F_NO_HUD: o->no_hud = true; return 0;
+    case F_CHART: o->chart = true; return 0;
+    case F_SWEEP:
+        if (sweep_parse(v) < 0)
+            return bad(e, f->name, "expected grazing, depthrange, magnitude, sliver, nearplane "
+                                   "or minification", v);
+        o->sweep = v;
+        return 0;
+    case F_CSV: o->csv = v; return 0;
+    case F_SVG: o->svg = v; return 0;
+    case F_MODELS: o->models = v; return 0;
     case F_HELP: o->cmd = CMD_HELP; return 0;
     case F_VERSION: o->cmd = CMD_VERSION; return 0;
     }
@@ -339,6 +355,8 @@ static int validate(struct options *o, struct err *e)
             return err_set(e, "rastty render: --out FILE.ppm|FILE.png is required");
         if (o->width == 0)
             o->width = 160, o->height = 96;
+        if (o->repeat == 0)
+            o->repeat = 1;
         if (ssaa_check(o->render.ssaa, o->width, o->height, e))
             return -1;
         break;
@@ -351,6 +369,20 @@ static int validate(struct options *o, struct err *e)
     case CMD_ANSI2PPM:
         if (o->n_inputs != 1 || !o->out)
             return err_set(e, "rastty ansi2ppm: expected FILE.ans and --out FILE.ppm");
+        break;
+    case CMD_BENCH:
+        if (o->chart && o->sweep)
+            return err_set(e, "rastty bench: --chart and --sweep are separate runs");
+        if (!o->chart && !o->sweep && (o->csv || o->svg || o->models || o->width || o->repeat))
+            return err_set(e, "rastty bench: --csv, --svg, --models, --size and --repeat go with "
+                              "--chart or --sweep");
+        if (o->sweep && (o->models || o->repeat))
+            return err_set(e, "rastty bench --sweep: --models and --repeat are --chart's");
+        if (o->chart && o->n_inputs)
+            return err_set(e, "rastty bench --chart: draws its own scene set (no MODEL "
+                              "arguments; --models DIR for the shared models)");
+        if (o->width && ssaa_check(SSAA_8, o->width, o->height, e)) /* the ideal image */
+            return -1;
         break;
     default:
         break;

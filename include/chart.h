@@ -1,0 +1,83 @@
+/* chart.h: speed against accuracy for every rendering method — `rastty bench --chart`.
+ *
+ * A fixed scene set (built-in assets: the demo scene, a grazing textured ground seen with a
+ * 20-degree roll, a textured sphere on magenta — the crack test; shared models when their
+ * folder is there: the textured african_head, the 300k-triangle sports car) is drawn at each
+ * size (160x96, a terminal's worth, and 640x480) with
+ *   - the default methods, and every other value of every axis varied alone from them;
+ *   - the fastest combination (per axis the value fastest in a pilot run, over all scenes of
+ *     that size) and the most accurate (per axis the value with the best pooled PSNR, ties to
+ *     the faster), unless another row already has those methods.
+ * Per row: ms/frame (median of `repeat` frames after a warm-up, wall clock around ssaa_draw,
+ * one thread; the rows of a scene take turns frame by frame, starting one further each
+ * round, so load from other processes falls on every method alike); error against the
+ * scene's ideal image (render_opts_ideal: perspective-correct, bilinear, --ssaa 8): PSNR over
+ * all pixels and channels, and the fraction of pixels with a channel off by more than 8;
+ * terminal bytes of the frame encoded as one full truecolor frame (encode.h).
+ *
+ * Axes are data: chart_axes[] lists each method axis once (its CSV column, its names, its
+ * render_opts field), so a new axis is one entry there. The CSV starts with
+ *   scene,size,raster,persp,depth,filter,ssaa,ms,psnr_db,frac_gt8,bytes
+ * and axes after the first CHART_CSV_AXES follow `bytes`, so the header only grows. */
+#ifndef RASTTY_CHART_H
+#define RASTTY_CHART_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "err.h"
+#include "plot.h"
+#include "render.h"
+
+struct chart_axis {
+    const char *name;                 /* CSV column; the flag is --name */
+    const struct render_enum *values; /* value names; the default is render_opts_default's */
+    size_t field;                     /* offsetof(struct render_opts, ...), an int-sized enum */
+};
+#define CHART_AXES 5     /* entries of chart_axes */
+#define CHART_CSV_AXES 5 /* of them, the columns before ms */
+extern const struct chart_axis chart_axes[CHART_AXES];
+
+enum chart_kind { CHART_DEFAULT, CHART_VARIED, CHART_FASTEST, CHART_ACCURATE };
+
+struct chart_row {
+    char scene[16];
+    int w, h;
+    int value[CHART_AXES]; /* each axis's method */
+    enum chart_kind kind;
+    int axis;              /* CHART_VARIED: which axis differs from the default */
+    double ms;             /* median ms/frame */
+    double pilot_ms;       /* the pilot run's median (chooses the fastest combination) */
+    double psnr_db;        /* against the ideal; INFINITY when identical */
+    double frac_gt8;       /* pixels with a channel off by more than 8, 0..1 */
+    size_t bytes;          /* one full truecolor frame */
+};
+
+struct chart_config {
+    const char *assets_dir; /* where demo.rsc, floor.obj, sphere.obj are */
+    const char *models_dir; /* the shared models, or NULL (those scenes are skipped) */
+    const int (*sizes)[2];  /* w, h */
+    int n_sizes;
+    int repeat;             /* timed frames per row (>= 1) */
+    const char *only;       /* NULL, or only scenes whose name contains it */
+    FILE *progress;         /* one line per step (stderr), or NULL */
+};
+
+struct chart {
+    struct chart_row *rows;
+    int n_rows;
+    char note[256];         /* scenes skipped and why, or "" */
+};
+
+int chart_run(const struct chart_config *c, struct chart *out, struct err *e);
+void chart_free(struct chart *c);
+/* "default", "scanline", "depth z16", "ssaa 4", "fastest", "most accurate" */
+void chart_row_label(const struct chart_row *r, char *out, size_t n);
+int chart_write_csv(const struct chart *c, FILE *f);
+void chart_write_table(const struct chart *c, FILE *f);
+/* One panel per size: each method's ms (geometric mean over the scenes) on a log x axis,
+ * its pooled PSNR on y, the Pareto front (no other method both faster and more accurate)
+ * joined and labelled. Fits any plot size from a terminal's 120x70 pixels up. */
+void chart_draw(const struct chart *c, struct plot *p);
+
+#endif
