@@ -191,7 +191,7 @@ static void finish(struct sweep_result *r)
     for (int m = 0; m < r->n_methods; m++) {
         r->fail_at[m] = -1;
         for (int s = 0; s < r->n_steps && r->fail_at[m] < 0; s++)
-            if (r->error[s][m] > r->threshold || r->nan[s][m] > 0 || isnan(r->error[s][m]))
+            if (r->error[s][m] > r->threshold || r->nan[s][m] > 0) /* NAN error: no data */
                 r->fail_at[m] = s;
     }
 }
@@ -335,8 +335,8 @@ static int sweep_grazing(int w, int h, struct sweep_result *r, struct err *e)
                                            fabs(floor(av + 0.5) - floor(tv + 0.5)));
                     }
                 }
-            r->error[s][k] = n ? sum / n : 0;
-            r->extra[s][k] = k == PERSP_AFFINE ? (n ? sum_affine / n : 0) : NAN;
+            r->error[s][k] = n ? sum / n : NAN; /* NAN: too small to measure */
+            r->extra[s][k] = k == PERSP_AFFINE ? (n ? sum_affine / n : NAN) : NAN;
             r->nan[s][k] = count_nan(&rig.fb);
         }
     }
@@ -639,13 +639,19 @@ out:
 
 /* ---- sliver ---- */
 
-#define SL_ACROSS 8.0 /* pixels */
-#define SL_RING 3     /* points on each long side between the corners */
+/* The rectangle lives on the pixel-centre lattice: an orthographic view one unit a pixel,
+ * the centre C on a pixel centre, the long axis A = (2, 1) and the short one B = (-1, 2)
+ * (pixels, y down: lattice directions, about 26.6 degrees off the rows). Corners and ring
+ * points are C + t A + s B with integer t, s, so spokes run exactly through pixel centres,
+ * where the tie rule alone decides which triangle draws them. Half-width b = 2 (8.9 pixels
+ * across), half-length a = the aspect ratio times b (even). */
+#define SL_B 2
+#define SL_RING 3 /* points on each long side between the corners */
 
 static int sweep_sliver(int w, int h, struct sweep_result *r, struct err *e)
 {
-    r->what = "a closed fan (centre + ring of 12) filling a rectangle 8 pixels across, "
-              "rotated 30 degrees; --raster";
+    r->what = "a closed fan (centre + ring of 10 to 12) filling a rectangle 8.9 pixels across, "
+              "its corners and spokes on pixel centres; --raster";
     r->param_name = "aspect ratio (length / width)";
     r->error_name = "pixels covered other than once inside / never outside";
     r->extra_name = "pixels inside whose uv is more than 8 texels off";
@@ -654,8 +660,9 @@ static int sweep_sliver(int w, int h, struct sweep_result *r, struct err *e)
              "fails: any hole, overdraw or stray pixel (error > 0)");
     snprintf(r->theory, sizeof r->theory,
              "coverage is decided by exact 64-bit edge functions on snapped vertices with the "
-             "tie rule, so a closed fan covers each pixel centre inside exactly once at any "
-             "aspect ratio (pieces clipped by the guard band included): never fails.");
+             "tie rule, so a closed fan covers each pixel centre inside exactly once — those "
+             "on a spoke too — at any aspect ratio (pieces clipped by the guard band "
+             "included): never fails.");
     r->xlog = true;
     methods_from(r, &render_raster_names);
     r->n_steps = 15;
@@ -668,29 +675,40 @@ static int sweep_sliver(int w, int h, struct sweep_result *r, struct err *e)
         goto out;
     struct camera cam;
     camera_default(&cam);
-    double s_px = h / (2 * 3 * tan(25 * M_PI / 180)); /* pixels per unit in the plane z = 0 */
-    double ca = cos(M_PI / 6), sa = sin(M_PI / 6);
-    double cx = w / 2.0 + 0.3, cy = h / 2.0 + 0.2; /* the centre, in pixels (y down) */
+    cam.ortho_height = h; /* one unit = one pixel */
+    const double cx = floor(w / 2.0) + 0.5, cy = floor(h / 2.0) + 0.5; /* C, pixels */
+    const double A[2] = {2, 1}, B[2] = {-1, 2};
     for (int s = 0; s < r->n_steps; s++) {
-        double aspect = pow(10, s / 2.0), len = SL_ACROSS * aspect;
-        r->param[s] = aspect;
-        /* ring in (along, across) pixels, counter-clockwise */
-        double ring[4 + 2 * SL_RING][2];
+        double want_aspect = pow(10, s / 2.0);
+        long a = 2 * lround(want_aspect * SL_B / 2); /* even: ring points on the lattice */
+        a = a < 2 ? 2 : a;
+        r->param[s] = (double)a / SL_B;
+        /* the ring as (t, s): each long side at t = -a, -a/2, 0, a/2, a, plus the point that
+         * makes a horizontal spoke (t = 4 on s = -2: C + (10, 0)) and one that makes a
+         * vertical spoke (t = 1 on s = 2: C + (0, 5)) when they fit */
+        long side[2][6];
+        int ns[2] = {0, 0};
+        for (int k = 0; k < 2; k++) {
+            long extra = k == 0 ? 4 : 1;
+            for (int i = 0; i <= SL_RING + 1; i++) {
+                long t = -a + 2 * a * i / (SL_RING + 1);
+                if (extra > t - 2 * a / (SL_RING + 1) && extra < t && extra > -a)
+                    side[k][ns[k]++] = extra;
+                side[k][ns[k]++] = t;
+            }
+        }
+        long ring[12][2];
         int n = 0;
-        ring[n][0] = -len / 2, ring[n++][1] = -SL_ACROSS / 2;
-        for (int i = 1; i <= SL_RING; i++)
-            ring[n][0] = -len / 2 + len * i / (SL_RING + 1), ring[n++][1] = -SL_ACROSS / 2;
-        ring[n][0] = len / 2, ring[n++][1] = -SL_ACROSS / 2;
-        ring[n][0] = len / 2, ring[n++][1] = SL_ACROSS / 2;
-        for (int i = SL_RING; i >= 1; i--)
-            ring[n][0] = -len / 2 + len * i / (SL_RING + 1), ring[n++][1] = SL_ACROSS / 2;
-        ring[n][0] = -len / 2, ring[n++][1] = SL_ACROSS / 2;
+        for (int i = 0; i < ns[0]; i++) /* the side s = -b, t from -a to a */
+            ring[n][0] = side[0][i], ring[n++][1] = -SL_B;
+        for (int i = ns[1] - 1; i >= 0; i--) /* the side s = +b, back */
+            ring[n][0] = side[1][i], ring[n++][1] = SL_B;
         struct build b = {0};
         for (int i = -1; i < n; i++) {
-            double a = i < 0 ? 0 : ring[i][0], c = i < 0 ? 0 : ring[i][1];
-            double px = cx + a * ca - c * sa, py = cy + a * sa + c * ca;
-            double x = (px - w / 2.0) / s_px, y = (h / 2.0 - py) / s_px;
-            b_vert(&b, x, y, 0, 0.02 + 0.96 * (a / len + 0.5), 0.02 + 0.96 * (c / SL_ACROSS + 0.5));
+            double t = i < 0 ? 0 : (double)ring[i][0], q = i < 0 ? 0 : (double)ring[i][1];
+            double px = cx + t * A[0] + q * B[0], py = cy + t * A[1] + q * B[1];
+            b_vert(&b, px - w / 2.0, h / 2.0 - py, 0, 0.02 + 0.96 * (t / a + 1) / 2,
+                   0.02 + 0.96 * (q / SL_B + 1) / 2);
         }
         for (int i = 0; i < n; i++)
             b_tri(&b, 0, (uint32_t)(1 + i), (uint32_t)(1 + (i + 1) % n));
@@ -711,18 +729,18 @@ static int sweep_sliver(int w, int h, struct sweep_result *r, struct err *e)
             long bad = 0, off = 0;
             for (int py = 0; py < h; py++)
                 for (int px = 0; px < w; px++) {
+                    /* (t, s) of the centre: exact multiples of 1/5 */
                     double dx = px + 0.5 - cx, dy = py + 0.5 - cy;
-                    double a = dx * ca + dy * sa, c = -dx * sa + dy * ca;
-                    double da = fabs(a) - len / 2, dc = fabs(c) - SL_ACROSS / 2;
-                    if (fabs(dc) < 1.0 / 32 || fabs(da) < 1.0 / 32 * (1 + len * 1e-7))
-                        continue; /* within snapping of the outline: either answer is right */
-                    int want = da < 0 && dc < 0;
+                    double t = (dx * A[0] + dy * A[1]) / 5, q = (dx * B[0] + dy * B[1]) / 5;
+                    if (fabs(fabs(q) - SL_B) < 1e-9 || fabs(fabs(t) - a) < 1e-9)
+                        continue; /* on the outline: the tie rule's call, either is right */
+                    int want = fabs(t) < a && fabs(q) < SL_B;
                     size_t i = (size_t)py * w + px;
                     long got = (long)rig.fb.overdraw[i];
                     bad += labs(got - want);
                     if (want && got == 1) {
-                        double tu = (0.02 + 0.96 * (a / len + 0.5)) * 256 - 0.5;
-                        double tv = (0.02 + 0.96 * (c / SL_ACROSS + 0.5)) * 256 - 0.5;
+                        double tu = (0.02 + 0.96 * (t / a + 1) / 2) * 256 - 0.5;
+                        double tv = (0.02 + 0.96 * (q / SL_B + 1) / 2) * 256 - 0.5;
                         const uint8_t *col = rig.fb.rgb + 3 * i;
                         off += fabs(col[0] - tu) > 8 || fabs(col[1] - tv) > 8;
                     }
@@ -1108,8 +1126,12 @@ void sweep_write_table(const struct sweep_result *r, FILE *f)
         for (int m = 0; m < r->n_methods; m++) {
             char v[32];
             double x = r->error[s][m];
-            snprintf(v, sizeof v, x == floor(x) && fabs(x) < 1e9 ? "%.0f" : x < 0.01 ? "%.2e"
-                                                                                    : "%.3f", x);
+            if (isnan(x))
+                snprintf(v, sizeof v, "-");
+            else
+                snprintf(v, sizeof v, x == floor(x) && fabs(x) < 1e9 ? "%.0f"
+                                      : x < 0.01                      ? "%.2e"
+                                                                      : "%.3f", x);
             bool failed = r->fail_at[m] >= 0 && s >= r->fail_at[m];
             fprintf(f, " %9s%s", v, failed ? (s == r->fail_at[m] ? "!" : "*") : " ");
         }
@@ -1212,13 +1234,19 @@ void sweep_draw(const struct sweep_result *r, struct plot *p)
         uint32_t c = cols[m % SWEEP_MAX_METHODS];
         if (!p->svg && c == 0)
             c = 0xffffff;
-        bool second = r->extra_name && !isnan(r->extra[0][m]); /* theory, or a measure */
+        bool second = false; /* a theory or second measure for this method */
+        for (int s = 0; s < r->n_steps && r->extra_name; s++)
+            second |= !isnan(r->extra[s][m]);
         for (int pass = second ? 0 : 1; pass < 2; pass++) {
             double lx = 0, ly = 0;
+            bool have = false;
             for (int s = 0; s < r->n_steps; s++) {
-                double v = fmax(pass == 0 ? r->extra[s][m] : r->error[s][m], floor_v);
+                double raw = pass == 0 ? r->extra[s][m] : r->error[s][m];
+                if (isnan(raw))
+                    continue;
+                double v = fmax(raw, floor_v);
                 double px = plot_map(&ax, r->param[s]), py = plot_map(&ay, v);
-                if (s > 0)
+                if (have)
                     plot_line(p, lx, ly, px, py, c, pass == 0 ? 1 : m == r->default_method ? 2.5
                                                                                          : 1.5,
                               pass == 0);
@@ -1227,6 +1255,7 @@ void sweep_draw(const struct sweep_result *r, struct plot *p)
                     plot_keep_clear(&clear, px, py, mr);
                 }
                 lx = px, ly = py;
+                have = true;
             }
             end_y[m] = ly;
         }
