@@ -22,7 +22,7 @@ UNITOBJ := $(patsubst tests/unit/%.c,$(BUILD)/tests/%.o,$(UNITSRC))
 DEBIAN_PKGS := build-essential pkg-config libncurses-dev libstb-dev libpng-dev \
                libjpeg62-turbo-dev libassimp-dev libosmesa6-dev tmux ncurses-term procps python3
 
-.PHONY: all test unit check-asan asan-build bench deps install uninstall clean help fuzz
+.PHONY: all test unit check-asan asan-build bench chart deps install uninstall clean help fuzz
 
 all: rastty assets
 
@@ -34,6 +34,7 @@ help:
 	@echo "make test       unit + oracle (Mesa) + end-to-end tests, then the same under ASan+UBSan"
 	@echo "make check-asan unit + end-to-end tests built with -fsanitize=address,undefined"
 	@echo "make bench      speed and bytes/frame benchmarks (not a test)"
+	@echo "make chart      regenerate assets/doc/chart.svg (+ .csv): every method's speed against accuracy"
 	@echo "make fuzz       libFuzzer on every parser and decoder (FUZZ_SECONDS=60 each)"
 	@echo "make deps       install Debian build/test packages (root) or print the apt-get line"
 	@echo "make install    PREFIX=/usr/local: binary, man page, built-in assets"
@@ -85,6 +86,11 @@ build/asan/rastty: $(BUILD)/librastty.a $(MAINOBJ)
 
 bench: rastty assets oracle-build
 	@tests/bench.sh
+
+# The README's chart: every method on the scene set at 160x96 and 640x480 (several minutes;
+# run it on a quiet machine). Shared models from ../shared/models (or RASTTY_SHARED).
+chart: rastty assets
+	./rastty bench --chart --svg assets/doc/chart.svg --csv assets/doc/chart.csv
 
 # libFuzzer targets for every parser (clang); FUZZ_SECONDS each. See tests/fuzz/README.
 FUZZ_SECONDS ?= 60

@@ -22,7 +22,7 @@
 struct plot_label {
     int col, row; /* terminal cell, 0-based */
     uint32_t rgb;
-    char text[48];
+    char text[96];
 };
 
 struct plot {

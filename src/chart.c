@@ -662,16 +662,40 @@ static void draw_panel(const struct chart *c, struct plot *p, int w, int h, doub
         plot_marker(p, px, py, row_shape(pts[i].row), r, row_color(pts[i].row, p->svg != NULL));
         plot_keep_clear(&clear, px, py, r);
     }
-    for (int pass = 0; pass < 2; pass++) /* the front's labels first */
+    /* Labels: methods that land on the same spot (the same picture within 0.05 dB, times
+     * within 25%: the rasterizers, w and rz draw the default's bytes) share one label, which
+     * is bold when one of them is on the front; the front's labels are placed first. */
+    int group[CHART_MAX_ROWS];
+    for (int i = 0; i < n; i++) {
+        group[i] = i;
+        for (int k = 0; k < i && group[i] == i; k++) {
+            const struct point *a = &pts[group[k]], *b = &pts[i];
+            bool same_db = (isinf(a->psnr) && isinf(b->psnr)) || fabs(a->psnr - b->psnr) < 0.05;
+            if (group[k] == k && same_db && b->ms < a->ms * 1.25 && b->ms > a->ms / 1.25)
+                group[i] = k;
+        }
+    }
+    for (int pass = 0; pass < 2; pass++)
         for (int i = 0; i < n; i++) {
-            if (pts[i].front != (pass == 0))
+            if (group[i] != i)
                 continue;
-            char label[64];
-            chart_row_label(pts[i].row, label, sizeof label);
+            bool front = false;
+            char label[160] = "";
+            for (int k = i; k < n; k++) {
+                if (group[k] != i)
+                    continue;
+                front |= pts[k].front;
+                char one[48];
+                chart_row_label(pts[k].row, one, sizeof one);
+                size_t len = strlen(label);
+                snprintf(label + len, sizeof label - len, "%s%s", len ? ", " : "", one);
+            }
+            if (front != (pass == 0))
+                continue;
             double px = plot_map(&ax, pts[i].ms);
             double py = isinf(pts[i].psnr) ? inf_y : plot_map(&ay, pts[i].psnr);
-            uint32_t col = pts[i].front ? (p->svg ? 0x000000 : 0xffffff) : 0x808080;
-            plot_text_clear(p, &clear, px, py, r, label, col, 1, pts[i].front, !pts[i].front);
+            uint32_t col = front ? (p->svg ? 0x000000 : 0xffffff) : 0x808080;
+            plot_text_clear(p, &clear, px, py, r, label, col, 1, front, !front);
         }
 }
 
