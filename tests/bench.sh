@@ -4,7 +4,9 @@
 #      2 deg/frame, 160x48 cells) on black, on the shared photo skybox, and on rastty's own sky;
 #   2. render time per frame of the demo scene and the big shared models;
 #   3. every rendering method: ms/frame and error against Mesa (tests/bench_methods.sh);
-#   4. rastty against Mesa llvmpipe on the speed workloads, side by side (tests/bench_speed.sh).
+#   4. rastty against Mesa llvmpipe on the speed workloads, side by side (tests/bench_speed.sh);
+#   5. where each method fails: the six stress sweeps (rastty bench --sweep NAME).
+# The full methods chart takes minutes: `make chart`.
 # Needs ../shared (or $RASTTY_SHARED) for the shared models; skips those parts without it.
 set -eu
 cd "$(dirname "$0")/.."
@@ -43,3 +45,9 @@ echo
 tests/bench_methods.sh
 echo
 tests/bench_speed.sh
+echo
+echo "-- where methods fail: rastty bench --sweep NAME at 160x96 (deterministic: no timing)"
+for s in grazing depthrange magnitude sliver nearplane minification; do
+    "$BIN" bench --sweep "$s"
+    echo
+done
