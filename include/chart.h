@@ -8,9 +8,12 @@
  *   - the fastest combination (per axis the value fastest in a pilot run, over all scenes of
  *     that size) and the most accurate (per axis the value with the best pooled PSNR, ties to
  *     the faster), unless another row already has those methods.
- * Per row: ms/frame (median of `repeat` frames after a warm-up, wall clock around ssaa_draw,
- * one thread; the rows of a scene take turns frame by frame, starting one further each
- * round, so load from other processes falls on every method alike); error against the
+ * Per row: ms/frame (median of `repeat` frames, wall clock around ssaa_draw, one thread;
+ * the rows of a scene take turns, in a new random order each round, so load from other
+ * processes falls on every method alike; each turn draws the row twice and times the second
+ * frame, so a method is timed with its own data in the caches, as a viewer draws it, not
+ * with the previous row's — without this the row after a --ssaa 8 row, whose framebuffer
+ * is 140 MB at 640x480, came out 15% slower than the same work elsewhere); error against the
  * scene's ideal image (render_opts_ideal: perspective-correct, bilinear, --ssaa 8): PSNR over
  * all pixels and channels, and the fraction of pixels with a channel off by more than 8;
  * terminal bytes of the frame encoded as one full truecolor frame (encode.h).

@@ -2,14 +2,15 @@
 #include "chart.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "encode.h"
 #include "pipeline.h"
 #include "scene.h"
 #include "ssaa.h"
+#include "timing.h"
 
 const struct chart_axis chart_axes[CHART_AXES] = {
     {"raster", &render_raster_names, offsetof(struct render_opts, raster)},
@@ -77,25 +78,6 @@ struct run {
     int cap_rows;
     struct pipeline *p;
 };
-
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 static int axis_get(const struct render_opts *o, int a)
 {
@@ -251,8 +233,9 @@ static void compare(const uint8_t *a, const uint8_t *b, size_t n_px, double *psn
     *frac_out = (double)off / (double)n_px;
 }
 
-/* Draw every row of g `frames` times, taking turns; frame 0 is a warm-up that also measures
- * error and bytes (where not known yet); the others are timed into g->times. */
+/* Draw every row of g `frames` times, taking turns in a new random order each round; frame 0
+ * is a warm-up that also measures error and bytes (where not known yet); in the others each
+ * row is drawn twice and the second frame is timed into g->times. */
 static int run_group(struct run *x, struct group *g, int frames, struct err *e)
 {
     struct fb fb = {0};
@@ -280,18 +263,33 @@ static int run_group(struct run *x, struct group *g, int frames, struct err *e)
             goto done;
         memcpy(g->ideal, fb.rgb, (size_t)g->w * g->h * 3);
     }
-    for (int f = 0; f < frames; f++)
+    int order[CHART_MAX_ROWS];
+    for (int k = 0; k < g->n_rows; k++)
+        order[k] = k;
+    uint32_t seed = 2463534242u;
+    for (int f = 0; f < frames; f++) {
+        for (int k = g->n_rows - 1; k > 0; k--) { /* a new order each round (xorshift) */
+            seed ^= seed << 13, seed ^= seed >> 17, seed ^= seed << 5;
+            int j = (int)(seed % (uint32_t)(k + 1)), tmp = order[k];
+            order[k] = order[j], order[j] = tmp;
+        }
         for (int k = 0; k < g->n_rows; k++) {
-            int i = (k + f) % g->n_rows; /* each round starts one row further */
+            int i = order[k];
             struct chart_row *r = &x->out->rows[g->rows[i]];
             struct render_opts o;
             row_opts(g, r, &o);
             struct frame_stats st;
-            double t0 = now_ms();
-            if (ssaa_draw(&ss[o.ssaa], x->p, s->items, s->n_items, sky, &g->cam, &o, &fb, &st,
-                          e))
-                goto done;
-            double dt = now_ms() - t0;
+            /* frame 0 warms up and measures the error; later rounds draw the row twice and
+             * time the second frame, so each method is timed with its own data in the caches
+             * (as a viewer draws it frame after frame), not the previous row's */
+            double dt = 0;
+            for (int rep = f > 0 ? 2 : 1; rep > 0; rep--) {
+                double t0 = timing_now_ms();
+                if (ssaa_draw(&ss[o.ssaa], x->p, s->items, s->n_items, sky, &g->cam, &o, &fb,
+                              &st, e))
+                    goto done;
+                dt = timing_now_ms() - t0;
+            }
             if (f > 0)
                 g->times[(size_t)i * timed + (size_t)(f - 1)] = dt;
             else if (isnan(r->psnr_db)) {
@@ -301,6 +299,7 @@ static int run_group(struct run *x, struct group *g, int frames, struct err *e)
                 encode_fb(&es, &fb, &eo, &r->bytes, NULL);
             }
         }
+    }
     rc = 0;
 done:
     for (int k = 0; k < SSAA_COUNT; k++)
@@ -428,8 +427,8 @@ int chart_run(const struct chart_config *c, struct chart *out, struct err *e)
             if (run_group(&x, &gs[i], CHART_PILOT, e))
                 goto done;
             for (int k = 0; k < gs[i].n_rows; k++)
-                out->rows[gs[i].rows[k]].pilot_ms = median(gs[i].times + k * (CHART_PILOT - 1),
-                                                            CHART_PILOT - 1);
+                out->rows[gs[i].rows[k]].pilot_ms =
+                    timing_median(gs[i].times + k * (CHART_PILOT - 1), CHART_PILOT - 1);
         }
         int fast[CHART_AXES], best[CHART_AXES];
         choose_combos(out, w, h, fast, best);
@@ -441,8 +440,8 @@ int chart_run(const struct chart_config *c, struct chart *out, struct err *e)
             if (run_group(&x, &gs[i], 1 + c->repeat, e))
                 goto done;
             for (int k = 0; k < gs[i].n_rows; k++)
-                out->rows[gs[i].rows[k]].ms = median(gs[i].times + (size_t)k * c->repeat,
-                                                     c->repeat);
+                out->rows[gs[i].rows[k]].ms =
+                    timing_median(gs[i].times + (size_t)k * c->repeat, c->repeat);
             free(gs[i].ideal);
             free(gs[i].times);
             gs[i].ideal = NULL;

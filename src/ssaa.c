@@ -2,7 +2,8 @@
 #include "ssaa.h"
 
 #include <string.h>
-#include <time.h>
+
+#include "timing.h"
 
 void ssaa_free(struct ssaa *s)
 {
@@ -17,13 +18,6 @@ int ssaa_check(enum ssaa_method m, int w, int h, struct err *e)
         return err_set(e, "rastty: --ssaa %d at %dx%d needs a %ldx%ld framebuffer (at most %d a "
                           "side)", k, w, h, (long)w * k, (long)h * k, FB_MAX_DIM);
     return 0;
-}
-
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
 }
 
 /* fb sized w x h (with an overdraw counter when asked), reallocated only when that changes */
@@ -102,7 +96,7 @@ int ssaa_draw(struct ssaa *s, struct pipeline *p, const struct draw_item *items,
     int k = render_ssaa_factor(o->ssaa);
     if (k == 1)
         return pipeline_draw(p, items, n_items, sky, cam, o, fb, stats, e);
-    double t0 = now_ms();
+    double t0 = timing_now_ms();
     if (ssaa_check(o->ssaa, fb->w, fb->h, e) ||
         ensure(&s->big, k * fb->w, k * fb->h, fb->overdraw && o->view == VIEW_OVERDRAW, e))
         return -1;
@@ -127,6 +121,6 @@ int ssaa_draw(struct ssaa *s, struct pipeline *p, const struct draw_item *items,
         if (wire)
             *stats = ls;
     }
-    stats->render_ms = now_ms() - t0;
+    stats->render_ms = timing_now_ms() - t0;
     return 0;
 }

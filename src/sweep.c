@@ -544,7 +544,8 @@ static void sphere(struct build *b, vec3 c, int stacks, int slices)
         int j1 = (j + 1) % slices;
         b_tri(b, top, first + (uint32_t)j, first + (uint32_t)j1);
         for (int i = 0; i + 2 < stacks; i++) {
-            uint32_t a = first + (uint32_t)(i * slices + j), a1 = first + (uint32_t)(i * slices + j1);
+            uint32_t a = first + (uint32_t)(i * slices + j);
+            uint32_t a1 = first + (uint32_t)(i * slices + j1);
             uint32_t d = a + (uint32_t)slices, d1 = a1 + (uint32_t)slices;
             b_tri(b, a, d, d1);
             b_tri(b, a, d1, a1);

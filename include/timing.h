@@ -1,0 +1,11 @@
+/* timing.h: wall-clock time and medians of repeated measurements (benchmarks, --repeat).
+ * Measurements are numbers for people, never asserted by tests. */
+#ifndef RASTTY_TIMING_H
+#define RASTTY_TIMING_H
+
+/* CLOCK_MONOTONIC in milliseconds */
+double timing_now_ms(void);
+/* The median of v[0..n-1], n >= 1 (the mean of the middle two when n is even); sorts v. */
+double timing_median(double *v, int n);
+
+#endif
