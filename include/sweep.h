@@ -66,7 +66,7 @@ struct sweep_result {
                               * where theory predicts the error itself, the prediction */
     double threshold;        /* fails when error > threshold (or a NaN/inf appears) */
     char threshold_text[160];
-    char theory[600];        /* the prediction, with its numbers */
+    char theory[1024];       /* the prediction, with its numbers */
     int n_steps, n_methods;
     int default_method;      /* index of the default method */
     double param[SWEEP_MAX_STEPS];

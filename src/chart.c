@@ -155,6 +155,7 @@ static void group_setup(struct group *g, struct loaded *l, int w, int h)
             camera_frame_box(&g->cam, s->bound_lo, s->bound_hi, (double)w / h);
     }
     render_opts_default(&g->base);
+    g->base.threads = 1; /* one thread: the methods' own cost, not the machine's cores */
     if (s->n_lights) {
         g->base.n_lights = s->n_lights;
         for (int i = 0; i < s->n_lights; i++)
