@@ -49,6 +49,8 @@ struct chart_row {
     int value[CHART_AXES]; /* each axis's method */
     enum chart_kind kind;
     int axis;              /* CHART_VARIED: which axis differs from the default */
+    unsigned also;         /* 1 << CHART_FASTEST, 1 << CHART_ACCURATE: this row's methods are
+                            * also that combination (which then has no row of its own) */
     double ms;             /* median ms/frame */
     double pilot_ms;       /* the pilot run's median (chooses the fastest combination) */
     double psnr_db;        /* against the ideal; INFINITY when identical */
@@ -74,7 +76,8 @@ struct chart {
 
 int chart_run(const struct chart_config *c, struct chart *out, struct err *e);
 void chart_free(struct chart *c);
-/* "default", "scanline", "depth z16", "ssaa 4", "fastest", "most accurate" */
+/* "default", "scanline", "depth z16", "ssaa 4", "fastest", "most accurate"; a row that is
+ * also a combination says so: "default = fastest" */
 void chart_row_label(const struct chart_row *r, char *out, size_t n);
 int chart_write_csv(const struct chart *c, FILE *f);
 void chart_write_table(const struct chart *c, FILE *f);

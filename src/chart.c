@@ -386,8 +386,10 @@ static int add_combo(struct run *x, struct group *g, enum chart_kind kind,
                      const int values[CHART_AXES], struct err *e)
 {
     for (int i = 0; i < g->n_rows; i++)
-        if (same_values(x->out->rows[g->rows[i]].value, values))
-            return 0; /* already a row */
+        if (same_values(x->out->rows[g->rows[i]].value, values)) {
+            x->out->rows[g->rows[i]].also |= 1u << kind; /* already a row: say so there */
+            return 0;
+        }
     struct chart_row r = {.kind = kind};
     memcpy(r.value, values, sizeof r.value);
     return add_row(x, g, &r, e);
@@ -476,6 +478,17 @@ void chart_free(struct chart *c)
 
 void chart_row_label(const struct chart_row *r, char *out, size_t n)
 {
+    if (r->also) {
+        struct chart_row plain = *r;
+        plain.also = 0;
+        char base[48];
+        chart_row_label(&plain, base, sizeof base);
+        snprintf(out, n, "%s = %s%s", base,
+                 r->also & (1u << CHART_FASTEST) ? "fastest" : "most accurate",
+                 r->also == ((1u << CHART_FASTEST) | (1u << CHART_ACCURATE)) ? ", most accurate"
+                                                                             : "");
+        return;
+    }
     if (r->kind == CHART_DEFAULT) {
         snprintf(out, n, "default");
     } else if (r->kind == CHART_FASTEST) {
