@@ -73,6 +73,9 @@ struct setup_plane {
 struct setup_interp {
     struct setup_plane z;   /* depth in the method's measure: z01 (z, z16), (w - z)/2w (rz);
                                for w the numerator sum l_k e_k / w_k of the eye depth e */
+    float z_c_lo;           /* z.c's rounding error: depth is evaluated as
+                               z.c + ((z_c_lo + dy Y) + dx X), so two nearly coplanar
+                               triangles round apart pixel by pixel instead of tying whole */
     struct setup_plane zq;  /* w only: the denominator sum l_k / w_k */
     float z_lo, z_hi;       /* the corners' range of the depth: no pixel leaves it */
     struct setup_plane q;   /* interpolation denominator: sum l_k / w_k (correct, spans),

@@ -161,8 +161,11 @@ void setup_interp(const struct setup_tri *t, enum depth_mode depth,
             f[i] = d[i] * rw[i];
         in->z = combine(&b, f);
         in->zq = combine(&b, rw);
+        in->z_c_lo = 0;
     } else {
         in->z = combine(&b, d);
+        double c = b.l[0] * d[0] + b.l[1] * d[1] + b.l[2] * d[2];
+        in->z_c_lo = (float)(c - (double)in->z.c);
     }
     in->q = affine ? (struct setup_plane){1, 0, 0} : combine(&b, rw);
     /* the varyings two at a time: the same double sums as combine(), in vector registers */

@@ -71,7 +71,9 @@ static inline void run(struct span_ctx *s, int y, int xa, int xb, const enum sha
     const enum depth_mode depth = s->depth;
     const int span_n = persp == PERSP_SPAN8 ? 8 : persp == PERSP_SPAN16 ? 16 : 32;
     const float Y = (float)(y - t->y0);
-    const float zr = row_of(&in->z, Y), zqr = row_of(&in->zq, Y), qr = row_of(&in->q, Y);
+    /* depth: the plane's value as c + (small part), rounded once (setup.h) */
+    const f4 zc = f4_set(in->z.c);
+    const float zr = in->z_c_lo + in->z.dy * Y, zqr = row_of(&in->zq, Y), qr = row_of(&in->q, Y);
     const f4 zdx = f4_set(in->z.dx), zqdx = f4_set(in->zq.dx), qdx = f4_set(in->q.dx);
     const f4 z_lo = f4_set(in->z_lo), z_hi = f4_set(in->z_hi);
     float ar[VARY_MAX], adx[VARY_MAX];
@@ -95,7 +97,7 @@ static inline void run(struct span_ctx *s, int y, int xa, int xb, const enum sha
     for (int x = xa; x <= xb; x += SIMD_LANES) {
         const int n = xb - x + 1 < SIMD_LANES ? xb - x + 1 : SIMD_LANES;
         const f4 X = f4_set((float)(x - x_org)) + lane;
-        f4 z = f4_set(zr) + zdx * X;
+        f4 z = zc + (f4_set(zr) + zdx * X);
         if (depth == DEPTH_W)
             z = z / (f4_set(zqr) + zqdx * X);
         z = f4_select(z < z_lo, z_lo, z); /* never past the corners */

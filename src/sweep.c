@@ -480,14 +480,10 @@ static int sweep_depthrange(int w, int h, struct sweep_result *r, struct err *e)
              "%.0f, z (float: q = 2^-24 for depths in [0.5, 1)) at %.0f; w and rz keep "
              "float's 24 bits relative to the stored value (gap/D = 5e-4 >> 2^-24): never. "
              "The theory column evaluates the tie fraction per pixel; it predicts failure "
-             "at %.4g (z16) and %.4g (z). z16 rounds each pixel, so its ties fall pixel by "
-             "pixel as predicted. Float z's depth plane is rounded to float once per triangle "
-             "and evaluated in float (setup.h): the rounding and the two additions can move "
-             "two planes up to 1.5 steps either way, so ties come triangle by triangle, all "
-             "or nothing, and can start once the gap is under 2 steps, from ratio 1 + far gap "
-             "/ (2 q D^2) = %.0f (none before).",
-             1 + kk * 65535, 1 + kk * 16777216.0, r->predicted[DEPTH_Z16], r->predicted[DEPTH_Z],
-             1 + DR_FAR * DR_GAP / (2 * ldexp(1, -24) * DR_DIST * DR_DIST));
+             "at %.4g (z16) and %.4g (z). Both round each pixel's depth once (float z "
+             "evaluates its plane as a float base plus a small part, setup.h), so their ties "
+             "fall pixel by pixel as predicted.",
+             1 + kk * 65535, 1 + kk * 16777216.0, r->predicted[DEPTH_Z16], r->predicted[DEPTH_Z]);
     rc = 0;
 out:
     rig_free(&rig);
