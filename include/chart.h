@@ -14,14 +14,20 @@
  * frame, so a method is timed with its own data in the caches, as a viewer draws it, not
  * with the previous row's — without this the row after a --ssaa 8 row, whose framebuffer
  * is 140 MB at 640x480, came out 15% slower than the same work elsewhere); error against the
- * scene's ideal image (render_opts_ideal: perspective-correct, bilinear, --ssaa 8): PSNR over
+ * scene's ideal image (render_opts_ideal: perspective-correct, trilinear, --ssaa 8): PSNR over
  * all pixels and channels, and the fraction of pixels with a channel off by more than 8;
  * terminal bytes of the frame encoded as one full truecolor frame (encode.h).
+ *
+ * On the textured head, also the temporal shimmer (chart_row.shimmer): each method and the
+ * ideal draw CHART_SHIMMER_FRAMES frames of an orbit turning CHART_SHIMMER_DEG degrees a
+ * frame; a minified texture that aliases flickers from frame to frame where the ideal's
+ * picture changes smoothly.
  *
  * Axes are data: chart_axes[] lists each method axis once (its CSV column, its names, its
  * render_opts field), so a new axis is one entry there. The CSV starts with
  *   scene,size,raster,persp,depth,filter,ssaa,ms,psnr_db,frac_gt8,bytes
- * and axes after the first CHART_CSV_AXES follow `bytes`, so the header only grows. */
+ * and axes after the first CHART_CSV_AXES follow `bytes`, then `shimmer` (empty where not
+ * measured), so the header only grows. */
 #ifndef RASTTY_CHART_H
 #define RASTTY_CHART_H
 
@@ -39,6 +45,8 @@ struct chart_axis {
 };
 #define CHART_AXES 5     /* entries of chart_axes */
 #define CHART_CSV_AXES 5 /* of them, the columns before ms */
+#define CHART_SHIMMER_FRAMES 9
+#define CHART_SHIMMER_DEG 0.5
 extern const struct chart_axis chart_axes[CHART_AXES];
 
 enum chart_kind { CHART_DEFAULT, CHART_VARIED, CHART_FASTEST, CHART_ACCURATE };
@@ -56,6 +64,10 @@ struct chart_row {
     double psnr_db;        /* against the ideal; INFINITY when identical */
     double frac_gt8;       /* pixels with a channel off by more than 8, 0..1 */
     size_t bytes;          /* one full truecolor frame */
+    double shimmer;        /* head only (else NaN): temporal shimmer over a slow orbit —
+                            * the mean absolute difference, per channel in 8-bit levels,
+                            * between this method's frame-to-frame change and the ideal
+                            * image's (0 = it changes exactly as the ideal does) */
 };
 
 struct chart_config {

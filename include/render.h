@@ -88,7 +88,7 @@ struct frame_stats {
  * colour, one white light toward (1,1,1). */
 void render_opts_default(struct render_opts *o);
 /* The ideal image's methods — rastty's most accurate setting, the reference every method is
- * measured against (bench --chart): perspective-correct, bilinear, --ssaa 8. Everything else
+ * measured against (bench --chart): perspective-correct, trilinear, --ssaa 8. Everything else
  * (shading, lights, depth method, rasterizer, ...) is left as it is. */
 void render_opts_ideal(struct render_opts *o);
 

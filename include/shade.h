@@ -42,7 +42,7 @@ static inline void shade_albedo(const struct shade_ctx *c, const struct shade_tr
     const float *kd = t->base;
     if (t->tex) {
         float tx[3];
-        texture_sample(t->tex, c->filter, var[0], var[1], tx);
+        texture_sample(t->tex, c->filter, var[0], var[1], 0, tx);
         albedo_out[0] = kd[0] * tx[0];
         albedo_out[1] = kd[1] * tx[1];
         albedo_out[2] = kd[2] * tx[2];
@@ -97,14 +97,16 @@ static inline void shade_fragment(const struct shade_ctx *c, enum shade_mode mod
 }
 
 /* Four pixels at once (the normals view goes pixel by pixel through shade_fragment): in every
- * lane exactly what shade_fragment gives. var[k] holds varying k of the four pixels. */
+ * lane exactly what shade_fragment gives. var[k] holds varying k of the four pixels; lambda
+ * their texture level of detail (texture_lod4; trilinear only). */
 static inline void shade_fragment4(const struct shade_ctx *c, enum shade_mode mode,
-                                   const struct shade_tri *t, const f4 *var, f4 rgb_out[3])
+                                   const struct shade_tri *t, const f4 *var, f4 lambda,
+                                   f4 rgb_out[3])
 {
     f4 albedo[3];
     if (t->tex) {
         f4 tx[3];
-        texture_sample4(t->tex, c->filter, var[0], var[1], tx);
+        texture_sample4(t->tex, c->filter, var[0], var[1], lambda, tx);
         for (int k = 0; k < 3; k++)
             albedo[k] = f4_set(t->base[k]) * tx[k];
     } else {

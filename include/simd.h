@@ -59,6 +59,18 @@ static inline f4 f4_sqrt(f4 a)
 #endif
 }
 
+/* log2 of positive finite lanes, to about 0.0013 (exponent bits plus a cubic on the
+ * mantissa): a texture's level of detail needs no more. Zero, negative or non-finite lanes
+ * give garbage, which callers select away. */
+static inline f4 f4_log2(f4 x)
+{
+    i4 b = (i4)x;
+    f4 e = f4_from_i4(((b >> 23) & i4_set(255)) - i4_set(127));
+    f4 t = (f4)((b & i4_set(0x7fffff)) | i4_set(0x3f800000)) - f4_set(1.0f); /* [0,1) */
+    f4 p = t * (f4_set(1.4234853f) + t * (f4_set(-0.5877338f) + t * f4_set(0.1655588f)));
+    return e + p;
+}
+
 /* any lane set? */
 static inline int i4_any(i4 m)
 {

@@ -30,10 +30,23 @@
 #define TEXTURE_MAX_SIDE 4096
 #define TEXTURE_BUDGET ((size_t)512 << 20) /* texel bytes per cache (per scene) */
 
+#define TEXTURE_MAX_LEVELS 16
+
+/* One level of a mip chain: w x h texels, RGBA8, row 0 = top. */
+struct texture_level {
+    int w, h;
+    const uint8_t *rgba;
+};
+
 struct texture {
     int w, h;
     uint8_t *rgba; /* w*h*4 bytes, row-major, row 0 = top of the image */
-    bool borrowed; /* rgba belongs to a texture cache: texture_free leaves it alone */
+    bool borrowed; /* rgba (and mips) belong to a texture cache: texture_free leaves them */
+    /* the mip chain (texture_build_mips): level[0] is (w, h, rgba), each next level half
+     * the size (rounded down, at least 1) down to 1x1; n_levels 0 until built */
+    int n_levels;
+    struct texture_level level[TEXTURE_MAX_LEVELS];
+    uint8_t *mip_data; /* levels 1.. in one block */
 };
 
 /* Textures loaded once per file; entries never move, so pointers to them stay valid until
@@ -44,11 +57,27 @@ struct texture_cache {
         struct texture tex;
     } **entries;
     int n, cap;
-    size_t bytes;  /* texel bytes held */
+    size_t bytes;  /* texel bytes held, mip levels included */
     size_t budget; /* 0 = TEXTURE_BUDGET */
 };
 
-enum tex_filter { TEX_NEAREST, TEX_BILINEAR, TEX_FILTER_COUNT };
+/* Filters (--filter; the viewer's f key):
+ *   TEX_NEAREST    the texel under the sample point, level 0. Cost: one fetch. Fails:
+ *                  minified textures alias and shimmer (12 texels per pixel on a head at
+ *                  terminal sizes): each pixel shows one texel of the 144 under it.
+ *   TEX_BILINEAR   the 4 texels around it, weighted, level 0. Cost: 4 fetches. Fails the
+ *                  same way once a pixel covers more than 2 texels.
+ *   TEX_TRILINEAR  bilinear on the two mip levels around the pixel's footprint, blended
+ *                  (GL_LINEAR_MIPMAP_LINEAR). Cost: 8 fetches and the footprint's size per
+ *                  pixel. Fails: blurs surfaces seen at grazing angles (the footprint is
+ *                  long and thin and the level follows its long side). */
+enum tex_filter { TEX_NEAREST, TEX_BILINEAR, TEX_TRILINEAR, TEX_FILTER_COUNT };
+
+/* The mip chain of t (box filter: each texel of a level is the area-weighted average of the
+ * texels of the level above that it covers — for even sizes the mean of a 2x2 block, as
+ * GL's glGenerateMipmap computes it, so Mesa's chain and ours agree). Returns the bytes the
+ * levels below level 0 use, or -1 (out of memory, e set). */
+long texture_build_mips(struct texture *t, struct err *e);
 
 /* Decode an image file (owned by out); on failure fills e with "path: reason" and returns -1.
  * Larger than max_side (TEXTURE_MAX_SIDE for ordinary textures) on a side: downscaled, with
@@ -70,10 +99,11 @@ void texture_cache_free(struct texture_cache *c);
 int texture_from_rgba(int w, int h, const uint8_t *rgba, struct texture *out, struct err *e);
 void texture_free(struct texture *t);
 
-/* Sample at (u, v) with the filter; writes rgb in [0,1]. Inline: it runs once per shaded
- * pixel. */
-static inline void texture_sample(const struct texture *t, enum tex_filter f, float u, float v,
-                                  float rgb_out[3]);
+/* Level 0 as a texture_level (also for textures whose chain was never built). */
+static inline struct texture_level texture_base(const struct texture *t)
+{
+    return (struct texture_level){t->w, t->h, t->rgba};
+}
 
 /* floor(x) mod n in [0, n) for any float x; texel 0 for huge or non-finite x. Without
  * SSE4.1, floorf is a library call: the truncation below is exact for |x| < 2^31. Power-of-
@@ -93,24 +123,27 @@ static inline int texture_wrap(float x, int n)
 }
 
 /* texel at column i, row j counted from the bottom */
-static inline const uint8_t *texture_texel(const struct texture *t, int i, int j)
+static inline const uint8_t *texture_texel(const struct texture_level *lv, int i, int j)
 {
-    return t->rgba + ((size_t)(t->h - 1 - j) * (size_t)t->w + (size_t)i) * 4;
+    return lv->rgba + ((size_t)(lv->h - 1 - j) * (size_t)lv->w + (size_t)i) * 4;
 }
 
-static inline void texture_sample(const struct texture *t, enum tex_filter f, float u, float v,
-                                  float rgb_out[3])
+static inline void texture_nearest(const struct texture_level *lv, float u, float v,
+                                   float rgb_out[3])
 {
     const float k = 1.0f / 255.0f;
-    if (f == TEX_NEAREST) {
-        const uint8_t *p = texture_texel(t, texture_wrap(u * (float)t->w, t->w),
-                                         texture_wrap(v * (float)t->h, t->h));
-        rgb_out[0] = p[0] * k;
-        rgb_out[1] = p[1] * k;
-        rgb_out[2] = p[2] * k;
-        return;
-    }
-    float x = u * (float)t->w - 0.5f, y = v * (float)t->h - 0.5f;
+    const uint8_t *p = texture_texel(lv, texture_wrap(u * (float)lv->w, lv->w),
+                                     texture_wrap(v * (float)lv->h, lv->h));
+    rgb_out[0] = p[0] * k;
+    rgb_out[1] = p[1] * k;
+    rgb_out[2] = p[2] * k;
+}
+
+static inline void texture_bilinear(const struct texture_level *lv, float u, float v,
+                                    float rgb_out[3])
+{
+    const float k = 1.0f / 255.0f;
+    float x = u * (float)lv->w - 0.5f, y = v * (float)lv->h - 0.5f;
     if (!(x > -1e9f && x < 1e9f && y > -1e9f && y < 1e9f)) { /* as nearest does: texel 0 */
         x = 0;
         y = 0;
@@ -118,15 +151,53 @@ static inline void texture_sample(const struct texture *t, enum tex_filter f, fl
     int xi = (int)x, yi = (int)y;
     xi -= (float)xi > x, yi -= (float)yi > y; /* floor */
     float ax = x - (float)xi, ay = y - (float)yi;
-    int i0 = texture_wrap((float)xi, t->w), j0 = texture_wrap((float)yi, t->h);
-    int i1 = i0 + 1 == t->w ? 0 : i0 + 1, j1 = j0 + 1 == t->h ? 0 : j0 + 1;
-    const uint8_t *p00 = texture_texel(t, i0, j0), *p10 = texture_texel(t, i1, j0);
-    const uint8_t *p01 = texture_texel(t, i0, j1), *p11 = texture_texel(t, i1, j1);
+    int i0 = texture_wrap((float)xi, lv->w), j0 = texture_wrap((float)yi, lv->h);
+    int i1 = i0 + 1 == lv->w ? 0 : i0 + 1, j1 = j0 + 1 == lv->h ? 0 : j0 + 1;
+    const uint8_t *p00 = texture_texel(lv, i0, j0), *p10 = texture_texel(lv, i1, j0);
+    const uint8_t *p01 = texture_texel(lv, i0, j1), *p11 = texture_texel(lv, i1, j1);
     for (int c = 0; c < 3; c++) {
         float a = p00[c] + ax * (p10[c] - p00[c]);
         float b = p01[c] + ax * (p11[c] - p01[c]);
         rgb_out[c] = (a + ay * (b - a)) * k;
     }
+}
+
+/* The levels a footprint of 2^lambda texels (of level 0) blends: l0 and l0 + 1 with weight
+ * frac of the second (GL's rule: lambda <= 0 magnifies, level 0 alone). */
+static inline int texture_levels(const struct texture *t, float lambda, float *frac_out)
+{
+    *frac_out = 0;
+    if (!(lambda > 0) || t->n_levels < 2)
+        return 0;
+    if (!(lambda < (float)(t->n_levels - 1)))
+        return t->n_levels - 1;
+    int l0 = (int)lambda;
+    *frac_out = lambda - (float)l0;
+    return l0;
+}
+
+/* Sample at (u, v) with the filter; lambda = log2 of the pixel's footprint in level-0
+ * texels (trilinear only). Writes rgb in [0,1]. Inline: it runs once per shaded pixel. */
+static inline void texture_sample(const struct texture *t, enum tex_filter f, float u, float v,
+                                  float lambda, float rgb_out[3])
+{
+    struct texture_level base = texture_base(t);
+    if (f == TEX_NEAREST) {
+        texture_nearest(&base, u, v, rgb_out);
+        return;
+    }
+    float frac;
+    int l0 = f == TEX_TRILINEAR ? texture_levels(t, lambda, &frac) : 0;
+    if (l0 == 0)
+        texture_bilinear(&base, u, v, rgb_out);
+    else
+        texture_bilinear(&t->level[l0], u, v, rgb_out);
+    if (f != TEX_TRILINEAR || frac == 0)
+        return;
+    float c1[3];
+    texture_bilinear(&t->level[l0 + 1], u, v, c1);
+    for (int c = 0; c < 3; c++)
+        rgb_out[c] += frac * (c1[c] - rgb_out[c]);
 }
 
 /* texture_wrap for four coordinates */
@@ -150,51 +221,100 @@ static inline i4 texture_wrap4(f4 x, int n)
 }
 
 /* the rgb of the texels at (i, j), j counted from the bottom, one vector per channel */
-static inline void texture_fetch4(const struct texture *t, i4 i, i4 j, i4 rgb_out[3])
+static inline void texture_fetch4(const struct texture_level *lv, i4 i, i4 j, i4 rgb_out[3])
 {
-    i4 idx = (i4_set(t->h - 1) - j) * i4_set(t->w) + i;
+    i4 idx = (i4_set(lv->h - 1) - j) * i4_set(lv->w) + i;
     int32_t c[3][SIMD_LANES];
     for (int l = 0; l < SIMD_LANES; l++) {
-        const uint8_t *p = t->rgba + (size_t)idx[l] * 4;
+        const uint8_t *p = lv->rgba + (size_t)idx[l] * 4;
         c[0][l] = p[0], c[1][l] = p[1], c[2][l] = p[2];
     }
     for (int ch = 0; ch < 3; ch++)
         rgb_out[ch] = (i4){c[ch][0], c[ch][1], c[ch][2], c[ch][3]};
 }
 
-/* Four samples at once: in every lane exactly what texture_sample gives. */
-static inline void texture_sample4(const struct texture *t, enum tex_filter f, f4 u, f4 v,
-                                   f4 rgb_out[3])
+/* texture_bilinear, four samples of one level at once */
+static inline void texture_bilinear4(const struct texture_level *lv, f4 u, f4 v, f4 rgb_out[3])
 {
     const f4 k = f4_set(1.0f / 255.0f);
-    i4 c[3];
-    if (f == TEX_NEAREST) {
-        texture_fetch4(t, texture_wrap4(u * f4_set((float)t->w), t->w),
-                       texture_wrap4(v * f4_set((float)t->h), t->h), c);
-        for (int ch = 0; ch < 3; ch++)
-            rgb_out[ch] = f4_from_i4(c[ch]) * k;
-        return;
-    }
-    f4 x = u * f4_set((float)t->w) - f4_set(0.5f), y = v * f4_set((float)t->h) - f4_set(0.5f);
+    f4 x = u * f4_set((float)lv->w) - f4_set(0.5f), y = v * f4_set((float)lv->h) - f4_set(0.5f);
     i4 ok = (x > f4_set(-1e9f)) & (x < f4_set(1e9f)) & (y > f4_set(-1e9f)) & (y < f4_set(1e9f));
     x = f4_select(ok, x, f4_set(0));
     y = f4_select(ok, y, f4_set(0));
     i4 xi = i4_trunc(x), yi = i4_trunc(y);
     xi += (f4_from_i4(xi) > x), yi += (f4_from_i4(yi) > y); /* floor */
     f4 ax = x - f4_from_i4(xi), ay = y - f4_from_i4(yi);
-    i4 i0 = texture_wrap4(f4_from_i4(xi), t->w), j0 = texture_wrap4(f4_from_i4(yi), t->h);
-    i4 i1 = i4_select(i0 + 1 == i4_set(t->w), i4_set(0), i0 + 1);
-    i4 j1 = i4_select(j0 + 1 == i4_set(t->h), i4_set(0), j0 + 1);
+    i4 i0 = texture_wrap4(f4_from_i4(xi), lv->w), j0 = texture_wrap4(f4_from_i4(yi), lv->h);
+    i4 i1 = i4_select(i0 + 1 == i4_set(lv->w), i4_set(0), i0 + 1);
+    i4 j1 = i4_select(j0 + 1 == i4_set(lv->h), i4_set(0), j0 + 1);
     i4 c00[3], c10[3], c01[3], c11[3];
-    texture_fetch4(t, i0, j0, c00);
-    texture_fetch4(t, i1, j0, c10);
-    texture_fetch4(t, i0, j1, c01);
-    texture_fetch4(t, i1, j1, c11);
+    texture_fetch4(lv, i0, j0, c00);
+    texture_fetch4(lv, i1, j0, c10);
+    texture_fetch4(lv, i0, j1, c01);
+    texture_fetch4(lv, i1, j1, c11);
     for (int ch = 0; ch < 3; ch++) {
         f4 a = f4_from_i4(c00[ch]) + ax * f4_from_i4(c10[ch] - c00[ch]);
         f4 b = f4_from_i4(c01[ch]) + ax * f4_from_i4(c11[ch] - c01[ch]);
         rgb_out[ch] = (a + ay * (b - a)) * k;
     }
+}
+
+/* The level of detail (texture_sample's lambda) of four pixels from the screen-space
+ * derivatives of u and v: log2 of the longer side of the pixel's footprint in level-0
+ * texels, rho = max(|(du/dx, dv/dx)|, |(du/dy, dv/dy)|) (GL's formula, without its
+ * approximations). A zero or non-finite footprint gives -1: magnification. */
+static inline f4 texture_lod4(const struct texture *t, f4 dudx, f4 dvdx, f4 dudy, f4 dvdy)
+{
+    f4 w = f4_set((float)t->w), h = f4_set((float)t->h);
+    f4 ax = dudx * w, bx = dvdx * h, ay = dudy * w, by = dvdy * h;
+    f4 rx = ax * ax + bx * bx, ry = ay * ay + by * by;
+    f4 r2 = f4_select(rx > ry, rx, ry);
+    i4 ok = (r2 > f4_set(1e-30f)) & (r2 < f4_set(1e30f));
+    f4 lambda = f4_set(0.5f) * f4_log2(f4_select(ok, r2, f4_set(1)));
+    return f4_select(ok, lambda, f4_set(-1));
+}
+
+/* Four samples at once: in every lane exactly what texture_sample gives (lambda per lane). */
+static inline void texture_sample4(const struct texture *t, enum tex_filter f, f4 u, f4 v,
+                                   f4 lambda, f4 rgb_out[3])
+{
+    struct texture_level base = texture_base(t);
+    if (f == TEX_NEAREST) {
+        const f4 k = f4_set(1.0f / 255.0f);
+        i4 c[3];
+        texture_fetch4(&base, texture_wrap4(u * f4_set((float)base.w), base.w),
+                       texture_wrap4(v * f4_set((float)base.h), base.h), c);
+        for (int ch = 0; ch < 3; ch++)
+            rgb_out[ch] = f4_from_i4(c[ch]) * k;
+        return;
+    }
+    if (f == TEX_BILINEAR) {
+        texture_bilinear4(&base, u, v, rgb_out);
+        return;
+    }
+    int l0[SIMD_LANES];
+    float frac[SIMD_LANES];
+    int same = 1, any_frac = 0;
+    for (int l = 0; l < SIMD_LANES; l++) {
+        l0[l] = texture_levels(t, lambda[l], &frac[l]);
+        same &= l0[l] == l0[0];
+        any_frac |= frac[l] != 0;
+    }
+    if (!same) { /* the footprint changes level inside these four: pixel by pixel */
+        for (int l = 0; l < SIMD_LANES; l++) {
+            float c[3];
+            texture_sample(t, TEX_TRILINEAR, u[l], v[l], lambda[l], c);
+            rgb_out[0][l] = c[0], rgb_out[1][l] = c[1], rgb_out[2][l] = c[2];
+        }
+        return;
+    }
+    texture_bilinear4(l0[0] == 0 ? &base : &t->level[l0[0]], u, v, rgb_out);
+    if (!any_frac)
+        return;
+    f4 c1[3], fr = {frac[0], frac[1], frac[2], frac[3]};
+    texture_bilinear4(&t->level[l0[0] + 1], u, v, c1);
+    for (int ch = 0; ch < 3; ch++) /* frac 0 lanes: + 0 * (c1 - c0), exactly c0 */
+        rgb_out[ch] += fr * (c1[ch] - rgb_out[ch]);
 }
 
 #endif

@@ -186,6 +186,7 @@ static int add_row(struct run *x, struct group *g, const struct chart_row *r, st
     snprintf(d->scene, sizeof d->scene, "%s", g->sc->def->name);
     d->w = g->w, d->h = g->h;
     d->psnr_db = NAN;
+    d->shimmer = NAN;
     g->rows[g->n_rows++] = out->n_rows++;
     return 0;
 }
@@ -307,6 +308,64 @@ done:
         ssaa_free(&ss[k]);
     encode_screen_free(&es);
     fb_free(&fb);
+    return rc;
+}
+
+/* chart_row.shimmer for every row of g (the head only): the ideal's orbit frames once, then
+ * each row's, the change from frame to frame compared with the ideal's */
+static int measure_shimmer(struct run *x, struct group *g, struct err *e)
+{
+    if (strcmp(g->sc->def->name, "head") != 0)
+        return 0;
+    const size_t n = (size_t)g->w * g->h * 3;
+    const int nf = CHART_SHIMMER_FRAMES;
+    const struct scene *s = g->sc->s;
+    const struct skybox *sky = s->has_sky ? &s->sky : NULL;
+    struct fb fb = {0};
+    struct ssaa ss[SSAA_COUNT];
+    memset(ss, 0, sizeof ss);
+    uint8_t *ideal = malloc(n * nf), *prev = malloc(n);
+    int rc = -1;
+    if (!ideal || !prev || fb_init(&fb, g->w, g->h, false, e)) {
+        err_set(e, "out of memory");
+        goto done;
+    }
+    for (int r = -1; r < g->n_rows; r++) { /* r = -1: the ideal */
+        struct render_opts o;
+        if (r < 0) {
+            o = g->base;
+            render_opts_ideal(&o);
+        } else {
+            row_opts(g, &x->out->rows[g->rows[r]], &o);
+        }
+        double sum = 0;
+        for (int f = 0; f < nf; f++) {
+            struct camera cam = g->cam;
+            camera_turn(&cam, CHART_SHIMMER_DEG * f, 0, 1);
+            struct frame_stats st;
+            if (ssaa_draw(&ss[o.ssaa], x->p, s->items, s->n_items, sky, &cam, &o, &fb, &st, e))
+                goto done;
+            if (r < 0) {
+                memcpy(ideal + n * (size_t)f, fb.rgb, n);
+                continue;
+            }
+            if (f > 0) {
+                const uint8_t *i1 = ideal + n * (size_t)f, *i0 = i1 - n;
+                for (size_t k = 0; k < n; k++)
+                    sum += abs(((int)fb.rgb[k] - prev[k]) - ((int)i1[k] - i0[k]));
+            }
+            memcpy(prev, fb.rgb, n);
+        }
+        if (r >= 0)
+            x->out->rows[g->rows[r]].shimmer = sum / ((double)n * (nf - 1));
+    }
+    rc = 0;
+done:
+    for (int k = 0; k < SSAA_COUNT; k++)
+        ssaa_free(&ss[k]);
+    fb_free(&fb);
+    free(ideal);
+    free(prev);
     return rc;
 }
 
@@ -445,6 +504,8 @@ int chart_run(const struct chart_config *c, struct chart *out, struct err *e)
             for (int k = 0; k < gs[i].n_rows; k++)
                 out->rows[gs[i].rows[k]].ms =
                     timing_median(gs[i].times + (size_t)k * c->repeat, c->repeat);
+            if (measure_shimmer(&x, &gs[i], e))
+                goto done;
             free(gs[i].ideal);
             free(gs[i].times);
             gs[i].ideal = NULL;
@@ -520,7 +581,7 @@ int chart_write_csv(const struct chart *c, FILE *f)
     fputs(",ms,psnr_db,frac_gt8,bytes", f);
     for (int a = CHART_CSV_AXES; a < CHART_AXES; a++)
         fprintf(f, ",%s", chart_axes[a].name);
-    fputc('\n', f);
+    fputs(",shimmer\n", f);
     for (int i = 0; i < c->n_rows; i++) {
         const struct chart_row *r = &c->rows[i];
         fprintf(f, "%s,%dx%d", r->scene, r->w, r->h);
@@ -531,7 +592,10 @@ int chart_write_csv(const struct chart *c, FILE *f)
         fprintf(f, ",%.6f,%zu", r->frac_gt8, r->bytes);
         for (int a = CHART_CSV_AXES; a < CHART_AXES; a++)
             fprintf(f, ",%s", chart_axes[a].values->names[r->value[a]]);
-        fputc('\n', f);
+        if (isnan(r->shimmer))
+            fputs(",\n", f);
+        else
+            fprintf(f, ",%.3f\n", r->shimmer);
     }
     return ferror(f) ? -1 : 0;
 }
@@ -541,7 +605,8 @@ void chart_write_table(const struct chart *c, FILE *f)
     fprintf(f, "%-7s %-8s", "scene", "size");
     for (int a = 0; a < CHART_AXES; a++)
         fprintf(f, " %-8s", chart_axes[a].name);
-    fprintf(f, " %9s %8s %8s %8s  %s\n", "ms/frame", "PSNR dB", ">8 px %", "KB", "method");
+    fprintf(f, " %9s %8s %8s %8s %8s  %s\n", "ms/frame", "PSNR dB", ">8 px %", "KB", "shimmer",
+            "method");
     for (int i = 0; i < c->n_rows; i++) {
         const struct chart_row *r = &c->rows[i];
         char size[16], label[48];
@@ -555,7 +620,11 @@ void chart_write_table(const struct chart *c, FILE *f)
             fprintf(f, " %8s", "ideal");
         else
             fprintf(f, " %8.2f", r->psnr_db);
-        fprintf(f, " %8.3f %8.1f  %s\n", 100 * r->frac_gt8, r->bytes / 1024.0, label);
+        fprintf(f, " %8.3f %8.1f", 100 * r->frac_gt8, r->bytes / 1024.0);
+        if (isnan(r->shimmer))
+            fprintf(f, " %8s  %s\n", "-", label);
+        else
+            fprintf(f, " %8.3f  %s\n", r->shimmer, label);
     }
 }
 

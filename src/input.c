@@ -29,7 +29,7 @@ static const char *const help[] = {
     "r          reset camera",
     "Tab S-Tab  next / previous scene",
     "m          shading: wire flat gouraud phong textured",
-    "f          texture filter nearest / bilinear",
+    "f          texture filter nearest / bilinear / trilinear",
     "c          culling none / back / front",
     "l          rotate the light",
     "v          view: colour depth normals overdraw wireframe",

@@ -5,7 +5,7 @@
 
 static const char *const shade_names[] = {"unlit", "flat", "gouraud", "phong", "wire"};
 static const char *const cull_names[] = {"none", "back", "front"};
-static const char *const filter_names[] = {"nearest", "bilinear"};
+static const char *const filter_names[] = {"nearest", "bilinear", "trilinear"};
 static const char *const view_names[] = {"color", "depth", "normals", "overdraw", "wire-overlay"};
 static const char *const raster_names[] = {"edge", "scanline", "tiled"};
 static const char *const persp_names[] = {"correct", "affine", "span8", "span16", "span32"};
@@ -34,7 +34,7 @@ void render_opts_default(struct render_opts *o)
 {
     memset(o, 0, sizeof *o);
     o->shade = SHADE_PHONG;
-    o->filter = TEX_NEAREST;
+    o->filter = TEX_TRILINEAR;
     o->raster = RASTER_EDGE;
     o->persp = PERSP_CORRECT;
     o->depth = DEPTH_Z;
@@ -51,7 +51,7 @@ void render_opts_default(struct render_opts *o)
 void render_opts_ideal(struct render_opts *o)
 {
     o->persp = PERSP_CORRECT;
-    o->filter = TEX_BILINEAR;
+    o->filter = TEX_TRILINEAR;
     o->ssaa = SSAA_8;
 }
 

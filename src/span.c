@@ -81,6 +81,9 @@ static inline void run(struct span_ctx *s, int y, int xa, int xb, const enum sha
         ar[k] = row_of(&in->a[k], Y);
         adx[k] = in->a[k].dx;
     }
+    /* trilinear: u and v's derivatives need the planes' y steps too */
+    const bool lod = s->shade->filter == TEX_TRILINEAR && s->st->tex && mode != SHADE_WIRE;
+    const f4 udy = f4_set(in->a[0].dy), vdy = f4_set(in->a[1].dy), qdy = f4_set(in->q.dy);
     const int x_org = t->x0, fb_w = s->fb->w;
     const size_t row = (size_t)y * (size_t)fb_w;
     float *restrict depth_buf = s->fb->depth + row;
@@ -158,7 +161,7 @@ static inline void run(struct span_ctx *s, int y, int xa, int xb, const enum sha
             for (int l = 0; l < n; l++) {
                 if (!pass[l])
                     continue;
-                float v1[VARY_MAX], rgb[3];
+                float v1[VARY_MAX] = {0}, rgb[3];
                 for (int k = 0; k < n_var; k++)
                     v1[k] = var[k][l];
                 shade_fragment(sc, mode, st, v1, rgb);
@@ -167,8 +170,15 @@ static inline void run(struct span_ctx *s, int y, int xa, int xb, const enum sha
             }
             continue;
         }
+        f4 lambda = f4_set(0);
+        if (lod) { /* d(a/q) = (da - (a/q) dq) / q, exactly, from the planes */
+            f4 rq = f4_set(1.0f) / (f4_set(qr) + qdx * X);
+            lambda = texture_lod4(st->tex, (f4_set(adx[0]) - var[0] * qdx) * rq,
+                                  (f4_set(adx[1]) - var[1] * qdx) * rq,
+                                  (udy - var[0] * qdy) * rq, (vdy - var[1] * qdy) * rq);
+        }
         f4 rgb[3];
-        shade_fragment4(sc, mode, st, var, rgb);
+        shade_fragment4(sc, mode, st, var, lambda, rgb);
         i4 r8 = fb_quantize4(rgb[0]), g8 = fb_quantize4(rgb[1]), b8 = fb_quantize4(rgb[2]);
         for (int l = 0; l < n; l++)
             if (pass[l]) {

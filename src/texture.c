@@ -27,7 +27,20 @@ int texture_load(const char *path_raw, int max_side, struct texture *out, struct
         return err_set(e, "%s: cannot open texture: %s", path, file_strerror(rc));
     rc = imgdec_decode((const uint8_t *)data, len, path, max_side, out, w, e);
     free(data);
+    if (rc == 0 && texture_build_mips(out, e) < 0) {
+        texture_free(out);
+        return -1;
+    }
     return rc;
+}
+
+/* texel bytes of every level */
+static size_t texture_bytes(const struct texture *t)
+{
+    size_t n = (size_t)t->w * (size_t)t->h * 4;
+    for (int l = 1; l < t->n_levels; l++)
+        n += (size_t)t->level[l].w * (size_t)t->level[l].h * 4;
+    return n;
 }
 
 static struct texture_cache_entry *cache_add(struct texture_cache *c, struct texture *t,
@@ -35,7 +48,7 @@ static struct texture_cache_entry *cache_add(struct texture_cache *c, struct tex
                                              const char *name, struct err *e)
 {
     size_t budget = c->budget ? c->budget : TEXTURE_BUDGET;
-    size_t bytes = (size_t)t->w * (size_t)t->h * 4;
+    size_t bytes = texture_bytes(t);
     if (bytes > budget - c->bytes) {
         texture_free(t);
         return err_set(e, "%s: texture would pass the %zu MiB texture budget (%zu MiB in use)",
@@ -97,6 +110,10 @@ int texture_cache_decode(struct texture_cache *c, const uint8_t *data, size_t le
 {
     if (imgdec_decode(data, len, name, TEXTURE_MAX_SIDE, out, w, e))
         return -1;
+    if (texture_build_mips(out, e) < 0) {
+        texture_free(out);
+        return -1;
+    }
     if (!c)
         return 0;
     struct texture_cache_entry *en = cache_add(c, out, 0, 0, name, e);
@@ -129,12 +146,91 @@ int texture_from_rgba(int w, int h, const uint8_t *rgba, struct texture *out, st
     out->w = w;
     out->h = h;
     out->borrowed = false;
+    out->mip_data = NULL;
+    if (texture_build_mips(out, e) < 0) {
+        texture_free(out);
+        return -1;
+    }
     return 0;
 }
 
 void texture_free(struct texture *t)
 {
-    if (!t->borrowed)
+    if (!t->borrowed) {
         free(t->rgba);
+        free(t->mip_data);
+    }
     memset(t, 0, sizeof *t);
+}
+
+/* one box-filtered level: dst (dw x dh) from src (sw x sh), each destination texel the
+ * area-weighted mean of the source texels under it; rows stay top-first */
+static void box_down(const uint8_t *src, int sw, int sh, uint8_t *dst, int dw, int dh,
+                     float *tmp)
+{
+    /* horizontal: tmp is sh rows of dw texels (4 floats each) */
+    for (int y = 0; y < sh; y++)
+        for (int x = 0; x < dw; x++) {
+            double x0 = (double)x * sw / dw, x1 = (double)(x + 1) * sw / dw;
+            float acc[4] = {0, 0, 0, 0};
+            for (int i = (int)x0; i < sw && i < x1; i++) {
+                double wgt = (i + 1 < x1 ? i + 1 : x1) - (i > x0 ? i : x0);
+                const uint8_t *p = src + ((size_t)y * sw + i) * 4;
+                for (int c = 0; c < 4; c++)
+                    acc[c] += (float)wgt * p[c];
+            }
+            for (int c = 0; c < 4; c++)
+                tmp[((size_t)y * dw + x) * 4 + c] = acc[c] / (float)(x1 - x0);
+        }
+    for (int y = 0; y < dh; y++) {
+        double y0 = (double)y * sh / dh, y1 = (double)(y + 1) * sh / dh;
+        for (int x = 0; x < dw; x++) {
+            float acc[4] = {0, 0, 0, 0};
+            for (int j = (int)y0; j < sh && j < y1; j++) {
+                double wgt = (j + 1 < y1 ? j + 1 : y1) - (j > y0 ? j : y0);
+                for (int c = 0; c < 4; c++)
+                    acc[c] += (float)wgt * tmp[((size_t)j * dw + x) * 4 + c];
+            }
+            for (int c = 0; c < 4; c++) {
+                float v = acc[c] / (float)(y1 - y0) + 0.5f;
+                dst[((size_t)y * dw + x) * 4 + c] = (uint8_t)(v < 255 ? v : 255);
+            }
+        }
+    }
+}
+
+long texture_build_mips(struct texture *t, struct err *e)
+{
+    if (!t->borrowed)
+        free(t->mip_data);
+    t->mip_data = NULL;
+    t->level[0] = (struct texture_level){t->w, t->h, t->rgba};
+    int n = 1;
+    size_t bytes = 0;
+    for (int w = t->w, h = t->h; (w > 1 || h > 1) && n < TEXTURE_MAX_LEVELS; n++) {
+        w = w > 1 ? w / 2 : 1, h = h > 1 ? h / 2 : 1;
+        bytes += (size_t)w * (size_t)h * 4;
+    }
+    t->n_levels = 1;
+    if (n == 1)
+        return 0;
+    uint8_t *block = malloc(bytes);
+    float *tmp = malloc((size_t)t->h * (size_t)(t->w > 1 ? t->w / 2 : 1) * 4 * sizeof *tmp);
+    if (!block || !tmp) {
+        free(block);
+        free(tmp);
+        return err_set(e, "out of memory for the mip levels of a %dx%d texture", t->w, t->h);
+    }
+    uint8_t *p = block;
+    for (int l = 1; l < n; l++) {
+        const struct texture_level *up = &t->level[l - 1];
+        int w = up->w > 1 ? up->w / 2 : 1, h = up->h > 1 ? up->h / 2 : 1;
+        box_down(up->rgba, up->w, up->h, p, w, h, tmp);
+        t->level[l] = (struct texture_level){w, h, p};
+        p += (size_t)w * (size_t)h * 4;
+    }
+    free(tmp);
+    t->mip_data = block;
+    t->n_levels = n;
+    return (long)bytes;
 }

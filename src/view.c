@@ -372,7 +372,7 @@ static void command(struct view *v, enum input_cmd c, double t, bool *quit)
         v->ro.shade = shade_cycle[v->shade_i].shade;
         v->ro.textures = shade_cycle[v->shade_i].textures;
         break;
-    case IN_FILTER: v->ro.filter = v->ro.filter == TEX_NEAREST ? TEX_BILINEAR : TEX_NEAREST; break;
+    case IN_FILTER: v->ro.filter = (enum tex_filter)((v->ro.filter + 1) % TEX_FILTER_COUNT); break;
     case IN_CULL: v->ro.cull = (enum cull_mode)((v->ro.cull + 1) % CULL_COUNT); break;
     case IN_LIGHT:
         for (int i = 0; i < v->ro.n_lights; i++)

@@ -1,7 +1,7 @@
 /* compare.c: the oracle's image comparison — one tested render against one reference render.
  *
  *   compare [--name NAME] [--magenta] [--exact] [--diff OUT.png] [--list N] [--reduce K]
- *           [--psnr-bar DB] TEST.ppm TEST.pfm REF.ppm REF.pfm
+ *           [--psnr-bar DB] [--diff8-bar F] TEST.ppm TEST.pfm REF.ppm REF.pfm
  *
  * Colour images are PPM or PNG (anything stb_image reads), depth is PFM ("Pf", rows
  * bottom-to-top, 1.0 where nothing was drawn). Prints ONE line:
@@ -20,6 +20,7 @@
  * colour = (sum of the K*K values + K*K/2) / (K*K), depth = the nearest sample's (so a pixel
  * is covered when any sample is). Written from ssaa.h's description, not from its code.
  * --psnr-bar DB: judge PSNR against DB instead of 45 (the ideal's bar is 40).
+ * --diff8-bar F: allow a fraction F of the pixels off by more than 8 instead of 0.0005.
  * --diff writes a picture of the differences when the scene fails (always with --diff-always):
  *   red = covered only in TEST, cyan = covered only in REF, yellow = colour differs > 8,
  *   blue = differs 1..8, grey = identical (TEST's luminance, darkened).
@@ -174,7 +175,7 @@ int main(int argc, char **argv)
 {
     const char *name = "scene", *diff_path = NULL, *files[4];
     int magenta = 0, exact = 0, list = 0, diff_always = 0, nfiles = 0, factor = 1;
-    double psnr_bar = 45.0;
+    double psnr_bar = 45.0, diff8_frac = 0.0005;
     for (int i = 1; i < argc; i++) {
         if (strcmp(argv[i], "--magenta") == 0)
             magenta = 1;
@@ -192,6 +193,8 @@ int main(int argc, char **argv)
             factor = atoi(argv[++i]);
         else if (strcmp(argv[i], "--psnr-bar") == 0 && i + 1 < argc)
             psnr_bar = atof(argv[++i]);
+        else if (strcmp(argv[i], "--diff8-bar") == 0 && i + 1 < argc)
+            diff8_frac = atof(argv[++i]);
         else if (argv[i][0] != '-' && nfiles < 4)
             files[nfiles++] = argv[i];
         else
@@ -199,7 +202,7 @@ int main(int argc, char **argv)
     }
     if (nfiles != 4 || factor < 1 || factor > 64) {
         fprintf(stderr, "usage: compare [--name NAME] [--magenta] [--exact] [--diff OUT.png] "
-                        "[--diff-always] [--list N] [--reduce K] [--psnr-bar DB] "
+                        "[--diff-always] [--list N] [--reduce K] [--psnr-bar DB] [--diff8-bar F] "
                         "TEST.ppm TEST.pfm REF.ppm REF.pfm\n");
         return 2;
     }
@@ -255,7 +258,7 @@ int main(int argc, char **argv)
     }
     double mse = sse / (3.0 * n);
     double psnr = mse > 0 ? 10.0 * log10(255.0 * 255.0 / mse) : INFINITY;
-    long cov_bar = (long)floor(fmin(10.0, 0.0002 * n)), diff8_bar = (long)floor(0.0005 * n);
+    long cov_bar = (long)floor(fmin(10.0, 0.0002 * n)), diff8_bar = (long)floor(diff8_frac * n);
     long enc = 0, enc_ref = 0;
     if (magenta) {
         enc = enclosed_magenta(&t);

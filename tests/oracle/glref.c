@@ -65,7 +65,7 @@ struct opts {
     double eye[3], target[3], up[3];
     double fov_deg, near, far, ortho_h; /* ortho_h 0 = perspective */
     double light[3];                    /* toward the light */
-    int shade, linear, cull;
+    int shade, linear, cull; /* linear: 0 nearest, 1 bilinear, 2 trilinear (mipmaps) */
     const char *texture, *out, *depth_out;
     int bg[3];
     int verbose;
@@ -169,9 +169,9 @@ static int parse_opts(int argc, char **argv, struct opts *o, struct ref_err *e)
             if (o->shade < 0)
                 return fail(e, "glref: --shade: expected unlit|flat|gouraud|phong");
         } else if (strcmp(a, "--filter") == 0) {
-            if (strcmp(v, "nearest") && strcmp(v, "bilinear"))
-                return fail(e, "glref: --filter: expected nearest|bilinear");
-            o->linear = strcmp(v, "bilinear") == 0;
+            if (strcmp(v, "nearest") && strcmp(v, "bilinear") && strcmp(v, "trilinear"))
+                return fail(e, "glref: --filter: expected nearest|bilinear|trilinear");
+            o->linear = strcmp(v, "bilinear") == 0 ? 1 : strcmp(v, "trilinear") == 0 ? 2 : 0;
         } else if (strcmp(a, "--cull") == 0) {
             if (strcmp(v, "none") == 0)
                 o->cull = CULL_OFF;
@@ -998,12 +998,18 @@ static GLuint texture_upload(const char *path, int linear, struct ref_err *e)
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, flip);
     free(flip);
     GLint f = linear ? GL_LINEAR : GL_NEAREST;
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, f);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER,
+                    linear == 2 ? GL_LINEAR_MIPMAP_LINEAR : f);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, f);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, 0);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+    if (linear == 2) { /* GL's own box-filtered chain */
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 1000);
+        glGenerateMipmap(GL_TEXTURE_2D);
+    } else {
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+    }
     return t;
 }
 
@@ -1256,7 +1262,7 @@ int main(int argc, char **argv)
                         "[--size WxH] [--eye x,y,z] [--target x,y,z] [--up x,y,z] [--fov DEG] "
                         "[--near N] [--far F] [--ortho H] [--light x,y,z] "
                         "[--shade unlit|flat|gouraud|phong] [--texture FILE] "
-                        "[--filter nearest|bilinear] [--background r,g,b] "
+                        "[--filter nearest|bilinear|trilinear] [--background r,g,b] "
                         "[--cull back|front|none] [--verbose] [--gl-clip]\n");
         return 2;
     }

@@ -125,7 +125,17 @@ for l in "${lines[@]}"; do
         refmodel=${checks#*ref=}
         refargv=("${refmodel%%+*}" "${argv[@]:1}")
     fi
-    # ideal: rastty draws its ideal image (--ssaa 8; the scene line gives --filter bilinear),
+    # trilinear: rastty's level of detail is exact per pixel (the planes' derivatives), GL lets
+    # llvmpipe approximate rho and log2. On a sharp checker seen at a grazing angle the two
+    # differ by about a tenth of a level (the bias that best matches llvmpipe on
+    # ground_floor_trilinear_160 is -0.1: 42.1 dB, against 41.0 unbiased), and a tenth of a
+    # level between a sharp level and its grey average moves a pixel by up to ~30 levels in
+    # the band where the texture fades. So such scenes get PSNR >= 38 dB and at most 8% of
+    # the pixels off by more than 8 (measured: 41.0 dB, 4.6%); coverage keeps its bar.
+    if [[ $checks == *trilinear* ]]; then
+        cmpflags+=(--psnr-bar 38 --diff8-bar 0.08)
+    fi
+    # ideal: rastty draws its ideal image (--ssaa 8; the scene line gives --filter trilinear),
     # Mesa draws 8 times the size, and compare box-filters Mesa's picture down the same way
     if [[ $checks == *ideal* ]]; then
         for i in "${!refargv[@]}"; do

@@ -40,6 +40,7 @@ static void rig_init(struct rig *r, enum raster_method method)
     struct render_opts o;
     render_opts_default(&o);
     o.shade = SHADE_UNLIT;
+    o.filter = TEX_NEAREST; /* the tests read texels back */
     float eye[3] = {0, 0, 3}, back[3] = {0, 0, 1};
     memset(r, 0, sizeof *r);
     fb_init(&r->fb, W, H, true, NULL);
