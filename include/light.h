@@ -36,8 +36,10 @@ struct light_env {
 
 void light_env_init(struct light_env *env, const struct render_opts *o);
 
-/* The base colour a texel multiplies: kd_override (a scene's colour) if given, else the
- * material's Kd, else (implicit material, untextured) LIGHT_DEFAULT_ALBEDO. */
+/* The base colour a texel (and a vertex colour) multiplies: kd_override (a scene's colour)
+ * if given, else the material's Kd, else — implicit material, neither textured nor
+ * vertex-coloured (`textured` says either) — LIGHT_DEFAULT_ALBEDO. A vertex colour is the
+ * model's own diffuse colour, as glColorMaterial makes it. */
 void light_base_color(const struct material *m, const float *kd_override, int textured,
                       float base_out[3]);
 

@@ -15,6 +15,7 @@
 #include "mesh.h"
 #include "render.h"
 #include "texture.h"
+#include "vertex.h"
 
 struct shade_ctx {
     enum shade_mode shade;
@@ -31,6 +32,7 @@ struct shade_tri {
     float base[3];             /* light_base_color(): what the texel multiplies */
     const struct texture *tex; /* NULL: albedo = kd */
     float flat_d[3], flat_s[3]; /* flat mode: light.h's D and S for the whole triangle */
+    bool vcolor;               /* the albedo is also multiplied by var[VARY_COLOR..+2] */
 };
 
 void shade_ctx_init(struct shade_ctx *c, const struct render_opts *o, const float eye[3],
@@ -49,6 +51,9 @@ static inline void shade_albedo(const struct shade_ctx *c, const struct shade_tr
     } else {
         albedo_out[0] = kd[0], albedo_out[1] = kd[1], albedo_out[2] = kd[2];
     }
+    if (t->vcolor)
+        for (int k = 0; k < 3; k++)
+            albedo_out[k] *= var[VARY_COLOR + k];
 }
 
 /* Per-pixel Blinn-Phong (phong mode): var = u v | world pos | world normal. */
@@ -113,6 +118,9 @@ static inline void shade_fragment4(const struct shade_ctx *c, enum shade_mode mo
         for (int k = 0; k < 3; k++)
             albedo[k] = f4_set(t->base[k]);
     }
+    if (t->vcolor)
+        for (int k = 0; k < 3; k++)
+            albedo[k] *= var[VARY_COLOR + k];
     const float *ks = t->mat->ks;
     f4 d[3], sp[3];
     if (mode == SHADE_PHONG) { /* as shade_phong */

@@ -7,6 +7,8 @@
  *        unlit, flat, wire : u v
  *        gouraud           : u v, light.h's D rgb, S rgb (per-vertex lighting)
  *        phong, normals    : u v, world position xyz, world normal xyz
+ *        + for a mesh with vertex colours (PLY): rgb in var[VARY_COLOR..+2] (2..7 zero where
+ *          the mode leaves them unused), which multiplies the albedo
  * Varyings are interpolated perspective-correctly downstream; clip.c interpolates all of them
  * linearly in clip space, which is exact for perspective-correct attributes.
  *
@@ -25,7 +27,8 @@
 #include "render.h"
 #include "vecmath.h"
 
-#define VARY_MAX 8
+#define VARY_MAX 12
+#define VARY_COLOR 8 /* var[8..10]: the vertex colour (0..1), for meshes that have one */
 
 enum {
     VERTEX_OUT_LEFT = 1 << 0,

@@ -176,7 +176,7 @@ static int front_end(struct pipeline *p, struct frame *f, const struct draw_item
     const struct render_opts *o = f->o;
     struct frame_stats *stats = f->stats;
     struct batch *bt = &p->batch;
-    int n_var = depth_only ? 0 : vertex_varying_count(o->shade, o->view);
+    int n_var = depth_only ? 0 : m->colors ? VARY_COLOR + 3 : vertex_varying_count(o->shade, o->view);
     struct shade_tri proto = {0}; /* the shading record of the last material seen */
     int last_mat = -1;
     for (uint32_t i = 0; i < m->n_tris; i++) {
@@ -211,7 +211,9 @@ static int front_end(struct pipeline *p, struct frame *f, const struct draw_item
                     proto.tex = item->texture_override ? item->texture_override
                                 : proto.mat->texture >= 0 ? &m->textures[proto.mat->texture]
                                                           : NULL;
-                light_base_color(proto.mat, item->kd_override, proto.tex != NULL, proto.base);
+                proto.vcolor = m->colors != NULL;
+                light_base_color(proto.mat, item->kd_override, proto.tex || proto.vcolor,
+                                 proto.base);
             }
             *st = proto;
             if (f->span.mode == SHADE_FLAT)

@@ -10,7 +10,7 @@
  * optional per-corner "texcoord" list of 2n values, as MeshLab writes). Every other
  * element and property is read and skipped. Faces of more than 3 corners go through
  * polygon.h. "comment TextureFile NAME" (MeshLab) names a texture beside the file.
- * Vertex colours are kept in mesh.colors (the pipeline does not use them yet).
+ * Vertex colours are kept in mesh.colors; the pipeline multiplies the albedo by them.
  * Limits: element counts are checked against the bytes left before anything is allocated
  * (each instance takes at least one byte in ASCII, its fixed size in binary).
  * Errors: "file:line: message" in the header and ASCII data, "file: byte N: message" in

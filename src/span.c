@@ -66,7 +66,9 @@ static inline void run(struct span_ctx *s, int y, int xa, int xb, const enum sha
 {
     const struct setup_interp *in = &s->in;
     const struct setup_tri *t = s->tri;
-    const int n_var = mode == SHADE_GOURAUD || mode == SHADE_PHONG ? 8 : 2;
+    /* (the depth-only pass has no shading record: never look at s->st there) */
+    const int n_var = mode != SHADE_WIRE && s->st->vcolor ? VARY_COLOR + 3
+                      : mode == SHADE_GOURAUD || mode == SHADE_PHONG ? 8 : 2;
     const enum persp_method persp = s->persp;
     const enum depth_mode depth = s->depth;
     const int span_n = persp == PERSP_SPAN8 ? 8 : persp == PERSP_SPAN16 ? 16 : 32;
@@ -82,7 +84,7 @@ static inline void run(struct span_ctx *s, int y, int xa, int xb, const enum sha
         adx[k] = in->a[k].dx;
     }
     /* trilinear: u and v's derivatives need the planes' y steps too */
-    const bool lod = s->shade->filter == TEX_TRILINEAR && s->st->tex && mode != SHADE_WIRE;
+    const bool lod = mode != SHADE_WIRE && s->shade->filter == TEX_TRILINEAR && s->st->tex;
     const f4 udy = f4_set(in->a[0].dy), vdy = f4_set(in->a[1].dy), qdy = f4_set(in->q.dy);
     const int x_org = t->x0, fb_w = s->fb->w;
     const size_t row = (size_t)y * (size_t)fb_w;
@@ -193,9 +195,11 @@ static inline void run(struct span_ctx *s, int y, int xa, int xb, const enum sha
 void span_draw(struct span_ctx *s, int y, int x0, int x1)
 {
     if (!s->in_ready) {
-        int n_var = s->mode == SHADE_GOURAUD || s->mode == SHADE_PHONG ? 8 : 2;
+        int n_var = s->mode == SHADE_WIRE ? 0
+                    : s->st->vcolor ? VARY_COLOR + 3
+                    : s->mode == SHADE_GOURAUD || s->mode == SHADE_PHONG ? 8 : 2;
         setup_interp(s->tri, s->depth, &s->fb->proj, s->persp == PERSP_AFFINE,
-                     s->mode == SHADE_WIRE ? 0 : n_var, &s->in);
+                     n_var, &s->in);
         s->in_ready = true;
         if (s->hit)
             s->hit[s->tri_index] = 1;

@@ -65,6 +65,12 @@ void vertex_shade(const struct mesh *m, const struct vertex_uniforms *u, uint32_
     o->var[0] = mv->uv[0];
     o->var[1] = mv->uv[1];
     o->shaded = 1;
+    if (m->colors) { /* every varying up to the colour is defined: clipping and setup read them */
+        for (int k = 2; k < VARY_COLOR; k++)
+            o->var[k] = 0;
+        for (int k = 0; k < 3; k++)
+            o->var[VARY_COLOR + k] = m->colors[i][k] * (1.0f / 255.0f);
+    }
     if (!want_normals && !want_gouraud)
         return;
     const float *nn = mv->nrm, (*b)[3] = u->normal_f;

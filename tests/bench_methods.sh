@@ -70,3 +70,4 @@ for sc in "${scenes[@]}"; do
         [ -n "$csv" ] && echo "${name% *},${name#* },$mname,$ms,$psnr,$frac" >> "$csv"
     done
 done
+exit 0

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "model.h"
+#include "pipeline.h"
 #include "test.h"
 
 static int parse_as(const char *text, size_t len, const char *path, struct mesh *m,
@@ -369,4 +370,51 @@ TEST(gltf_garbage_is_an_error_not_a_crash)
         for (const char *c = e.msg; *c; c++)
             CHECK(*c >= 0x20 && *c < 0x7f);
     }
+}
+
+TEST(ply_vertex_colours_are_drawn)
+{
+    /* a triangle whose corners are red, green and blue, drawn unlit and untextured from the
+     * front (orthographic, one unit = 16 pixels): near each corner its own colour; at the
+     * centroid a third of each. A vertex colour replaces the 0.8 default albedo, as GL's
+     * glColorMaterial does; textures would multiply it */
+    const char *ply = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                      "property float y\nproperty float z\nproperty uchar red\n"
+                      "property uchar green\nproperty uchar blue\nelement face 1\n"
+                      "property list uchar int vertex_indices\nend_header\n"
+                      "-0.9 -0.9 0 255 0 0\n0.9 -0.9 0 0 255 0\n0 0.9 0 0 0 255\n3 0 1 2\n";
+    struct mesh m;
+    struct err e;
+    REQUIRE(parse(ply, "rgb.ply", &m, &e) == 0);
+    struct fb fb;
+    REQUIRE(fb_init(&fb, 32, 32, false, NULL) == 0);
+    struct pipeline *p = pipeline_new();
+    REQUIRE(p);
+    struct draw_item item = {.mesh = &m, .model = m4_identity()};
+    struct camera cam;
+    camera_default(&cam);
+    cam.ortho_height = 2;
+    for (int shade = SHADE_UNLIT; shade <= SHADE_PHONG; shade++) {
+        struct render_opts o;
+        render_opts_default(&o);
+        o.shade = (enum shade_mode)shade;
+        struct frame_stats st;
+        REQUIRE(pipeline_draw(p, &item, 1, NULL, &cam, &o, &fb, &st, NULL) == 0);
+        const uint8_t *near_red = fb.rgb + 3 * (29 * 32 + 3), *near_green = fb.rgb + 3 * (29 * 32 + 28);
+        const uint8_t *near_blue = fb.rgb + 3 * (4 * 32 + 16);
+        CHECK(near_red[0] > 3 * near_red[1] && near_red[0] > 3 * near_red[2]);
+        CHECK(near_green[1] > 3 * near_green[0] && near_green[1] > 3 * near_green[2]);
+        CHECK(near_blue[2] > 3 * near_blue[0] && near_blue[2] > 3 * near_blue[1]);
+        if (shade == SHADE_UNLIT) { /* exactly the colour: albedo = vertex colour */
+            /* pixel (16,19): centre (0.03125, -0.21875) in world units, barycentrics
+             * red 0.29340, green 0.32813, blue 0.37847 -> 74.8, 83.7, 96.5 */
+            const uint8_t *c = fb.rgb + 3 * (19 * 32 + 16);
+            CHECK_EQ_INT(c[0], 75);
+            CHECK_EQ_INT(c[1], 84);
+            CHECK_EQ_INT(c[2], 97);
+        }
+    }
+    pipeline_destroy(p);
+    fb_free(&fb);
+    mesh_free(&m);
 }
