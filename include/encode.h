@@ -7,9 +7,10 @@
  * Picture: the framebuffer is cols x 2*rows pixels, row 0 on top. Cell (c, r) shows pixel
  * (c, 2r) in its top half and (c, 2r+1) in its bottom half. An odd height pads the last cell
  * row's bottom half with opts.pad_rgb.
- * Glyphs: U+2580 upper half (fg = top, bg = bottom), or whichever equivalent needs fewer SGR
- * changes given the current colours: ' ' (bg) or U+2588 full block (fg) when both halves are
- * equal, U+2584 lower half (fg = bottom, bg = top) when the colours are the other way round.
+ * Glyphs: U+2580 upper half (fg = top, bg = bottom), or U+2584 lower half (fg = bottom,
+ * bg = top) when that needs fewer SGR changes given the current colours. A cell whose halves
+ * are equal is always a space on that background, never U+2588: xterm and st draw block
+ * elements from the font, and common fonts leave uncovered strips (a visible grid).
  * Colour modes (palette.h): truecolor 38;2/48;2, 256 38;5/48;5 (16..255), 16 30-37/90-97 and
  * 40-47/100-107, none (one ramp character per cell from the mean luma of its two pixels;
  * no SGR, no synchronized output: only cursor positioning).

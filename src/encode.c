@@ -86,12 +86,15 @@ static inline unsigned chan(uint32_t c, int k) /* k = 0 red, 1 green, 2 blue */
 
 /* ---- glyphs ---------------------------------------------------------------------------- */
 
-enum glyph { G_NONE, G_SPACE, G_UPPER, G_LOWER, G_FULL, G_RAMP };
+/* No U+2588 full block: a one-colour cell is always a space on that background. xterm and st
+ * draw block elements from the font, and with common fonts (Liberation Mono, Noto Sans Mono,
+ * DejaVu at 13 or 17 px) U+2588 leaves uncovered strips that show as a grid; the background
+ * of a space is painted by the terminal itself, edge to edge, for the same bytes. */
+enum glyph { G_NONE, G_SPACE, G_UPPER, G_LOWER, G_RAMP };
 
 static const char GLYPH_UTF8[][4] = {
     [G_UPPER] = "\xe2\x96\x80", /* U+2580 upper half block */
     [G_LOWER] = "\xe2\x96\x84", /* U+2584 lower half block */
-    [G_FULL] = "\xe2\x96\x88",  /* U+2588 full block */
 };
 
 static inline int glyph_len(enum glyph g)
@@ -187,7 +190,7 @@ HOT enum glyph free_glyph(const struct emitter *em, enum palette_mode mode,
     if (mode == PALETTE_NONE)
         return G_RAMP;
     if (c.top == c.bot)
-        return em->bg == c.top ? G_SPACE : em->fg == c.top ? G_FULL : G_NONE;
+        return em->bg == c.top ? G_SPACE : G_NONE;
     if (em->fg == c.top && em->bg == c.bot)
         return G_UPPER;
     if (em->fg == c.bot && em->bg == c.top)
@@ -209,7 +212,7 @@ HOT int chan_diff(uint32_t shown, const uint8_t *px)
 HOT int sgr_changes(const struct emitter *em, struct encode_cell c)
 {
     if (c.top == c.bot)
-        return em->bg != c.top && em->fg != c.top;
+        return em->bg != c.top;
     int upper = (em->fg != c.top) + (em->bg != c.bot);
     int lower = (em->fg != c.bot) + (em->bg != c.top);
     return upper < lower ? upper : lower;
@@ -237,8 +240,6 @@ HOT struct encode_cell snap_cell(const struct emitter *em, struct encode_cell c,
         return (struct encode_cell){em->fg, em->bg};
     if (tb && bf)
         return (struct encode_cell){em->bg, em->fg};
-    if (tf && bf)
-        return (struct encode_cell){em->fg, em->fg};
     if (base == 1)
         return c;
     /* one change: one half takes a current colour, or both halves one new colour */
@@ -263,7 +264,6 @@ HOT void draw_cell(struct emitter *em, enum palette_mode mode, struct encode_cel
     enum glyph g = free_glyph(em, mode, c);
     if (g == G_NONE) {
         if (c.top == c.bot) {
-            /* A space (1 byte) beats a full block (3) when a colour must change anyway. */
             set_colours(em, mode, NO_COLOUR, c.top);
             g = G_SPACE;
         } else {

@@ -114,10 +114,11 @@ static const struct {
     {"lower half saves a colour change",
      {0xff0000, 0xff0000, 0xff0000, 0x00ff00},
      "\x1b[H\x1b[48;2;255;0;0m \x1b[38;2;0;255;0m" LO "\x1b[0m"},
-    /* fg is red after cell 0 (red over green); cell 1 all red: U+2588, no SGR */
-    {"full block reuses fg",
+    /* fg is red after cell 0 (red over green); cell 1 all red: a space on a red bg, never
+     * U+2588 (xterm and st draw it from the font, and common fonts leave uncovered strips) */
+    {"one-colour cell is a space on its bg, never a full block",
      {0xff0000, 0x00ff00, 0xff0000, 0xff0000},
-     "\x1b[H\x1b[38;2;255;0;0;48;2;0;255;0m" UP FULL "\x1b[0m"},
+     "\x1b[H\x1b[38;2;255;0;0;48;2;0;255;0m" UP "\x1b[48;2;255;0;0m \x1b[0m"},
     /* identical cells: the second needs no SGR at all */
     {"same colours need no second SGR",
      {0x0a0b0c, 0x010203, 0x0a0b0c, 0x010203},
@@ -662,4 +663,35 @@ TEST(damage_invalidate_and_mode_change_force_redraws)
     struct err e;
     CHECK(encode_screen_init(&s, 0, 5, &e) == -1);
     CHECK_STR_CONTAINS(e.msg, "out of range");
+}
+
+TEST(one_colour_cells_are_spaces_never_full_blocks)
+{
+    /* Frames of few colours (many cells with equal halves, many fg/bg coincidences), as full
+     * frames, diffs and with tolerance, in every colour mode: U+2588 never appears, and every
+     * cell whose halves show one colour was drawn as a space. */
+    enum { C = 16, R = 6 };
+    static uint8_t rgb[C * 2 * R * 3];
+    static const uint32_t ink[] = {0xff0000, 0x00ff00, 0x202020, 0xff0101};
+    static const enum palette_mode modes[] = {PALETTE_TRUECOLOR, PALETTE_256, PALETTE_16};
+    uint32_t seed = 99;
+    int spaces = 0;
+    for (int m = 0; m < 3; m++)
+        for (int tol = 0; tol <= 4; tol += 4) {
+            struct encode_screen s;
+            REQUIRE(encode_screen_init(&s, C, R, NULL) == 0);
+            for (int f = 0; f < 20; f++) {
+                for (int y = 0; y < 2 * R; y++)
+                    for (int x = 0; x < C; x++)
+                        set_px(rgb, C, x, y, ink[rng_next(&seed) % 4]);
+                struct encode_opts o = {.mode = modes[m], .diff = f > 0, .tolerance = tol};
+                size_t n;
+                const char *out = encode_frame(&s, rgb, C, 2 * R, &o, &n, NULL);
+                CHECK(!contains(out, n, FULL));
+                for (size_t i = 0; i < n; i++)
+                    spaces += out[i] == ' ';
+            }
+            encode_screen_free(&s);
+        }
+    CHECK(spaces > 100);
 }
