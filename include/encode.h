@@ -37,6 +37,19 @@
  * photo panned by half a pixel per frame, N = 2/3/4 gives 148/112/86 KB per frame at
  * 49.5/45.8/43.2 dB PSNR, against 264 KB exact (160x48 cells; tests/bench_encode.c sweep).
  *
+ * Budget (opts.budget > 0 bytes, diff frames, not in none mode): a rate-distortion choice, as
+ * video coders make. If the frame above fits, it is the frame. Otherwise every changed cell
+ * (beyond the tolerance) is left as it is, drawn exactly, or drawn approximately — one colour
+ * for both halves (a space on their mean), or the current fg/bg for one or both halves (no
+ * SGR) — whichever minimises  error + lambda * bytes,  error being the squared channel
+ * differences of its two pixels from the true ones and bytes the exact cost given the current
+ * colours; a cell the screen may not show at all counts as four times the worst error. lambda
+ * is searched (from the last frame's) for the largest frame within the budget. What is left
+ * is counted in encode_stats (cells_pending, max_err): drawing the same picture again fixes
+ * it, most error per byte first, so a still picture converges to the exact frame.
+ * Held cells (opts.hold_*: an overlay someone else drew) are never written, not even to save
+ * a cursor move; the screen model keeps what it had for them.
+ *
  * Cost: ~15 us for an unchanged 160x48 truecolor frame, ~80 us for a full one (267 KB of a
  * photo). 256/16 colours search the palette (~30 ns a pixel), memoised per pixel position and
  * by colour, so static regions stay cheap; a frame of all-new colours costs ~0.3-0.5 ms. */
@@ -82,6 +95,8 @@ struct encode_opts {
                           * nearest colour; on adds up to PALETTE_DITHER_AMP of error) */
     bool mark_frames;    /* every frame starts with ESC[H, even an empty diff */
     uint8_t pad_rgb[3];  /* bottom half of the last row when the height is odd */
+    size_t budget;       /* bytes the frame may take, 0 = no limit (see "Budget" above) */
+    int hold_col, hold_row, hold_cols, hold_rows; /* cells never drawn (an overlay's) */
 };
 
 /* A cell as the terminal displays it: colours packed 0xIIRRGGBB where RRGGBB is the colour
@@ -104,6 +119,9 @@ struct encode_screen {
     struct encode_cell *memo;   /* cols*rows: input pixels (packed RGB) behind `target` */
     uint32_t memo_tag;          /* mode/dither/pad that `target` was made with; 0 = none */
     uint32_t *qcache;           /* RGB -> cell colour, 2 << ENCODE_QCACHE_BITS words */
+    /* budgeted frames */
+    struct encode_cell *saved;  /* cols*rows: the screen model before the frame, for retries */
+    double lambda;              /* the last budgeted frame's lambda: the next one's first guess */
 };
 
 struct encode_stats {
@@ -113,6 +131,12 @@ struct encode_stats {
     int moves;         /* cursor moves emitted (CUP, CUF, HPA, CR, CR LF runs) */
     size_t bytes;
     bool full, synced;
+    /* budgeted frames (see "Budget"); without a budget demand = bytes, the rest 0 */
+    size_t demand;     /* bytes the frame needs without a budget */
+    double lambda;     /* the error-per-byte price paid: 0 = every change was drawn */
+    int cells_pending; /* cells left further from the truth than their target (and beyond
+                        * the tolerance): later frames of a still picture fix them */
+    int max_err;       /* largest channel error left in a changed cell this frame */
 };
 
 /* 1 <= cols <= ENCODE_MAX_COLS, 1 <= rows <= ENCODE_MAX_ROWS. Screen starts unknown. */

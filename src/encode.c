@@ -8,6 +8,7 @@
 
 #include <assert.h>
 #include <limits.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -125,6 +126,9 @@ struct emitter {
     int cols;
     enum palette_mode mode;
     struct encode_stats *st;
+    int hold0, hold1; /* the held columns [hold0, hold1) of the row being drawn */
+    const char *limit; /* budgeted passes: no cell may end beyond this; NULL = no limit */
+    bool capped;       /* a cell was left because the limit was reached */
 };
 
 /* "38;2;R;G;B;" / "48;5;I;" / "9I;" ... for one colour, with a trailing ';'. */
@@ -316,6 +320,8 @@ static inline enum glyph rewrite_glyph(const struct emitter *em, const struct en
 static int rewrite_cost(const struct emitter *em, const struct encode_cell *tgt,
                         const struct encode_cell *scr, int from, int to, int limit)
 {
+    if (from < em->hold1 && to > em->hold0) /* never write over a held cell */
+        return INT_MAX;
     int cost = 0;
     for (int k = from; k < to; k++) {
         bool use_target;
@@ -559,12 +565,109 @@ static void quantise(struct encode_screen *s, const uint8_t *rgb, int w, int h,
     }
 }
 
+/* ---- rate-distortion choice (frames with a byte budget) ------------------------------- */
+
+/* Squared error of a shown colour against a true pixel, summed over the channels. */
+HOT int sq_diff(uint32_t shown, const uint8_t *px)
+{
+    int d0 = (int)chan(shown, 0) - px[0], d1 = (int)chan(shown, 1) - px[1];
+    int d2 = (int)chan(shown, 2) - px[2];
+    return d0 * d0 + d1 * d1 + d2 * d2;
+}
+
+/* What a cell the terminal may not show at all "costs" if left alone: four times the worst
+ * real error, so such cells go first (they are what a cleared or resized screen shows). */
+#define UNKNOWN_SQ (4 * 6 * 255 * 255)
+
+/* Bytes of one colour's SGR parameters, trailing ';' included (put_colour's length). */
+HOT int colour_len(enum palette_mode mode, uint32_t c, bool bg)
+{
+    unsigned idx = c >> 24;
+    switch (mode) {
+    case PALETTE_TRUECOLOR:
+        return 8 + dec_len(chan(c, 0)) + dec_len(chan(c, 1)) + dec_len(chan(c, 2));
+    case PALETTE_256:
+        return 6 + dec_len(idx);
+    default:
+        return idx < 8 || !bg ? 3 : 4;
+    }
+}
+
+/* Bytes to draw a cell showing (t, b) at the cursor with the current colours: SGR (if any)
+ * plus glyph, as draw_cell emits it. */
+HOT int draw_len(const struct emitter *em, enum palette_mode mode, uint32_t t, uint32_t b)
+{
+    if (t == b)
+        return 1 + (em->bg == t ? 0 : 2 + colour_len(mode, t, true));
+    int upper = (em->fg != t) + (em->bg != b), lower = (em->fg != b) + (em->bg != t);
+    uint32_t fg = lower < upper ? b : t, bg = lower < upper ? t : b;
+    int n = (em->fg != fg ? colour_len(mode, fg, false) : 0) +
+            (em->bg != bg ? colour_len(mode, bg, true) : 0);
+    return 3 + (n ? 2 + n : 0);
+}
+
+/* Estimated bytes to move the cursor to (r, c): 0 when it is there, else the cheaper of
+ * CUF/HPA along the row or CUP (move_to may still find a cheaper rewrite). */
+HOT int move_len(const struct emitter *em, int r, int c)
+{
+    if (em->row == r && em->col == c)
+        return 0;
+    int best = cup_len(r, c);
+    if (em->row == r && em->col >= 0 && em->col < c) {
+        int cuf = cuf_len(c - em->col), hpa = hpa_len(c);
+        best = cuf < best ? cuf : best;
+        best = hpa < best ? hpa : best;
+    }
+    return best;
+}
+
+/* The Lagrangian choice for one changed cell: leave it as it is (error d_skip, no bytes) or
+ * draw one of a few variants — its exact target, one colour for both halves (the mean: a
+ * space), the current fg/bg for one or both halves — minimising error + lambda * bytes with
+ * the bytes counted exactly for the current colours. Returns false to leave the cell. */
+HOT bool rd_choose(struct encode_screen *s, const struct emitter *em, enum palette_mode mode,
+                   int r, int c, struct encode_cell tgt, int d_skip, const uint8_t *pt,
+                   const uint8_t *pb, double lambda, struct encode_cell *out)
+{
+    double move = move_len(em, r, c);
+    if (d_skip <= lambda * (move + 1)) /* no variant costs less than one byte */
+        return false;
+    uint32_t mean;
+    uint8_t m[3] = {(uint8_t)((pt[0] + pb[0] + 1) / 2), (uint8_t)((pt[1] + pb[1] + 1) / 2),
+                    (uint8_t)((pt[2] + pb[2] + 1) / 2)};
+    mean = mode == PALETTE_TRUECOLOR ? pack(m) : quant(s, mode, m, 0, 0, false);
+    uint32_t fg = em->fg, bg = em->bg;
+    const struct encode_cell cand[] = {
+        tgt,           {mean, mean},  {tgt.top, tgt.top}, {tgt.bot, tgt.bot},
+        {fg, bg},      {bg, fg},      {bg, bg},
+        {tgt.top, bg}, {fg, tgt.bot}, {bg, tgt.bot},      {tgt.top, fg},
+    };
+    double best = d_skip;
+    bool draw = false;
+    for (unsigned i = 0; i < sizeof cand / sizeof cand[0]; i++) {
+        if (cand[i].top == NO_COLOUR || cand[i].bot == NO_COLOUR)
+            continue;
+        int d = sq_diff(cand[i].top, pt) + sq_diff(cand[i].bot, pb);
+        if (d >= best) /* bytes only add */
+            continue;
+        double j = d + lambda * (move + draw_len(em, mode, cand[i].top, cand[i].bot));
+        if (j < best) {
+            best = j;
+            *out = cand[i];
+            draw = true;
+        }
+    }
+    return draw;
+}
+
 /* ---- frames ---------------------------------------------------------------------------- */
 
-
-/* Walk the cells in raster order; draw those that changed (all of them when full). */
+/* Walk the cells in raster order; draw those that changed (all of them when full). With
+ * lambda > 0, each changed cell is left, approximated or drawn by rd_choose. Cells in the
+ * held rectangle are never touched. */
 HOT void emit_rows(struct encode_screen *s, struct emitter *em, const uint8_t *rgb, int h,
-                   const struct encode_opts *o, int tol, bool full, enum palette_mode mode)
+                   const struct encode_opts *o, int tol, bool full, double lambda,
+                   enum palette_mode mode)
 {
     int w = s->cols;
     for (int r = 0; r < s->rows; r++) {
@@ -572,22 +675,54 @@ HOT void emit_rows(struct encode_screen *s, struct emitter *em, const uint8_t *r
         struct encode_cell *scr = s->cells + (size_t)r * (size_t)w;
         const uint8_t *top = rgb + (size_t)(2 * r) * (size_t)w * 3;
         const uint8_t *bot = 2 * r + 1 < h ? top + (size_t)w * 3 : NULL;
+        bool held = r >= o->hold_row && r < o->hold_row + o->hold_rows;
+        em->hold0 = held ? o->hold_col : 0;
+        em->hold1 = held ? o->hold_col + o->hold_cols : 0;
         for (int c = 0; c < w; c++) {
+            if (c >= em->hold0 && c < em->hold1)
+                continue;
+            const uint8_t *pt = top + 3 * c, *pb = bot ? bot + 3 * c : o->pad_rgb;
+            struct encode_cell shown = tgt[c];
             if (!full) {
                 if (tgt[c].top == scr[c].top && tgt[c].bot == scr[c].bot)
                     continue;
-                if (tol > 0) {
-                    int dt = chan_diff(scr[c].top, top + 3 * c);
-                    int db = chan_diff(scr[c].bot, bot ? bot + 3 * c : o->pad_rgb);
-                    bool unknown = scr[c].top == ENCODE_CELL_UNKNOWN;
-                    if (((dt > db ? dt : db) <= tol) & !unknown)
+                bool unknown = scr[c].top == ENCODE_CELL_UNKNOWN;
+                int dt = unknown ? 255 : chan_diff(scr[c].top, pt);
+                int db = unknown ? 255 : chan_diff(scr[c].bot, pb);
+                int dmax = dt > db ? dt : db;
+                if (tol > 0 && dmax <= tol && !unknown)
+                    continue;
+                if (lambda > 0) {
+                    int d_skip = unknown ? UNKNOWN_SQ
+                                         : sq_diff(scr[c].top, pt) + sq_diff(scr[c].bot, pb);
+                    bool draw = rd_choose(s, em, mode, r, c, tgt[c], d_skip, pt, pb, lambda,
+                                          &shown);
+                    if (draw && em->p + move_len(em, r, c) +
+                                        draw_len(em, mode, shown.top, shown.bot) > em->limit) {
+                        draw = false; /* the budget is spent: a later frame draws it */
+                        em->capped = true;
+                    }
+                    if (!draw) {
+                        em->st->cells_pending++;
+                        em->st->max_err = dmax > em->st->max_err ? dmax : em->st->max_err;
                         continue;
+                    }
+                    goto_cell(em, r, c, tgt, scr);
+                    draw_cell(em, mode, shown);
+                    scr[c] = shown;
+                    em->st->cells_drawn++;
+                    if (shown.top != tgt[c].top || shown.bot != tgt[c].bot) {
+                        int e = chan_diff(shown.top, pt), eb = chan_diff(shown.bot, pb);
+                        e = eb > e ? eb : e;
+                        em->st->cells_pending += e > tol;
+                        em->st->max_err = e > em->st->max_err ? e : em->st->max_err;
+                    }
+                    continue;
                 }
             }
             goto_cell(em, r, c, tgt, scr);
-            struct encode_cell shown = tgt[c];
             if (tol > 0)
-                shown = snap_cell(em, shown, top + 3 * c, bot ? bot + 3 * c : o->pad_rgb, tol);
+                shown = snap_cell(em, shown, pt, pb, tol);
             draw_cell(em, mode, shown);
             scr[c] = shown;
             em->st->cells_drawn++;
@@ -595,45 +730,40 @@ HOT void emit_rows(struct encode_screen *s, struct emitter *em, const uint8_t *r
     }
 }
 
-const char *encode_frame(struct encode_screen *s, const uint8_t *rgb, int w, int h,
-                         const struct encode_opts *o, size_t *len_out,
-                         struct encode_stats *stats_out)
+/* One pass over the frame: the body into s->out (after PREFIX_BYTES), the screen model
+ * updated, the frame's first byte in *start_out; returns its length. */
+static size_t encode_pass(struct encode_screen *s, const uint8_t *rgb, int h,
+                          const struct encode_opts *o, int tol, bool full, bool home,
+                          double lambda, struct encode_stats *st, char **start_out,
+                          bool *capped_out)
 {
-    assert(w == s->cols && h >= 1 && (h + 1) / 2 == s->rows);
-    assert((unsigned)o->mode < PALETTE_MODE_COUNT);
-    struct encode_stats st = {0};
-    quantise(s, rgb, w, h, o);
-
-    st.full = !o->diff || !s->valid || s->mode != o->mode;
-    bool home = st.full || o->mark_frames;
-    int tol = st.full ? 0 : o->tolerance < 0 ? 0 : o->tolerance;
     char *body = s->out + PREFIX_BYTES;
+    /* the budget, less what may follow the body (reset, synchronized output) or precede it */
+    size_t room = o->budget > ENCODE_FRAME_MAX_BYTES ? o->budget - ENCODE_FRAME_MAX_BYTES : 0;
     struct emitter em = {body, NO_COLOUR, NO_COLOUR, home ? 0 : -1, home ? 0 : -1,
-                         s->cols, o->mode, &st};
-
+                         s->cols, o->mode, st, 0, 0, lambda > 0 ? body + room : NULL, false};
     switch (o->mode) { /* one instantiation of the cell loop per mode */
     case PALETTE_TRUECOLOR:
-        emit_rows(s, &em, rgb, h, o, tol, st.full, PALETTE_TRUECOLOR);
+        emit_rows(s, &em, rgb, h, o, tol, full, lambda, PALETTE_TRUECOLOR);
         break;
     case PALETTE_256:
-        emit_rows(s, &em, rgb, h, o, tol, st.full, PALETTE_256);
+        emit_rows(s, &em, rgb, h, o, tol, full, lambda, PALETTE_256);
         break;
     case PALETTE_16:
-        emit_rows(s, &em, rgb, h, o, tol, st.full, PALETTE_16);
+        emit_rows(s, &em, rgb, h, o, tol, full, lambda, PALETTE_16);
         break;
     case PALETTE_NONE:
     case PALETTE_MODE_COUNT:
-        emit_rows(s, &em, rgb, h, o, tol, st.full, PALETTE_NONE);
+        emit_rows(s, &em, rgb, h, o, tol, full, 0, PALETTE_NONE);
         break;
     }
     if (em.fg != NO_COLOUR || em.bg != NO_COLOUR) {
         memcpy(em.p, "\x1b[0m", 4);
         em.p += 4;
     }
-
     char *start = body, *end = em.p;
-    st.synced = o->mode != PALETTE_NONE && (size_t)(end - body) > ENCODE_SYNC_MIN_BYTES;
-    if (st.synced) {
+    st->synced = o->mode != PALETTE_NONE && (size_t)(end - body) > ENCODE_SYNC_MIN_BYTES;
+    if (st->synced) {
         start -= 8;
         memcpy(start, "\x1b[?2026h", 8);
         memcpy(end, "\x1b[?2026l", 8);
@@ -644,12 +774,102 @@ const char *encode_frame(struct encode_screen *s, const uint8_t *rgb, int w, int
         memcpy(start, "\x1b[H", 3);
     }
     assert((size_t)(end - s->out) + 8 <= s->out_cap); /* ENCODE_BOUND holds */
+    *start_out = start;
+    if (capped_out)
+        *capped_out = em.capped;
+    return (size_t)(end - start);
+}
+
+/* Passes until the frame fits the budget: lambda = 0 first (every change, as without a
+ * budget: its size is the demand); if that is too big, search lambda (from the last frame's)
+ * for the frame that spends the budget best, at most RD_PASSES passes. A pass never exceeds
+ * the budget: when it would, it leaves the remaining cells ("capped": lambda was too small,
+ * and the cells drawn were chosen in raster order, not by value). The answer is the smallest
+ * lambda that is not capped, if it fills RD_CLOSE_ENOUGH of the budget, else the largest
+ * capped one (many cells may share one price, e.g. a uniform fade: no lambda splits them).
+ * The screen model is restored from s->saved before each retry. */
+#define RD_PASSES 10
+#define RD_CLOSE_ENOUGH 0.92
+#define RD_FIRST_LAMBDA 64.0
+
+static size_t encode_budget(struct encode_screen *s, const uint8_t *rgb, int h,
+                            const struct encode_opts *o, int tol, bool full, bool home,
+                            struct encode_stats *st, char **start_out)
+{
+    size_t n_cells = (size_t)s->cols * (size_t)s->rows;
+    memcpy(s->saved, s->cells, n_cells * sizeof *s->cells);
+    struct encode_stats first = *st;
+    size_t demand = encode_pass(s, rgb, h, o, tol, full, home, 0, st, start_out, NULL);
+    st->demand = demand;
+    if (demand <= o->budget) {
+        s->lambda = 0;
+        return demand;
+    }
+    /* too big: cells may now be left for later frames, so never a "full" frame */
+    bool home_rd = o->mark_frames;
+    double lambda = s->lambda > 0 ? s->lambda : RD_FIRST_LAMBDA, lo = 0, hi = 0, last = 0;
+    size_t n = 0, hi_n = 0;
+    for (int pass = 0; pass < RD_PASSES; pass++) {
+        memcpy(s->cells, s->saved, n_cells * sizeof *s->cells);
+        *st = first;
+        bool capped;
+        n = encode_pass(s, rgb, h, o, tol, false, home_rd, lambda, st, start_out, &capped);
+        last = lambda;
+        if (!capped) {
+            hi = lambda;
+            hi_n = n;
+            if ((double)n >= RD_CLOSE_ENOUGH * (double)o->budget)
+                break;
+        } else {
+            lo = lambda;
+        }
+        double next = hi > 0 ? (lo > 0 ? sqrt(lo * hi) : hi / 4) : lambda * 4;
+        if (next == lambda || (hi > 0 && lo > 0 && hi / lo < 1.05))
+            break;
+        lambda = next;
+    }
+    double best = hi > 0 && (lo == 0 || (double)hi_n >= RD_CLOSE_ENOUGH * (double)o->budget)
+                      ? hi : lo;
+    if (best != last) {
+        memcpy(s->cells, s->saved, n_cells * sizeof *s->cells);
+        *st = first;
+        n = encode_pass(s, rgb, h, o, tol, false, home_rd, best, st, start_out, NULL);
+    }
+    st->demand = demand;
+    st->lambda = best;
+    s->lambda = best;
+    return n;
+}
+
+const char *encode_frame(struct encode_screen *s, const uint8_t *rgb, int w, int h,
+                         const struct encode_opts *o, size_t *len_out,
+                         struct encode_stats *stats_out)
+{
+    assert(w == s->cols && h >= 1 && (h + 1) / 2 == s->rows);
+    assert((unsigned)o->mode < PALETTE_MODE_COUNT);
+    struct encode_stats st = {0};
+    quantise(s, rgb, w, h, o);
+    /* ramp characters are mostly background: from there, only a full frame is known to work */
+    if (s->mode == PALETTE_NONE && o->mode != PALETTE_NONE)
+        s->valid = false;
+
+    st.full = !o->diff || !s->valid || s->mode != o->mode;
+    bool home = st.full || o->mark_frames;
+    int tol = st.full ? 0 : o->tolerance < 0 ? 0 : o->tolerance;
+    char *start;
+    size_t n;
+    if (o->budget > 0 && o->mode != PALETTE_NONE) {
+        n = encode_budget(s, rgb, h, o, tol, st.full, home, &st, &start);
+    } else {
+        n = encode_pass(s, rgb, h, o, tol, st.full, home, 0, &st, &start, NULL);
+        st.demand = n;
+    }
     s->valid = true;
     s->mode = o->mode;
-    st.bytes = (size_t)(end - start);
+    st.bytes = n;
     if (stats_out)
         *stats_out = st;
-    *len_out = st.bytes;
+    *len_out = n;
     return start;
 }
 
@@ -665,10 +885,11 @@ int encode_screen_init(struct encode_screen *s, int cols, int rows, struct err *
     s->cells = malloc(n * sizeof *s->cells);
     s->target = malloc(n * sizeof *s->target);
     s->memo = malloc(n * sizeof *s->memo);
+    s->saved = malloc(n * sizeof *s->saved);
     s->out_cap = ENCODE_BOUND(cols, rows);
     s->out = malloc(s->out_cap);
     s->qcache = malloc(sizeof(uint32_t) * 2 << ENCODE_QCACHE_BITS);
-    if (!s->cells || !s->target || !s->memo || !s->out || !s->qcache) {
+    if (!s->cells || !s->target || !s->memo || !s->saved || !s->out || !s->qcache) {
         encode_screen_free(s);
         return err_set(e, "encoder: out of memory for %dx%d cells", cols, rows);
     }
@@ -682,6 +903,7 @@ void encode_screen_free(struct encode_screen *s)
     free(s->cells);
     free(s->target);
     free(s->memo);
+    free(s->saved);
     free(s->out);
     free(s->qcache);
     memset(s, 0, sizeof *s);

@@ -695,3 +695,181 @@ TEST(one_colour_cells_are_spaces_never_full_blocks)
         }
     CHECK(spaces > 100);
 }
+
+/* sum of squared channel errors of the decoded grid against the frame */
+static double grid_sq_err(const struct decode_state *d, const uint8_t *want, int n)
+{
+    double s = 0;
+    for (int i = 0; i < n; i++) {
+        double e = (double)d->rgb[i] - want[i];
+        s += e * e;
+    }
+    return s;
+}
+
+TEST(budgeted_frames_fit_and_a_still_picture_converges_to_exact)
+{
+    /* A smooth picture with detail, shifted every frame (a pan), then held still. Every
+     * budgeted frame fits its budget; the decoded screen always equals the screen model's
+     * story (the next unbudgeted diff of the truth repairs exactly the pending cells); once
+     * the picture stops, the error falls every frame and reaches zero. */
+    enum { C = 40, R = 12, B = 1500 };
+    static uint8_t rgb[C * 2 * R * 3];
+    static const enum palette_mode modes[] = {PALETTE_TRUECOLOR, PALETTE_256};
+    for (int m = 0; m < 2; m++) {
+        struct encode_screen s;
+        struct decode_state d;
+        REQUIRE(encode_screen_init(&s, C, R, NULL) == 0);
+        REQUIRE(decode_init(&d, C, R, NULL) == 0);
+        struct encode_opts o = {.mode = modes[m], .diff = true, .budget = B};
+        double prev = 1e300;
+        int still_frames = 0, limited = 0;
+        for (int f = 0; f < 60; f++) {
+            int shift = f < 20 ? 3 * f : 60;
+            for (int y = 0; y < 2 * R; y++)
+                for (int x = 0; x < C; x++) {
+                    int u = x + shift;
+                    set_px(rgb, C, x, y,
+                           (uint32_t)((u * 6) & 255) << 16 | (uint32_t)(y * 10) << 8 |
+                               (uint32_t)(((u / 4 + y / 3) % 2) * 200));
+                }
+            size_t n;
+            struct encode_stats st;
+            const char *out = encode_frame(&s, rgb, C, 2 * R, &o, &n, &st);
+            CHECK(n <= B);
+            limited += st.demand > B;
+            struct err e;
+            REQUIRE(decode_apply(&d, out, n, &e) == 0);
+            double err = grid_sq_err(&d, rgb, C * 2 * R * 3);
+            if (f >= 20) { /* still: strictly better until exact (palette: until quantised) */
+                if (st.cells_pending == 0) {
+                    still_frames = f - 19;
+                    break;
+                }
+                CHECK(err < prev);
+                prev = err;
+            }
+        }
+        CHECK(limited >= 19); /* the pan really was over budget */
+        CHECK(still_frames > 1 && still_frames < 30);
+        /* converged: an unbudgeted diff has nothing left to send */
+        size_t n;
+        struct encode_opts exact = {.mode = modes[m], .diff = true};
+        encode_frame(&s, rgb, C, 2 * R, &exact, &n, NULL);
+        CHECK_EQ_INT(n, 0);
+        if (modes[m] == PALETTE_TRUECOLOR)
+            CHECK(grid_sq_err(&d, rgb, C * 2 * R * 3) == 0);
+        encode_screen_free(&s);
+        decode_free(&d);
+    }
+}
+
+TEST(a_budget_the_frame_fits_changes_nothing)
+{
+    enum { C = 20, R = 6 };
+    static uint8_t rgb[C * 2 * R * 3];
+    uint32_t seed = 5;
+    struct encode_screen a, b;
+    REQUIRE(encode_screen_init(&a, C, R, NULL) == 0);
+    REQUIRE(encode_screen_init(&b, C, R, NULL) == 0);
+    for (int f = 0; f < 5; f++) {
+        random_frame(rgb, C, 2 * R, &seed, f % 2 ? 4 : 256);
+        struct encode_opts plain = {.mode = PALETTE_TRUECOLOR, .diff = true, .tolerance = 2};
+        struct encode_opts big = plain;
+        big.budget = ENCODE_BOUND(C, R);
+        size_t na, nb;
+        const char *pa = encode_frame(&a, rgb, C, 2 * R, &plain, &na, NULL);
+        struct encode_stats st;
+        const char *pb = encode_frame(&b, rgb, C, 2 * R, &big, &nb, &st);
+        CHECK(na == nb && memcmp(pa, pb, na) == 0);
+        CHECK(st.lambda == 0 && st.demand == nb && st.cells_pending == 0);
+    }
+    encode_screen_free(&a);
+    encode_screen_free(&b);
+}
+
+TEST(rate_distortion_beats_a_fixed_tolerance_at_equal_bytes)
+{
+    /* A noisy gradient panned by one pixel a frame: the budgeted encoder, given the bytes a
+     * fixed tolerance spends, leaves a smaller error (the rule the viewer relies on). */
+    enum { C = 48, R = 12, N = 30 };
+    static uint8_t rgb[C * 2 * R * 3];
+    struct encode_screen tol_s, rd_s;
+    struct decode_state tol_d, rd_d;
+    REQUIRE(encode_screen_init(&tol_s, C, R, NULL) == 0);
+    REQUIRE(encode_screen_init(&rd_s, C, R, NULL) == 0);
+    REQUIRE(decode_init(&tol_d, C, R, NULL) == 0);
+    REQUIRE(decode_init(&rd_d, C, R, NULL) == 0);
+    double e_tol = 0, e_rd = 0;
+    size_t b_tol = 0, b_rd = 0;
+    for (int f = 0; f < N; f++) {
+        uint32_t seed = 1;
+        for (int y = 0; y < 2 * R; y++)
+            for (int x = 0; x < C; x++) {
+                int u = x + f;
+                uint32_t noise = rng_next(&seed) % 24;
+                set_px(rgb, C, x, y, (uint32_t)((u * 5 + noise) & 255) << 16 |
+                                         (uint32_t)(y * 9 + noise) << 8 | (uint32_t)(u * 3 & 255));
+            }
+        struct encode_opts ot = {.mode = PALETTE_TRUECOLOR, .diff = true, .tolerance = 12};
+        size_t n;
+        struct err e;
+        const char *out = encode_frame(&tol_s, rgb, C, 2 * R, &ot, &n, NULL);
+        REQUIRE(decode_apply(&tol_d, out, n, &e) == 0);
+        b_tol += n;
+        struct encode_opts orr = {.mode = PALETTE_TRUECOLOR, .diff = true, .budget = n ? n : 1};
+        out = encode_frame(&rd_s, rgb, C, 2 * R, &orr, &n, NULL);
+        REQUIRE(decode_apply(&rd_d, out, n, &e) == 0);
+        b_rd += n;
+        if (f > 0) {
+            e_tol += grid_sq_err(&tol_d, rgb, C * 2 * R * 3);
+            e_rd += grid_sq_err(&rd_d, rgb, C * 2 * R * 3);
+        }
+    }
+    CHECK(b_rd <= b_tol);
+    CHECK(e_rd < 0.9 * e_tol);
+    if (t->failures)
+        fprintf(stderr, "    tolerance 12: %zu bytes, sq err %.0f; budgeted: %zu bytes, "
+                        "sq err %.0f\n", b_tol, e_tol, b_rd, e_rd);
+    encode_screen_free(&tol_s);
+    encode_screen_free(&rd_s);
+    decode_free(&tol_d);
+    decode_free(&rd_d);
+}
+
+TEST(held_cells_are_never_written)
+{
+    /* Cells 3..5 of row 1 are held (an overlay drawn by someone else: ramp '@' here). The
+     * frame changes every cell; the cells around the hold have the colours a rewrite would
+     * reuse, yet nothing lands in the hold, with or without a budget. */
+    enum { C = 10, R = 3 };
+    static uint8_t rgb[C * 2 * R * 3];
+    for (int budget = 0; budget <= 400; budget += 400) {
+        struct encode_screen s;
+        struct decode_state d;
+        REQUIRE(encode_screen_init(&s, C, R, NULL) == 0);
+        REQUIRE(decode_init(&d, C, R, NULL) == 0);
+        memset(rgb, 0, sizeof rgb);
+        size_t n;
+        struct err e;
+        const char *out = encode_frame(&s, rgb, C, 2 * R, &TRUE_FULL, &n, NULL);
+        REQUIRE(decode_apply(&d, out, n, &e) == 0);
+        REQUIRE(decode_apply(&d, "\x1b[2;4H@@@", 9, &e) == 0); /* the overlay */
+        for (int i = 0; i < C * 2 * R; i++)
+            set_px(rgb, C, i % C, i / C, 0x808080);
+        struct encode_opts o = {.mode = PALETTE_TRUECOLOR, .diff = true, .budget = (size_t)budget,
+                                .hold_col = 3, .hold_row = 1, .hold_cols = 3, .hold_rows = 1};
+        for (int f = 0; f < 3; f++) {
+            out = encode_frame(&s, rgb, C, 2 * R, &o, &n, NULL);
+            REQUIRE(decode_apply(&d, out, n, &e) == 0);
+        }
+        for (int c = 0; c < C; c++)
+            for (int r = 0; r < R; r++) {
+                bool held = r == 1 && c >= 3 && c < 6;
+                const uint8_t *px = d.rgb + 3 * (2 * r * C + c);
+                CHECK(held ? px[0] == 255 : px[0] == 128); /* '@' is the ramp's white */
+            }
+        encode_screen_free(&s);
+        decode_free(&d);
+    }
+}
