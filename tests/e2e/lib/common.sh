@@ -35,6 +35,11 @@ finish() {
 }
 tm() { tmux -L "$SOCK" "$@"; }
 trap 'tmux -L "$SOCK" kill-server 2>/dev/null' EXIT
+# The private server stays up when its last session ends (exit-empty off): otherwise killing
+# the last session makes it exit, and a new-session right after can reach the exiting server
+# ("server exited unexpectedly") or lose the new session with it (the quit test's flake).
+have_tmux_server() { command -v tmux >/dev/null 2>&1 && tmux -L "$SOCK" -f /dev/null start-server \; set-option -g exit-empty off; }
+have_tmux_server 2>/dev/null
 have_tmux() { command -v tmux >/dev/null 2>&1; }
 
 wait_for() {
