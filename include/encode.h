@@ -18,11 +18,13 @@
  * table. Each frame that set a colour ends with ESC[0m, so the terminal is never left
  * coloured between frames (and the next frame starts from "colours unknown").
  * Cursor: moves by the shortest of CUP (ESC[r;cH), CUF (ESC[nC), HPA (ESC[nG, strictly CHA),
- * CR, CR LF, or rewriting the skipped cells (with what they show, or this frame's colours)
- * when that needs no SGR and is shorter. Never relies on auto-wrap: after the last column the column counts as unknown.
- * LF is only ever sent right after CR (safe whether or not the tty translates LF).
+ * CR, CR LF (LF with opts.lf_newline), or rewriting the skipped cells (with what they show,
+ * or this frame's colours) when that needs no SGR and is shorter. Never relies on
+ * auto-wrap: after the last column the column counts as unknown.
+ * LF is only ever sent right after CR (safe whether or not the tty translates LF), unless
+ * opts.lf_newline says the reader adds the CR (a file `cat` to a terminal).
  *
- * Frames. Full frame: ESC[H, then every cell, rows joined by CR LF. Diff frame: only cells
+ * Frames. Full frame: ESC[H, then every cell, rows joined by CR LF (or LF). Diff frame: only cells
  * whose displayed colours change; a frame equal to the screen is 0 bytes. opts.mark_frames
  * makes every frame, even an empty diff, start with ESC[H (3 bytes): the frame boundary that
  * decode_frame counts, for `dump --diff` files. A frame whose body exceeds
@@ -94,6 +96,8 @@ struct encode_opts {
     bool dither;         /* 4x4 ordered dither before quantising (256/16 only; off = exact
                           * nearest colour; on adds up to PALETTE_DITHER_AMP of error) */
     bool mark_frames;    /* every frame starts with ESC[H, even an empty diff */
+    bool lf_newline;     /* rows advance with LF alone (files played on a tty, which adds
+                          * the CR); else CR LF, as a raw-mode terminal needs */
     uint8_t pad_rgb[3];  /* bottom half of the last row when the height is odd */
     size_t budget;       /* bytes the frame may take, 0 = no limit (see "Budget" above) */
     int hold_col, hold_row, hold_cols, hold_rows; /* cells never drawn (an overlay's) */

@@ -128,6 +128,7 @@ struct emitter {
     struct encode_stats *st;
     int hold0, hold1; /* the held columns [hold0, hold1) of the row being drawn */
     const char *limit; /* budgeted passes: no cell may end beyond this; NULL = no limit */
+    int newline;       /* bytes to go down a row and back to column 0: 2 (CR LF) or 1 (LF) */
     bool capped;       /* a cell was left because the limit was reached */
 };
 
@@ -419,9 +420,9 @@ static void move_to(struct emitter *em, int r, int c, const struct encode_cell *
                 how = h;
             }
         }
-    } else if (em->row >= 0 && r > em->row && 2 * (r - em->row) < best) {
+    } else if (em->row >= 0 && r > em->row && em->newline * (r - em->row) < best) {
         down = r - em->row;
-        cost = 2 * down + col_cost(em, tgt, scr, 0, c, &h);
+        cost = em->newline * down + col_cost(em, tgt, scr, 0, c, &h);
         if (cost < best) {
             best = cost;
             via = VIA_CRLF;
@@ -456,8 +457,8 @@ static void move_to(struct emitter *em, int r, int c, const struct encode_cell *
         break;
     case VIA_CRLF:
         for (int i = 0; i < down; i++) {
-            memcpy(p, "\r\n", 2);
-            p += 2;
+            memcpy(p, "\r\n" + 2 - em->newline, (size_t)em->newline);
+            p += em->newline;
         }
         em->st->moves++;
         em->row = r;
@@ -741,7 +742,8 @@ static size_t encode_pass(struct encode_screen *s, const uint8_t *rgb, int h,
     /* the budget, less what may follow the body (reset, synchronized output) or precede it */
     size_t room = o->budget > ENCODE_FRAME_MAX_BYTES ? o->budget - ENCODE_FRAME_MAX_BYTES : 0;
     struct emitter em = {body, NO_COLOUR, NO_COLOUR, home ? 0 : -1, home ? 0 : -1,
-                         s->cols, o->mode, st, 0, 0, lambda > 0 ? body + room : NULL, false};
+                         s->cols, o->mode, st, 0, 0, lambda > 0 ? body + room : NULL,
+                         o->lf_newline ? 1 : 2, false};
     switch (o->mode) { /* one instantiation of the cell loop per mode */
     case PALETTE_TRUECOLOR:
         emit_rows(s, &em, rgb, h, o, tol, full, lambda, PALETTE_TRUECOLOR);

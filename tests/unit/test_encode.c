@@ -873,3 +873,33 @@ TEST(held_cells_are_never_written)
         decode_free(&d);
     }
 }
+
+TEST(lf_newline_frames_use_bare_lf_and_decode_the_same)
+{
+    /* Files played with `cat` go through a tty that turns LF into CR LF: with lf_newline
+     * rows advance with LF alone (no CR anywhere), one byte less per row, same picture. */
+    enum { C = 12, R = 5 };
+    static uint8_t rgb[C * 2 * R * 3];
+    uint32_t seed = 3;
+    random_frame(rgb, C, 2 * R, &seed, 256);
+    struct encode_screen a, b;
+    REQUIRE(encode_screen_init(&a, C, R, NULL) == 0);
+    REQUIRE(encode_screen_init(&b, C, R, NULL) == 0);
+    struct encode_opts crlf = {.mode = PALETTE_TRUECOLOR, .mark_frames = true};
+    struct encode_opts lf = crlf;
+    lf.lf_newline = true;
+    size_t na, nb;
+    const char *pa = encode_frame(&a, rgb, C, 2 * R, &crlf, &na, NULL);
+    const char *pb = encode_frame(&b, rgb, C, 2 * R, &lf, &nb, NULL);
+    CHECK(contains(pa, na, "\r\n"));
+    CHECK(!memchr(pb, '\r', nb));
+    CHECK_EQ_INT(na - nb, R - 1);
+    struct decode_state d;
+    struct err e;
+    REQUIRE(decode_init(&d, C, R, NULL) == 0);
+    REQUIRE(decode_apply(&d, pb, nb, &e) == 0);
+    compare_grid(t, &d, rgb, C, 2 * R, 0, "lf frame");
+    decode_free(&d);
+    encode_screen_free(&a);
+    encode_screen_free(&b);
+}
