@@ -30,6 +30,10 @@ void cmd_print_stats(const struct frame_stats *st);
  * the compiled-in RASTTY_DATADIR. Returns 0 when the file is readable there, else -1 (out
  * holds the last place tried). */
 int cmd_find_asset(const char *name, char *out, size_t n);
+/* The sky to draw: the scene's, else with --sky procedural the generated one (built into
+ * *tmp, sun toward ro's first light: call before the headlight replaces it), else NULL. */
+int cmd_sky(const struct options *o, const struct scene *s, const struct render_opts *ro,
+            struct skybox *tmp, const struct skybox **sky_out, struct err *e);
 /* scene_load, then --texture over every item, then the scene's warnings to stderr (one line
  * each, "warning: file:line: ..."); on failure nothing is left allocated. */
 int cmd_load_scene(const struct options *o, const char *path, struct scene *s, struct err *e);

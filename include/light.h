@@ -5,7 +5,8 @@
  * TOWARD the light, world space; col is linear rgb (1 = white).
  *
  * With N the unit normal, V the unit vector toward the eye and H = normalize(L + V):
- *   D = LIGHT_AMBIENT + LIGHT_DIFFUSE * sum_l col_l * max(0, N.L)      ("diffuse term")
+ *   D = A(N) + LIGHT_DIFFUSE * sum_l col_l * max(0, N.L)               ("diffuse term")
+ *   A(N) = ground + (0.5 + 0.5 * N.y) * (sky - ground)                  (hemisphere ambient)
  *   S = sum_l col_l * max(0, N.H)^ns                                    ("specular term")
  *   c = albedo * D + ks * S, clamped to [0,1] by the framebuffer's quantiser
  * albedo = base colour x texel (texel = 1 without a texture); the base colour is the material's
@@ -13,12 +14,19 @@
  * whose albedo is LIGHT_DEFAULT_ALBEDO — OpenGL's default material diffuse. At 1.0 the
  * highlight saturated a third of an untextured sphere to flat white. ks and ns come from the
  * material (defaults 0.5 and 32). Everything is float, as a GPU shader computes it; x^32 is
- * five squarings, as the reference shader writes it. Normals are never flipped for back faces. */
+ * five squarings, as the reference shader writes it. Normals are never flipped for back faces.
+ *
+ * Ambient: render_opts' ambient_sky and ambient_ground, both LIGHT_AMBIENT by default — then
+ * A(N) is exactly LIGHT_AMBIENT, the conventions' constant (render, dump, the Mesa oracle).
+ * The headlight (--light camera, the viewer's default, light_use_camera) is one light from
+ * over the viewer's shoulder plus a sky/ground hemisphere ambient, as model viewers light a
+ * model: every side the camera looks at is lit, none goes black in profile. */
 #ifndef RASTTY_LIGHT_H
 #define RASTTY_LIGHT_H
 
 #include <math.h>
 
+#include "camera.h"
 #include "mesh.h"
 #include "render.h"
 #include "simd.h"
@@ -26,15 +34,26 @@
 #define LIGHT_AMBIENT 0.1f
 #define LIGHT_DIFFUSE 0.9f
 #define LIGHT_DEFAULT_ALBEDO 0.8f
+/* The headlight: camera-space direction toward it (right, up, toward the viewer), its
+ * colour, and the hemisphere ambient from above and from below. */
+#define LIGHT_HEAD_RIGHT 0.35
+#define LIGHT_HEAD_UP 0.5
+#define LIGHT_HEAD_BACK 1.0
+#define LIGHT_HEAD_COLOR 0.8
+#define LIGHT_HEAD_SKY 0.3
+#define LIGHT_HEAD_GROUND 0.12
 
 /* The frame's lights, normalised and converted once per frame. */
 struct light_env {
     int n;
     float dir[RENDER_MAX_LIGHTS][3]; /* unit, toward the light */
     float col[RENDER_MAX_LIGHTS][3];
+    float sky[3], ground[3];         /* hemisphere ambient */
 };
 
 void light_env_init(struct light_env *env, const struct render_opts *o);
+/* Replace o's lights by the headlight for camera c (see above). */
+void light_use_camera(struct render_opts *o, const struct camera *c);
 
 /* The base colour a texel (and a vertex colour) multiplies: kd_override (a scene's colour)
  * if given, else the material's Kd, else — implicit material, neither textured nor
@@ -74,8 +93,11 @@ static inline void light_terms(const struct light_env *env, const float n[3], co
             s[k] += ss * col[k];
         }
     }
+    float up = 0.5f + 0.5f * n[1];
     for (int k = 0; k < 3; k++) {
-        d_out[k] = LIGHT_AMBIENT + LIGHT_DIFFUSE * d[k];
+        float sky = env->sky[k], ground = env->ground[k];
+        float a = sky == ground ? sky : ground + up * (sky - ground); /* exact when constant */
+        d_out[k] = a + LIGHT_DIFFUSE * d[k];
         s_out[k] = s[k];
     }
 }
@@ -142,8 +164,11 @@ static inline void light_terms4(const struct light_env *env, const f4 n[3], cons
             s[k] += ss * f4_set(col[k]);
         }
     }
+    f4 up = f4_set(0.5f) + f4_set(0.5f) * n[1];
     for (int k = 0; k < 3; k++) {
-        d_out[k] = f4_set(LIGHT_AMBIENT) + f4_set(LIGHT_DIFFUSE) * d[k];
+        float sky = env->sky[k], ground = env->ground[k];
+        f4 a = sky == ground ? f4_set(sky) : f4_set(ground) + up * f4_set(sky - ground);
+        d_out[k] = a + f4_set(LIGHT_DIFFUSE) * d[k];
         s_out[k] = s[k];
     }
 }

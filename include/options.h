@@ -31,6 +31,8 @@ struct options {
     bool camera_set;          /* any of --eye/--target/--up/--fov given */
     bool near_far_set;        /* --near or --far given */
     bool light_set, background_set;
+    bool light_camera;        /* --light camera: the headlight (light.h) */
+    bool sky_procedural;      /* --sky procedural */
     bool frame;               /* --frame: fit the camera to the model's bounding sphere */
     struct render_opts render;
     const char *texture;      /* --texture */

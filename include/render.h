@@ -68,6 +68,8 @@ struct render_opts {
     uint8_t wire_color[3];
     int n_lights;
     struct light lights[RENDER_MAX_LIGHTS];
+    vec3 ambient_sky, ambient_ground; /* hemisphere ambient (light.h): from straight above
+                                       * (+Y) and below; both 0.1 = the constant 0.1 */
 };
 
 struct frame_stats {
@@ -85,7 +87,7 @@ struct frame_stats {
 
 /* Defaults from the conventions: phong, nearest, edge rasterizer, perspective-correct, float
  * window depth, no supersampling, no culling, textures on, black background, white wire
- * colour, one white light toward (1,1,1). */
+ * colour, one white light toward (1,1,1), ambient 0.1. */
 void render_opts_default(struct render_opts *o);
 /* The ideal image's methods — rastty's most accurate setting, the reference every method is
  * measured against (bench --chart): perspective-correct, trilinear, --ssaa 8. Everything else

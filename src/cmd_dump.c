@@ -19,6 +19,7 @@
 #include "encode.h"
 #include "file.h"
 #include "image.h"
+#include "light.h"
 #include "pipeline.h"
 #include "ssaa.h"
 #include "termcaps.h"
@@ -158,7 +159,11 @@ int cmd_dump(const struct options *o, struct err *e)
     struct fb fb = {0};
     struct encode_screen es = {0};
     struct ssaa ss = {0};
+    struct skybox tmp = {0};
+    const struct skybox *sky;
     struct pipeline *p = pipeline_new();
+    if (cmd_sky(o, &scene, &ro, &tmp, &sky, e))
+        goto done;
     if (!p) {
         err_set(e, "out of memory");
         goto done;
@@ -179,9 +184,10 @@ int cmd_dump(const struct options *o, struct err *e)
         } else if (o->orbit_deg != 0) {
             camera_turn(&c, o->orbit_deg * k, 0, 1);
         }
+        if (o->light_camera) /* the headlight follows the camera */
+            light_use_camera(&ro, &c);
         struct frame_stats st;
-        if (ssaa_draw(&ss, p, scene.items, scene.n_items, scene.has_sky ? &scene.sky : NULL, &c,
-                      &ro, &fb, &st, e))
+        if (ssaa_draw(&ss, p, scene.items, scene.n_items, sky, &c, &ro, &fb, &st, e))
             goto done;
         eo.diff = o->diff && k > 0;
         size_t n;
@@ -218,6 +224,7 @@ done:
     fb_free(&fb);
     ssaa_free(&ss);
     pipeline_destroy(p);
+    skybox_free(&tmp);
     scene_free(&scene);
     path_free(&cp);
     return rc;

@@ -9,6 +9,7 @@
 
 #include "file.h"
 #include "image.h"
+#include "light.h"
 #include "pipeline.h"
 #include "scene.h"
 #include "ssaa.h"
@@ -84,6 +85,20 @@ int cmd_load_scene(const struct options *o, const char *path, struct scene *s, s
     return 0;
 }
 
+int cmd_sky(const struct options *o, const struct scene *s, const struct render_opts *ro,
+            struct skybox *tmp, const struct skybox **sky_out, struct err *e)
+{
+    *sky_out = NULL;
+    if (s->has_sky)
+        *sky_out = &s->sky;
+    else if (o->sky_procedural) {
+        if (skybox_procedural(tmp, ro->lights[0].dir, e))
+            return -1;
+        *sky_out = tmp;
+    }
+    return 0;
+}
+
 void cmd_print_stats(const struct frame_stats *st)
 {
     fprintf(stderr,
@@ -122,17 +137,21 @@ int cmd_render(const struct options *o, struct err *e)
     struct ssaa ss = {0};
     struct pipeline *p = pipeline_new();
     struct frame_stats st;
+    struct skybox tmp = {0};
+    const struct skybox *sky;
     double *ms = NULL;
     int rc = 1;
     if (!p)
         err_set(e, "out of memory");
     else if (!(ms = malloc((size_t)o->repeat * sizeof *ms)))
         err_set(e, "out of memory");
-    else if (fb_init(&fb, o->width, o->height, ro.view == VIEW_OVERDRAW, e) == 0) {
+    else if (cmd_sky(o, &scene, &ro, &tmp, &sky, e) == 0 &&
+             fb_init(&fb, o->width, o->height, ro.view == VIEW_OVERDRAW, e) == 0) {
+        if (o->light_camera) /* after the sky: its sun stays toward the world light */
+            light_use_camera(&ro, &cam);
         int drawn = 0;
         for (; drawn < o->repeat; drawn++) { /* --repeat: the same frame again, for timing */
-            if (ssaa_draw(&ss, p, scene.items, scene.n_items, scene.has_sky ? &scene.sky : NULL,
-                          &cam, &ro, &fb, &st, e))
+            if (ssaa_draw(&ss, p, scene.items, scene.n_items, sky, &cam, &ro, &fb, &st, e))
                 break;
             ms[drawn] = st.render_ms;
         }
@@ -154,6 +173,7 @@ int cmd_render(const struct options *o, struct err *e)
     free(ms);
     ssaa_free(&ss);
     pipeline_destroy(p);
+    skybox_free(&tmp);
     scene_free(&scene);
     return rc;
 }

@@ -15,6 +15,25 @@ void light_env_init(struct light_env *env, const struct render_opts *o)
         env->col[i][1] = (float)o->lights[i].color.y;
         env->col[i][2] = (float)o->lights[i].color.z;
     }
+    env->sky[0] = (float)o->ambient_sky.x;
+    env->sky[1] = (float)o->ambient_sky.y;
+    env->sky[2] = (float)o->ambient_sky.z;
+    env->ground[0] = (float)o->ambient_ground.x;
+    env->ground[1] = (float)o->ambient_ground.y;
+    env->ground[2] = (float)o->ambient_ground.z;
+}
+
+void light_use_camera(struct render_opts *o, const struct camera *c)
+{
+    vec3 back = v3_norm(v3_sub(c->eye, c->target));
+    vec3 right = v3_norm(v3_cross(c->up, back));
+    vec3 up = v3_cross(back, right);
+    o->n_lights = 1;
+    o->lights[0].dir = v3_add(v3_add(v3_scale(right, LIGHT_HEAD_RIGHT), v3_scale(up, LIGHT_HEAD_UP)),
+                              v3_scale(back, LIGHT_HEAD_BACK));
+    o->lights[0].color = v3(LIGHT_HEAD_COLOR, LIGHT_HEAD_COLOR, LIGHT_HEAD_COLOR);
+    o->ambient_sky = v3(LIGHT_HEAD_SKY, LIGHT_HEAD_SKY, LIGHT_HEAD_SKY);
+    o->ambient_ground = v3(LIGHT_HEAD_GROUND, LIGHT_HEAD_GROUND, LIGHT_HEAD_GROUND);
 }
 
 void light_base_color(const struct material *m, const float *kd_override, int textured,

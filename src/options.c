@@ -27,7 +27,7 @@ enum flag_id {
     F_TEXTURE, F_NO_TEXTURE, F_BACKGROUND, F_HIDDEN_LINES, F_OUT,
     F_DEPTH_OUT, F_STATS, F_REPEAT, F_THREADS, F_COLS, F_ROWS, F_FRAMES, F_ORBIT, F_CAMERA_PATH,
     F_COLORS, F_TOLERANCE, F_DITHER, F_DIFF, F_PPM_DIR, F_FRAME_INDEX, F_FPS, F_NO_HUD, F_CHART,
-    F_SWEEP, F_CSV, F_SVG, F_MODELS, F_HELP, F_VERSION,
+    F_SWEEP, F_CSV, F_SVG, F_MODELS, F_HELP, F_VERSION, F_SKY,
 };
 
 struct flag {
@@ -56,7 +56,7 @@ static const struct flag flags[] = {
     {"--far", F_FAR, ARG_VALUE, C_DRAW, "F", "far plane distance > near (default 100)", NULL, 0},
     {"--ortho", F_ORTHO, ARG_VALUE, C_DRAW, "H", "orthographic projection, view height H", NULL, 0},
     {"--frame", F_FRAME, ARG_NONE, C_RENDER | C_DUMP, NULL, "move the camera to fit the model (keeps the view direction)", NULL, 0},
-    {"--light", F_LIGHT, ARG_VALUE, C_DRAW, "X,Y,Z", "direction toward the light (default 1,1,1)", NULL, 0},
+    {"--light", F_LIGHT, ARG_VALUE, C_DRAW, "X,Y,Z|camera", "fixed light toward X,Y,Z (default 1,1,1), or the headlight (viewer default)", NULL, 0},
     ENUM_FLAG("--shade", C_DRAW | C_BENCH, "shading", render_shade_names, render.shade),
     {"--texture", F_TEXTURE, ARG_VALUE, C_DRAW, "FILE", "diffuse texture replacing the materials' (PNG, JPEG, TGA, BMP, GIF, PSD, PNM, HDR)", NULL, 0},
     {"--no-texture", F_NO_TEXTURE, ARG_NONE, C_DRAW, NULL, "ignore all textures (albedo = Kd)", NULL, 0},
@@ -67,6 +67,7 @@ static const struct flag flags[] = {
     {"--threads", F_THREADS, ARG_VALUE, C_DRAW | C_BENCH, "N", "rendering threads, 1..64 (default: $RASTTY_THREADS, else one per core)", NULL, 0},
     ENUM_FLAG("--ssaa", C_DRAW | C_BENCH, "supersampling: M x M samples a pixel, box filter", render_ssaa_names, render.ssaa),
     {"--background", F_BACKGROUND, ARG_VALUE, C_DRAW, "R,G,B", "background colour, 0..255 each (default 0,0,0)", NULL, 0},
+    {"--sky", F_SKY, ARG_VALUE, C_DRAW, "procedural", "the generated sky behind the scene (the viewer's default)", NULL, 0},
     ENUM_FLAG("--cull", C_DRAW | C_BENCH, "face culling", render_cull_names, render.cull),
     {"--hidden-lines", F_HIDDEN_LINES, ARG_NONE, C_DRAW, NULL, "wire: hide edges behind the model's surfaces", NULL, 0},
     ENUM_FLAG("--view", C_DRAW, "what the picture shows", render_view_names, render.view),
@@ -248,9 +249,19 @@ static int apply(struct options *o, const struct flag *f, const char *v, struct 
         return 0;
     case F_FRAME: o->frame = true; return 0;
     case F_LIGHT:
+        if (strcmp(v, "camera") == 0) {
+            o->light_camera = true;
+            return 0;
+        }
         if (parse_vec3(v, &o->render.lights[0].dir) || is_zero(o->render.lights[0].dir))
-            return bad(e, f->name, "expected a non-zero direction X,Y,Z", v);
+            return bad(e, f->name, "expected a non-zero direction X,Y,Z or camera", v);
         o->light_set = true;
+        o->light_camera = false;
+        return 0;
+    case F_SKY:
+        if (strcmp(v, "procedural") != 0)
+            return bad(e, f->name, "expected procedural", v);
+        o->sky_procedural = true;
         return 0;
     case F_ENUM:
         if ((k = render_enum_parse(f->values, v)) < 0) {

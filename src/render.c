@@ -46,6 +46,7 @@ void render_opts_default(struct render_opts *o)
     o->n_lights = 1;
     o->lights[0].dir = v3(1, 1, 1);
     o->lights[0].color = v3(1, 1, 1);
+    o->ambient_sky = o->ambient_ground = v3(0.1, 0.1, 0.1);
 }
 
 void render_opts_ideal(struct render_opts *o)

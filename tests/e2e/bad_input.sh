@@ -52,6 +52,8 @@ check scene_file_error_names_line expect 2 "bad.rsc:3:" "$BIN" render $D/bad.rsc
 check random_bytes_obj expect 2 "random.obj" "$BIN" render $D/random.obj --out $OUT/x.png
 check bad_flag_value expect 2 "--fov" "$BIN" render assets/cube.obj --fov abc --out $OUT/x.png
 check unknown_flag expect 2 "unknown option" "$BIN" render assets/cube.obj --frobnicate --out $OUT/x.png
+check bad_light_value expect 2 "--light: .*camera" "$BIN" render assets/cube.obj --light cam --out $OUT/x.png
+check bad_sky_value expect 2 "--sky: expected procedural" "$BIN" render assets/cube.obj --sky cloudy --out $OUT/x.png
 check zero_size expect 2 "--size" "$BIN" render assets/cube.obj --size 0x0 --out $OUT/x.png
 check huge_size expect 2 "--size" "$BIN" render assets/cube.obj --size 9000x10 --out $OUT/x.png
 check flag_for_other_subcommand expect 2 "does not apply" "$BIN" render assets/cube.obj --diff --out $OUT/x.png

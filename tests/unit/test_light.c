@@ -1,7 +1,9 @@
 /* test_light.c: the lighting model against hand-computed values — ambient, the diffuse
  * factor, the specular exponent, Phong's renormalised normal, flat shading's face normal and
- * the base colour rule — so no shading detail depends on the Mesa oracle alone. */
+ * the base colour rule — so no shading detail depends on the Mesa oracle alone; and the
+ * ambient term (exact by default, a hemisphere for the headlight) and the headlight. */
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "light.h"
@@ -152,4 +154,195 @@ TEST(flat_uses_the_face_normal_from_the_winding)
     CHECK_EQ_INT(flat_pixel(ccw, SHADE_FLAT), 155);
     CHECK_EQ_INT(flat_pixel(ccw, SHADE_GOURAUD), 20);
     CHECK_EQ_INT(flat_pixel(cw, SHADE_FLAT), 20);
+}
+
+static void unit(float v[3], uint32_t *seed)
+{
+    for (int k = 0; k < 3; k++) {
+        *seed = *seed * 1664525u + 1013904223u;
+        v[k] = (float)((*seed >> 8) / 16777216.0 * 2 - 1);
+    }
+    light_normalize(v);
+}
+
+TEST(default_ambient_is_exactly_the_constant)
+{
+    /* render and dump keep the conventions bit for bit (the Mesa oracle checks them too) */
+    struct render_opts ro;
+    render_opts_default(&ro);
+    struct light_env env;
+    light_env_init(&env, &ro);
+    uint32_t seed = 11;
+    for (int i = 0; i < 2000; i++) {
+        float n[3], v[3], d[3], s[3];
+        unit(n, &seed);
+        unit(v, &seed);
+        light_terms(&env, n, v, 32, d, s);
+        float ndl = n[0] * env.dir[0][0] + n[1] * env.dir[0][1] + n[2] * env.dir[0][2];
+        float want = 0.1f + 0.9f * (ndl > 0 ? ndl : 0);
+        for (int k = 0; k < 3; k++)
+            if (d[k] != want) {
+                test_fail(t, __FILE__, __LINE__, "D %.9g != %.9g", d[k], want);
+                return;
+            }
+    }
+}
+
+TEST(hemisphere_ambient_blends_sky_and_ground_by_the_normal)
+{
+    struct render_opts ro;
+    render_opts_default(&ro);
+    ro.n_lights = 0;
+    ro.ambient_sky = v3(0.3, 0.3, 0.3);
+    ro.ambient_ground = v3(0.1, 0.1, 0.1);
+    struct light_env env;
+    light_env_init(&env, &ro);
+    static const float normals[][3] = {{0, 1, 0}, {0, -1, 0}, {1, 0, 0}, {0, 0.6f, 0.8f}};
+    static const float want[] = {0.3f, 0.1f, 0.2f, 0.26f};
+    const float v[3] = {0, 0, 1};
+    for (int i = 0; i < 4; i++) {
+        float d[3], s[3];
+        light_terms(&env, normals[i], v, 32, d, s);
+        CHECK_NEAR(d[0], want[i], 1e-6);
+    }
+}
+
+TEST(headlight_comes_from_over_the_viewers_shoulder)
+{
+    struct camera c;
+    camera_default(&c); /* eye (0,0,3) looking at the origin */
+    struct render_opts ro;
+    render_opts_default(&ro);
+    light_use_camera(&ro, &c);
+    CHECK_EQ_INT(ro.n_lights, 1);
+    CHECK_NEAR(ro.lights[0].dir.x, LIGHT_HEAD_RIGHT, 1e-12);
+    CHECK_NEAR(ro.lights[0].dir.y, LIGHT_HEAD_UP, 1e-12);
+    CHECK_NEAR(ro.lights[0].dir.z, LIGHT_HEAD_BACK, 1e-12);
+    c.eye = v3(3, 0, 0); /* from +X: right is -Z */
+    light_use_camera(&ro, &c);
+    CHECK_NEAR(ro.lights[0].dir.x, LIGHT_HEAD_BACK, 1e-12);
+    CHECK_NEAR(ro.lights[0].dir.y, LIGHT_HEAD_UP, 1e-12);
+    CHECK_NEAR(ro.lights[0].dir.z, -LIGHT_HEAD_RIGHT, 1e-12);
+    CHECK(ro.ambient_sky.x > ro.ambient_ground.x);
+}
+
+/* A UV sphere of radius 1: 16 rings of 32 quads. */
+static int sphere(struct mesh *m)
+{
+    enum { RINGS = 16, SEGS = 32, NV = (RINGS + 1) * (SEGS + 1), NT = RINGS * SEGS * 2 };
+    static float pos[NV * 3];
+    static struct mesh_corner corners[NT * 3];
+    for (int r = 0; r <= RINGS; r++)
+        for (int s = 0; s <= SEGS; s++) {
+            double th = M_PI * r / RINGS, ph = 2 * M_PI * s / SEGS;
+            float *p = pos + 3 * (r * (SEGS + 1) + s);
+            p[0] = (float)(sin(th) * cos(ph));
+            p[1] = (float)cos(th);
+            p[2] = (float)(-sin(th) * sin(ph));
+        }
+    int k = 0;
+    for (int r = 0; r < RINGS; r++)
+        for (int s = 0; s < SEGS; s++) {
+            uint32_t a = (uint32_t)(r * (SEGS + 1) + s), b = a + SEGS + 1;
+            uint32_t q[6] = {a, b, a + 1, a + 1, b, b + 1};
+            for (int i = 0; i < 6; i++)
+                corners[k++] = (struct mesh_corner){q[i], MESH_NONE, MESH_NONE};
+        }
+    struct mesh_source src = {.pos = pos, .n_pos = NV, .corners = corners, .n_tris = NT};
+    memset(m, 0, sizeof *m);
+    m->materials = calloc(1, sizeof *m->materials);
+    if (!m->materials)
+        return -1;
+    m->n_materials = 1;
+    m->materials[0] = (struct material){"", {1, 1, 1}, {0, 0, 0}, 32, -1, true};
+    return mesh_build(&src, m, NULL);
+}
+
+/* The mean brightness (0..1, green channel) of the sphere's pixels seen from angle deg
+ * around it, at height y. */
+static double mean_seen(struct pipeline *p, const struct draw_item *it, struct fb *fb,
+                        double deg, double y, bool headlight)
+{
+    struct camera c;
+    camera_default(&c);
+    double a = deg * M_PI / 180;
+    c.eye = v3(3 * sin(a), y, 3 * cos(a));
+    struct render_opts ro;
+    render_opts_default(&ro);
+    if (headlight)
+        light_use_camera(&ro, &c);
+    struct frame_stats st;
+    if (pipeline_draw(p, it, 1, NULL, &c, &ro, fb, &st, NULL))
+        return -1;
+    double sum = 0;
+    int n = 0;
+    for (int i = 0; i < fb->w * fb->h; i++)
+        if (fb->depth[i] < 1) {
+            sum += fb->rgb[3 * i + 1] / 255.0;
+            n++;
+        }
+    return n ? sum / n : -1;
+}
+
+TEST(the_headlight_lights_a_model_from_every_side)
+{
+    /* The fixed world light toward (1,1,1) leaves the sphere dark seen from the far side;
+     * the headlight lights every side the camera looks at. */
+    struct mesh m;
+    REQUIRE(sphere(&m) == 0);
+    struct fb fb;
+    REQUIRE(fb_init(&fb, 64, 64, false, NULL) == 0);
+    struct pipeline *p = pipeline_new();
+    REQUIRE(p);
+    struct draw_item it = {&m, m4_identity(), NULL, NULL};
+    double world_min = 1, head_min = 1;
+    for (int deg = 0; deg < 360; deg += 45)
+        for (double y = -2; y <= 2; y += 2) {
+            double w = mean_seen(p, &it, &fb, deg, y, false);
+            double h = mean_seen(p, &it, &fb, deg, y, true);
+            world_min = w < world_min ? w : world_min;
+            head_min = h < head_min ? h : head_min;
+        }
+    CHECK(world_min < 0.2);  /* today's convention: a dark side */
+    CHECK(head_min > 0.45);  /* the headlight: every view lit */
+    if (t->failures)
+        fprintf(stderr, "    darkest view: world light %.3f, headlight %.3f\n", world_min,
+                head_min);
+    pipeline_destroy(p);
+    fb_free(&fb);
+    mesh_free(&m);
+}
+
+TEST(four_lane_terms_equal_one_lane_terms_with_a_hemisphere)
+{
+    /* the span shader's light_terms4 gives, lane by lane, exactly light_terms, also with the
+     * headlight's two lights and hemisphere ambient */
+    struct camera c;
+    camera_default(&c);
+    struct render_opts ro;
+    render_opts_default(&ro);
+    light_use_camera(&ro, &c);
+    struct light_env env;
+    light_env_init(&env, &ro);
+    uint32_t seed = 5;
+    for (int i = 0; i < 500; i++) {
+        float n[4][3], v[4][3];
+        f4 n4[3], v4[3], d4[3], s4[3];
+        for (int l = 0; l < 4; l++) {
+            unit(n[l], &seed);
+            unit(v[l], &seed);
+            for (int k = 0; k < 3; k++)
+                n4[k][l] = n[l][k], v4[k][l] = v[l][k];
+        }
+        light_terms4(&env, n4, v4, 32, d4, s4);
+        for (int l = 0; l < 4; l++) {
+            float d[3], s[3];
+            light_terms(&env, n[l], v[l], 32, d, s);
+            for (int k = 0; k < 3; k++)
+                if (d[k] != d4[k][l] || s[k] != s4[k][l]) {
+                    test_fail(t, __FILE__, __LINE__, "lane %d: D %.9g vs %.9g", l, d4[k][l], d[k]);
+                    return;
+                }
+        }
+    }
 }
