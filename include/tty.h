@@ -10,8 +10,10 @@
  *   Ctrl-C, SIGTERM, SIGHUP tty_signalled() turns true; blocking input and blocked writes
  *                           return at once; the caller leaves its loop and calls
  *                           tty_close(), which first drops output the terminal never read
- *   Ctrl-Z, fg              the handler only sets a flag; tty_suspend() (called by the
- *                           loop) restores the terminal, stops, and takes it back on fg
+ *   Ctrl-Z, fg              the handler only sets a flag; the loop collects the answers it
+ *                           waits for, then tty_suspend() restores the terminal, stops, and
+ *                           takes it back on fg (in the background it stays stopped, and a
+ *                           quit signal then ends it without touching the terminal)
  *   crash signals           (SEGV, BUS, FPE, ILL, ABRT) an async-signal-safe handler restores
  *                           the saved termios with tcsetattr, writes fixed xterm reset bytes
  *                           (leave alternate screen, show cursor, mouse off, SGR reset), then
@@ -50,10 +52,22 @@ enum tty_event_kind tty_next_event(struct tty *t, int timeout_ms, struct tty_eve
 /* Write all of buf to the terminal (retrying short writes); 0, or -1 on an error or when a
  * quit signal arrived meanwhile. */
 int tty_write(const char *buf, size_t n);
-/* If Ctrl-Z was pressed: restore the terminal, stop the process, and when it is continued
- * (fg) take the terminal back. Returns true then: the screen is blank and must be drawn
- * again. */
+/* Was Ctrl-Z pressed? The caller first collects the answers to its outstanding requests
+ * (so that none lands at the shell's prompt), then calls tty_suspend. */
+bool tty_stop_requested(void);
+/* If Ctrl-Z was pressed: restore the terminal, drop unread input, stop the process, and when
+ * it is continued in the foreground (fg) take the terminal back. Continued in the background
+ * (bg, kill -CONT) it stops again until brought to the foreground — or, if a quit signal came
+ * (kill %1 sends SIGTERM and SIGCONT), returns at once leaving the terminal to the shell;
+ * tty_close then does not touch it. Returns true when it stopped: the screen is blank and
+ * must be drawn again. */
 bool tty_suspend(struct tty *t);
+/* Send req, then a DSR, and collect the terminal's answer until the DSR's (which every
+ * terminal sends, after the answers to anything before it) or timeout_ms. Returns the bytes
+ * that came before the DSR answer in reply (NUL-terminated, at most cap - 1), or -1 on a
+ * write error or a quit signal. Only before the first tty_next_event (ncurses must not have
+ * read ahead). */
+int tty_query(const char *req, char *reply, size_t cap, int timeout_ms);
 /* A request whose answer (TTY_SYNC_REPLY) tells the caller the terminal has processed
  * everything written before it: append it to a frame to count frames in flight. */
 #define TTY_SYNC_REQUEST "\033[5n" /* DSR; the terminal answers ESC [ 0 n */

@@ -7,7 +7,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/select.h>
 #include <termios.h>
+#include <time.h>
 #include <unistd.h>
 
 /* The signal handlers' state. Signal handlers can only reach globals; these are the only
@@ -16,6 +18,17 @@
 static struct termios saved_termios;
 static volatile sig_atomic_t have_saved, quit_signal, stop_requested;
 static SCREEN *screen_handle;
+/* The signals that end a wait (quit, Ctrl-Z, resize) are blocked between tty_open and
+ * tty_close except while we wait for the terminal (ppoll) or write to it: a signal can then
+ * never slip in between "check the flag" and "block in read()" and be lost until the next
+ * key (the race a plain blocking getch has). unblocked is the mask to wait with. */
+static sigset_t wait_signals, unblocked;
+/* Keys are read from a 1x1 pad, never from stdscr: wgetch refreshes a touched window before
+ * it reads (after a resize, stdscr is touched: ncurses would redraw the screen from inside
+ * getch, and block there on a stalled terminal with no signal able to stop it). A pad is
+ * never refreshed by wgetch, so ncurses draws only where we ask it to. */
+static WINDOW *keys;
+static bool released; /* the terminal was given back (suspended, continued in the background) */
 
 /* ... and leave keypad-transmit mode (xterm rmkx: normal cursor keys, numeric keypad), which
  * keypad(stdscr, TRUE) entered: without it a shell after SIGABRT gets ESC O A for the arrows */
@@ -81,11 +94,67 @@ static void install_handlers(void)
     for (unsigned i = 0; i < sizeof crash / sizeof crash[0]; i++)
         sigaction(crash[i], &sa, NULL);
     signal(SIGPIPE, SIG_IGN);
+    sigemptyset(&wait_signals);
+    static const int waits[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGTSTP, SIGWINCH};
+    for (unsigned i = 0; i < sizeof waits / sizeof waits[0]; i++)
+        sigaddset(&wait_signals, waits[i]);
+    sigprocmask(SIG_BLOCK, &wait_signals, &unblocked);
+    sigdelset(&unblocked, SIGINT); /* in case the caller had them blocked: wait with them on */
+    sigdelset(&unblocked, SIGTERM);
+    sigdelset(&unblocked, SIGHUP);
+    sigdelset(&unblocked, SIGQUIT);
+    sigdelset(&unblocked, SIGTSTP);
+    sigdelset(&unblocked, SIGWINCH);
+}
+
+/* Wait up to timeout_ms (-1 = forever) for input on fd, with the wait signals deliverable
+ * (pselect swaps the mask atomically): 1 ready, 0 timeout or a signal arrived (the caller
+ * checks the flags). */
+static int wait_input(int fd, int timeout_ms)
+{
+    fd_set rd;
+    FD_ZERO(&rd);
+    FD_SET(fd, &rd);
+    struct timespec ts = {timeout_ms / 1000, (long)(timeout_ms % 1000) * 1000000L};
+    int r = pselect(fd + 1, &rd, NULL, NULL, timeout_ms < 0 ? NULL : &ts, &unblocked);
+    /* pselect that finds input ready returns without delivering a signal that is pending
+     * (Linux restores the mask first): a hung-up terminal is always "ready", so its SIGHUP
+     * would wait forever. Let pending signals in now. */
+    sigset_t pending;
+    if (sigpending(&pending) == 0) {
+        for (int s = 1; s < NSIG; s++)
+            if (sigismember(&wait_signals, s) && sigismember(&pending, s)) {
+                sigprocmask(SIG_SETMASK, &unblocked, NULL);
+                sigprocmask(SIG_BLOCK, &wait_signals, NULL);
+                break;
+            }
+    }
+    return r > 0;
+}
+
+/* Write everything, ignoring signals: the restore sequences on the way out. */
+static void write_restore(const char *buf, size_t n)
+{
+    while (n > 0) {
+        ssize_t w = write(STDOUT_FILENO, buf, n);
+        if (w < 0 && errno == EINTR)
+            continue;
+        if (w <= 0)
+            return;
+        buf += w;
+        n -= (size_t)w;
+    }
+}
+
+static bool foreground(void)
+{
+    return tcgetpgrp(STDIN_FILENO) == getpgrp();
 }
 
 int tty_open(struct tty *t, struct err *e)
 {
     memset(t, 0, sizeof *t);
+    released = false;
     if (!isatty(STDIN_FILENO) || !isatty(STDOUT_FILENO))
         return err_set(e, "rastty: the viewer needs a terminal on stdin and stdout "
                           "(use 'rastty render' or 'rastty dump' for files and pipes)");
@@ -100,7 +169,10 @@ int tty_open(struct tty *t, struct err *e)
     cbreak();
     noecho();
     nonl();
-    keypad(stdscr, TRUE);
+    keys = newpad(1, 1);
+    if (!keys)
+        return err_set(e, "rastty: out of memory");
+    keypad(keys, TRUE);
     set_escdelay(25);
     curs_set(0);
     refresh(); /* ncurses' one and only drawing: it clears the alternate screen */
@@ -116,24 +188,47 @@ int tty_open(struct tty *t, struct err *e)
 
 void tty_close(struct tty *t)
 {
+    if (released) {
+        /* stopped with Ctrl-Z and then ended in the background: the terminal was restored
+         * at the stop and belongs to the shell; touching it now would only stop us again
+         * (SIGTTOU) */
+        if (screen_handle) {
+            delwin(keys);
+            delscreen(screen_handle);
+        }
+        keys = NULL;
+        screen_handle = NULL;
+        sigprocmask(SIG_UNBLOCK, &wait_signals, NULL);
+        return;
+    }
     if (quit_signal) {
         /* the terminal may have stopped reading (a stalled link, Ctrl-S): drop the frame bytes
-         * still queued and restart output, so the restore below cannot block forever */
+         * still queued and restart output, so the restore below cannot block forever.
+         * tcflow(TCOON) only undoes TCOOFF; output a Ctrl-S (XOFF) stopped restarts when
+         * XON/XOFF is turned off (Linux n_tty), and the saved modes turn it back on below */
         tcflush(STDOUT_FILENO, TCOFLUSH);
         tcflow(STDOUT_FILENO, TCOON);
+        struct termios now;
+        if (tcgetattr(STDOUT_FILENO, &now) == 0 && (now.c_iflag & IXON)) {
+            now.c_iflag &= ~(tcflag_t)IXON;
+            tcsetattr(STDOUT_FILENO, TCSANOW, &now);
+        }
     }
     if (screen_handle) {
         if (t->mouse)
-            tty_write(MOUSE_OFF, sizeof MOUSE_OFF - 1);
+            write_restore(MOUSE_OFF, sizeof MOUSE_OFF - 1);
         mousemask(0, NULL);
-        tty_write("\033[?2026l\033[0m", 12);
+        write_restore("\033[?2026l\033[0m", 12);
         curs_set(1);
         endwin();
+        delwin(keys);
+        keys = NULL;
         delscreen(screen_handle);
         screen_handle = NULL;
     }
     if (have_saved)
         tcsetattr(STDIN_FILENO, TCSANOW, &saved_termios);
+    sigprocmask(SIG_UNBLOCK, &wait_signals, NULL);
 }
 
 void tty_refresh_size(struct tty *t)
@@ -147,18 +242,59 @@ void tty_refresh_size(struct tty *t)
 int tty_write(const char *buf, size_t n)
 {
     /* a quit signal interrupts a blocked write (stalled link, Ctrl-S) as EINTR or as a short
-     * count; either way stop writing, or the viewer could never be stopped */
+     * count; either way stop writing, or the viewer could never be stopped. The signals are
+     * let in only here and in waits (see wait_signals); a signal that lands between the
+     * check and write() is noticed at the next short count or EINTR. */
+    if (released)
+        return -1;
+    sigprocmask(SIG_SETMASK, &unblocked, NULL);
     while (n > 0 && !quit_signal) {
         ssize_t w = write(STDOUT_FILENO, buf, n);
         if (w < 0) {
             if (errno == EINTR)
                 continue;
-            return -1;
+            break;
         }
         buf += w;
         n -= (size_t)w;
     }
+    sigprocmask(SIG_BLOCK, &wait_signals, NULL);
     return n ? -1 : 0;
+}
+
+int tty_query(const char *req, char *reply, size_t cap, int timeout_ms)
+{
+    size_t len = 0;
+    reply[0] = '\0';
+    if (tty_write(req, strlen(req)) || tty_write(TTY_SYNC_REQUEST, sizeof TTY_SYNC_REQUEST - 1))
+        return -1;
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    for (;;) {
+        clock_gettime(CLOCK_MONOTONIC, &t1);
+        int left = timeout_ms - (int)((t1.tv_sec - t0.tv_sec) * 1000 +
+                                      (t1.tv_nsec - t0.tv_nsec) / 1000000);
+        if (left <= 0 || quit_signal || !wait_input(STDIN_FILENO, left))
+            return quit_signal ? -1 : (int)len; /* no answer to DSR in time */
+        char buf[256];
+        ssize_t n = read(STDIN_FILENO, buf, sizeof buf);
+        if (n <= 0)
+            continue;
+        for (ssize_t i = 0; i < n; i++)
+            if (len + 1 < cap)
+                reply[len++] = buf[i];
+        reply[len] = '\0';
+        char *dsr = strstr(reply, "\033[0n");
+        if (dsr) { /* everything before the DSR answer is the reply */
+            *dsr = '\0';
+            return (int)(dsr - reply);
+        }
+    }
+}
+
+bool tty_stop_requested(void)
+{
+    return stop_requested != 0;
 }
 
 bool tty_suspend(struct tty *t)
@@ -166,12 +302,30 @@ bool tty_suspend(struct tty *t)
     if (!stop_requested)
         return false;
     stop_requested = 0;
-    /* give the shell a normal terminal, stop, and take it back when continued */
+    /* give the shell a normal terminal, drop input nobody read (typeahead: it would land at
+     * the prompt), stop, and take the terminal back when continued in the foreground */
     if (t->mouse)
-        tty_write(MOUSE_OFF, sizeof MOUSE_OFF - 1);
-    tty_write("\033[0m", 4);
+        write_restore(MOUSE_OFF, sizeof MOUSE_OFF - 1);
+    write_restore("\033[0m", 4);
     endwin();
-    kill(getpid(), SIGSTOP);
+    tcflush(STDIN_FILENO, TCIFLUSH);
+    do {
+        kill(getpid(), SIGSTOP);
+        /* continued: in the background (bg, kill -CONT) the terminal is the shell's, and
+         * using it would stop us again with SIGTTOU; wait to be brought to the foreground,
+         * or leave at once on a quit signal without touching it */
+        sigset_t pending;
+        sigpending(&pending);
+        if (sigismember(&pending, SIGINT) || sigismember(&pending, SIGTERM) ||
+            sigismember(&pending, SIGHUP) || sigismember(&pending, SIGQUIT)) {
+            sigprocmask(SIG_SETMASK, &unblocked, NULL); /* run the handler now */
+            sigprocmask(SIG_BLOCK, &wait_signals, NULL);
+        }
+        if (quit_signal && !foreground()) {
+            released = true;
+            return true;
+        }
+    } while (!foreground());
     /* continued (fg): ncurses re-enters its modes and the alternate screen, cleared */
     refresh();
     curs_set(0);
@@ -226,8 +380,8 @@ static enum tty_event_kind sgr_mouse(const char *seq, struct tty_event *ev)
  * key (ignored); ESC x is Alt+x (ignored, so Alt never quits). */
 static enum tty_event_kind after_escape(struct tty_event *ev)
 {
-    timeout(0);
-    int c = getch();
+    wtimeout(keys, 0);
+    int c = wgetch(keys);
     if (c == ERR || c == 27) {
         /* ESC ESC: the Esc key, then another sequence that arrived within the escape delay
          * (typically the answer to our per-frame DSR); keep the second ESC for the next call */
@@ -238,7 +392,7 @@ static enum tty_event_kind after_escape(struct tty_event *ev)
         return ev->kind;
     }
     if (c == 'O') {
-        getch();
+        wgetch(keys);
         return TTY_NONE;
     }
     if (c != '[')
@@ -246,7 +400,7 @@ static enum tty_event_kind after_escape(struct tty_event *ev)
     char seq[32];
     size_t n = 0;
     for (;;) {
-        c = getch();
+        c = wgetch(keys);
         if (c == ERR || n + 1 >= sizeof seq)
             break;
         seq[n++] = (char)c;
@@ -263,10 +417,18 @@ static enum tty_event_kind after_escape(struct tty_event *ev)
 enum tty_event_kind tty_next_event(struct tty *t, int timeout_ms, struct tty_event *ev)
 {
     memset(ev, 0, sizeof *ev);
-    if (quit_signal || stop_requested)
+    if (quit_signal)
         return TTY_NONE;
-    timeout(timeout_ms);
-    int c = getch();
+    /* ncurses may hold bytes it read ahead: ask it first, then wait on the descriptor with
+     * the signals let in (ppoll), then read what came (ncurses still waits its escape delay
+     * for the rest of a sequence) */
+    wtimeout(keys, 0);
+    int c = wgetch(keys);
+    if (c == ERR && timeout_ms != 0) {
+        wait_input(STDIN_FILENO, timeout_ms);
+        if (!quit_signal) /* input, or a resize (SIGWINCH ends the wait: KEY_RESIZE) */
+            c = wgetch(keys);
+    }
     if (c == ERR)
         return TTY_NONE;
     if (c == KEY_RESIZE) {

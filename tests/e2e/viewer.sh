@@ -6,7 +6,8 @@ source "$(dirname "$0")/lib/common.sh"
 
 NAMES=(suspend_and_resume_repaints demo_scene_starts_and_fills_window zoom_in_grows_the_model strafe_right_moves_model_left mouse_wheel_zooms_and_drag_orbits
        fly_yaw_left_moves_model_right tap_moves_the_same_after_idle resize_refills_the_window idle_viewer_writes_nothing
-       tiny_and_huge_terminals quit_restores_terminal)
+       tiny_and_huge_terminals quit_restores_terminal sigterm_on_a_stalled_terminal
+       stopped_continued_viewer_ends_on_sigterm hung_up_terminal_ends_the_viewer)
 if ! have_tmux; then
     for n in "${NAMES[@]}"; do skip "$n" "tmux not installed"; done
     finish
@@ -246,11 +247,16 @@ quit_ways() {
         if grep -qE '(^| )-echo( |$)|(^| )-icanon( |$)' "$f" || ! grep -qE '(^| )echo( |$)' "$f" || ! grep -qE '(^| )icanon( |$)' "$f"; then
             broken=1
         fi
+        # what the terminal still does: mouse reports (any mode, SGR), alternate screen,
+        # cursor shown — tmux keeps these per pane; restored = "0 0 0 1"
+        local modes; modes=$(tm display -p -t $s '#{mouse_any_flag} #{mouse_sgr_flag} #{alternate_on} #{cursor_flag}')
+        [ "$modes" = "0 0 0 1" ] || broken=1
         if [ $how = KILL ]; then
             # nothing can restore after SIGKILL: this proves the check sees a broken terminal
             [ $broken = 1 ] || { echo "KILL: the check did not notice the unrestored terminal"; rc=1; }
         elif [ $broken = 1 ]; then
-            echo "$how: terminal modes not restored:"; grep -oE -- '-?(echo|icanon)( |$)' "$f" | tr '\n' ' '; echo; rc=1
+            echo "$how: terminal modes not restored (mouse any, sgr, alternate screen, cursor: $modes):"
+            grep -oE -- '-?(echo|icanon)( |$)' "$f" | tr '\n' ' '; echo; rc=1
         else
             local want_rc
             # SEGV: the crash handler restores the terminal, then dies by the signal (128 + 11)
@@ -266,5 +272,65 @@ quit_ways() {
     return $rc
 }
 check quit_restores_terminal quit_ways
+
+# A tag file name to find one viewer process by (pgrep -f), unique to this test run.
+tagged() { local tag=$OUT/$1-$$.rsc; echo "model $PWD/assets/cube.obj" > "$tag"; echo "$tag"; }
+pid_of() { pgrep -f -- "^$BIN .*$1" | head -n 1; }   # rastty, not a shell around it
+gone() { ! kill -0 "$1" 2>/dev/null; }
+
+# SIGTERM while the terminal has stopped reading (Ctrl-S: output stalls, the viewer's write
+# blocks): the handler must still end the blocked write, drop the queued frame bytes and
+# restore the terminal (mouse reports off, main screen, cursor, echo) with status 143.
+stalled_term() {
+    local s=st$RANDOM f=$OUT/stty-stalled.txt tag; tag=$(tagged stalled)
+    tm new-session -d -s $s -x 120 -y 40 \
+        "sh -c '$(printf '%q ' "$BIN" --colors truecolor "$tag") 2>/dev/null; echo \$? > $f.rc; stty -a > $f; sleep 60'"
+    wait_for 15 hud_has $s " fps " || { echo "viewer did not start"; return 1; }
+    tm send-keys -t $s C-s                       # XOFF: the terminal stops taking output
+    tm resize-window -t $s -x 200 -y 60          # a full frame, far more than the tty buffers
+    sleep $((1 * SLOW))
+    local pid; pid=$(pid_of "$tag")
+    [ -n "$pid" ] || { echo "no viewer process"; return 1; }
+    echo "viewer state while stalled: $(ps -o stat=,wchan= -p "$pid")"
+    kill -TERM "$pid"
+    wait_for 5 test -s $f || { echo "no exit within 5 s of SIGTERM ($(ps -o stat=,wchan= -p "$pid"))"; return 1; }
+    local modes; modes=$(tm display -p -t $s '#{mouse_any_flag} #{mouse_sgr_flag} #{alternate_on} #{cursor_flag}')
+    echo "exit status $(cat $f.rc); mouse any, sgr, alternate screen, cursor: $modes"
+    [ "$(cat $f.rc)" = 143 ] && [ "$modes" = "0 0 0 1" ] && grep -qE '(^| )echo( |$)' $f &&
+        grep -qE '(^| )icanon( |$)' $f
+}
+check sigterm_on_a_stalled_terminal stalled_term
+
+# Ctrl-Z, then continued in the background (kill -CONT, bg): the terminal is the shell's, so
+# the viewer stays stopped instead of drawing into it; SIGTERM then ends it (as `kill %1`,
+# which also sends SIGCONT, does) without touching the terminal.
+stop_cont_term() {
+    local s=sc$RANDOM tag; tag=$(tagged stopcont)
+    tm new-session -d -s $s -x 80 -y 24 bash --norc --noprofile
+    tm send-keys -t $s "$(printf '%q ' "$BIN" --colors truecolor "$tag")" Enter
+    wait_for 15 hud_has $s " fps " || { echo "viewer did not start"; return 1; }
+    tm send-keys -t $s C-z
+    wait_for 10 sh -c "tmux -L $SOCK capture-pane -t $s -p | grep -q Stopped" || { echo "not stopped"; return 1; }
+    local pid; pid=$(pid_of "$tag")
+    kill -CONT "$pid"; sleep $((1 * SLOW))
+    echo "after SIGCONT in the background: state $(ps -o stat= -p "$pid")"
+    kill -TERM "$pid"; kill -CONT "$pid"
+    wait_for 5 gone "$pid" || { echo "still there after SIGTERM: state $(ps -o stat= -p "$pid")"; kill -KILL "$pid"; return 1; }
+    tm send-keys -t $s "stty -a > $OUT/stty-stopcont.txt" Enter
+    wait_for 10 test -s $OUT/stty-stopcont.txt || return 1
+    grep -qE '(^| )icanon( |$)' $OUT/stty-stopcont.txt && grep -qE '(^| )echo( |$)' $OUT/stty-stopcont.txt
+}
+check stopped_continued_viewer_ends_on_sigterm stop_cont_term
+
+# The terminal goes away (its tmux session is killed): the viewer ends, it does not spin.
+hangup() {
+    local s=hu$RANDOM tag; tag=$(tagged hangup)
+    tm new-session -d -s $s -x 80 -y 24 "$(printf '%q ' "$BIN" --colors truecolor "$tag")"
+    wait_for 15 hud_has $s " fps " || { echo "viewer did not start"; return 1; }
+    local pid; pid=$(pid_of "$tag")
+    tm kill-session -t $s
+    wait_for 5 gone "$pid" || { echo "still running after the hangup: $(ps -o stat=,pcpu= -p "$pid")"; kill -KILL "$pid"; return 1; }
+}
+check hung_up_terminal_ends_the_viewer hangup
 
 finish
