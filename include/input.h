@@ -2,7 +2,8 @@
  * overlay and the man page's KEYS section, so they cannot disagree).
  *
  * Movement and turning commands are "held" commands: the viewer moves while a key keeps
- * repeating, scaled by elapsed time (see view.c). Lowercase q quits; Shift-Q moves down. */
+ * repeating, scaled by elapsed time (see view_state.c). Lowercase q quits (or closes the
+ * help); Shift-Q moves down. */
 #ifndef RASTTY_INPUT_H
 #define RASTTY_INPUT_H
 
@@ -15,7 +16,7 @@ enum input_cmd {
     /* one-shot */
     IN_ORBIT = IN_HELD_COUNT, IN_FOV_IN, IN_FOV_OUT, IN_SLOWER, IN_FASTER, IN_RESET,
     IN_NEXT_SCENE, IN_PREV_SCENE, IN_SHADE, IN_FILTER, IN_CULL, IN_LIGHT, IN_VIEW,
-    IN_RASTER, IN_PERSPECTIVE, IN_DEPTH, IN_PAUSE, IN_HELP, IN_QUIT,
+    IN_RASTER, IN_PERSPECTIVE, IN_DEPTH, IN_PAUSE, IN_INFO, IN_SCREENSHOT, IN_HELP, IN_QUIT,
     IN_COUNT
 };
 

@@ -58,8 +58,14 @@ struct options {
     int frame_index;          /* ansi2ppm --frame K; -1 = the last */
     double fps;
     bool no_hud;
+    int spin;                 /* --spin 1, --no-spin 0, not given -1 */
+    double spin_timeout;      /* config spin-timeout; -1 = the default */
+    double bandwidth;         /* --bandwidth in bytes/s, 0 = none */
 };
 
+/* "128000", "128k", "2M", "1Mbit", "500kB/s"... (k, M, G = 1000^n; bit/bps = 1/8 byte) ->
+ * bytes per second, 1000 .. 1e12; -1 otherwise. */
+int options_parse_rate(const char *s, double *bytes_s_out);
 /* Fill defaults, then parse argv. Returns 0, or -1 with e set (a usage error). */
 int options_parse(int argc, char **argv, struct options *out, struct err *e);
 /* The --help text, generated from the flag table. */

@@ -4,7 +4,7 @@
 #include <curses.h>
 
 static const struct input_binding bindings[] = {
-    {'w', IN_FORWARD},     {'W', IN_FORWARD},    {'s', IN_BACK},        {'S', IN_BACK},
+    {'w', IN_FORWARD},     {'W', IN_FORWARD},    {'s', IN_BACK},
     {'a', IN_LEFT},        {'A', IN_LEFT},       {'d', IN_RIGHT},       {'D', IN_RIGHT},
     {'Q', IN_DOWN},        {'z', IN_DOWN},       {'Z', IN_DEPTH},       {'e', IN_UP},
     {'E', IN_UP},          {'x', IN_UP},         {'X', IN_UP},          {KEY_LEFT, IN_YAW_LEFT},
@@ -13,7 +13,7 @@ static const struct input_binding bindings[] = {
     {'[', IN_SLOWER},      {']', IN_FASTER},     {'r', IN_RESET},       {'\t', IN_NEXT_SCENE},
     {KEY_BTAB, IN_PREV_SCENE}, {'m', IN_SHADE},  {'f', IN_FILTER},      {'c', IN_CULL},
     {'l', IN_LIGHT},       {'v', IN_VIEW},       {'p', IN_PERSPECTIVE}, {' ', IN_PAUSE},
-    {'R', IN_RASTER},
+    {'R', IN_RASTER},      {'i', IN_INFO},       {'S', IN_SCREENSHOT},
     {'h', IN_HELP},        {'?', IN_HELP},       {'q', IN_QUIT},        {27, IN_QUIT},
 };
 
@@ -31,13 +31,15 @@ static const char *const help[] = {
     "m          shading: wire flat gouraud phong textured",
     "f          texture filter nearest / bilinear / trilinear",
     "c          culling none / back / front",
-    "l          rotate the light",
+    "l          light: follows the camera / fixed in the world",
     "v          view: colour depth normals overdraw wireframe",
     "R          rasterizer: edge scanline tiled",
     "p          interpolation: correct affine span8 span16 span32",
     "Z          depth buffer: z w z16 rz",
-    "Space      pause / resume auto-rotation",
-    "h ?        this help",
+    "Space      pause / resume the auto-rotation",
+    "i          camera position in the status line",
+    "S          screenshot: PNG + ANSI, and the render command",
+    "h ?        this help (q Esc close it)",
     "q Esc      quit",
     0,
 };

@@ -27,7 +27,7 @@ enum flag_id {
     F_TEXTURE, F_NO_TEXTURE, F_BACKGROUND, F_HIDDEN_LINES, F_OUT,
     F_DEPTH_OUT, F_STATS, F_REPEAT, F_THREADS, F_COLS, F_ROWS, F_FRAMES, F_ORBIT, F_CAMERA_PATH,
     F_COLORS, F_TOLERANCE, F_DITHER, F_DIFF, F_PPM_DIR, F_FRAME_INDEX, F_FPS, F_NO_HUD, F_CHART,
-    F_SWEEP, F_CSV, F_SVG, F_MODELS, F_HELP, F_VERSION, F_SKY,
+    F_SWEEP, F_CSV, F_SVG, F_MODELS, F_HELP, F_VERSION, F_SPIN, F_NO_SPIN, F_BANDWIDTH, F_SKY,
 };
 
 struct flag {
@@ -86,7 +86,10 @@ static const struct flag flags[] = {
     {"--diff", F_DIFF, ARG_NONE, C_DUMP, NULL, "frames after the first are diffs", NULL, 0},
     {"--ppm-dir", F_PPM_DIR, ARG_VALUE, C_DUMP, "DIR", "also write each framebuffer as DIR/frame-NNNN.ppm", NULL, 0},
     {"--frame", F_FRAME_INDEX, ARG_VALUE, C_A2P, "K", "which frame to decode, 0-based (default: the last)", NULL, 0},
-    {"--fps", F_FPS, ARG_VALUE, C_VIEW, "N", "cap the frame rate (default 60)", NULL, 0},
+    {"--fps", F_FPS, ARG_VALUE, C_VIEW | C_DUMP, "N", "frame rate cap (view, default 60); dump: .cast timing (default 30)", NULL, 0},
+    {"--bandwidth", F_BANDWIDTH, ARG_VALUE, C_VIEW, "RATE", "cap the bytes/s sent (128k, 1Mbit, 2M; default: what the link takes)", NULL, 0},
+    {"--spin", F_SPIN, ARG_NONE, C_VIEW, NULL, "auto-rotate (the default for the demo only)", NULL, 0},
+    {"--no-spin", F_NO_SPIN, ARG_NONE, C_VIEW, NULL, "do not auto-rotate", NULL, 0},
     {"--no-hud", F_NO_HUD, ARG_NONE, C_VIEW, NULL, "hide the status line", NULL, 0},
     {"--chart", F_CHART, ARG_NONE, C_BENCH, NULL, "speed against accuracy of every method on the scene set", NULL, 0},
     {"--sweep", F_SWEEP, ARG_VALUE, C_BENCH, "NAME", "where methods fail: grazing|depthrange|magnitude|sliver|nearplane|minification", NULL, 0},
@@ -205,7 +208,9 @@ static void defaults(struct options *o)
     o->frames = 0; /* not given: each subcommand picks its default */
     o->frame_index = -1;
     o->tolerance = -1; /* not given: each subcommand picks its default */
-    o->fps = 60;
+    o->fps = 0;        /* not given: view 60, dump 30 */
+    o->spin = -1;
+    o->spin_timeout = -1;
 }
 
 static int apply(struct options *o, const struct flag *f, const char *v, struct err *e)
@@ -262,6 +267,13 @@ static int apply(struct options *o, const struct flag *f, const char *v, struct 
         if (strcmp(v, "procedural") != 0)
             return bad(e, f->name, "expected procedural", v);
         o->sky_procedural = true;
+        return 0;
+    case F_SPIN: o->spin = 1; return 0;
+    case F_NO_SPIN: o->spin = 0; return 0;
+    case F_BANDWIDTH:
+        if (options_parse_rate(v, &o->bandwidth))
+            return bad(e, f->name, "expected bytes per second >= 1000, like 128000, 128k, "
+                                   "1Mbit or 2M", v);
         return 0;
     case F_ENUM:
         if ((k = render_enum_parse(f->values, v)) < 0) {
@@ -401,6 +413,28 @@ static int validate(struct options *o, struct err *e)
     return 0;
 }
 
+int options_parse_rate(const char *s, double *bytes_s_out)
+{
+    char *end;
+    double v = strtod(s, &end);
+    if (end == s || !isfinite(v))
+        return -1;
+    switch (*end) {
+    case 'k': case 'K': v *= 1e3, end++; break;
+    case 'M': v *= 1e6, end++; break;
+    case 'G': v *= 1e9, end++; break;
+    default: break;
+    }
+    if (strcmp(end, "bit") == 0 || strcmp(end, "bit/s") == 0 || strcmp(end, "bps") == 0)
+        v /= 8;
+    else if (*end && strcmp(end, "B") != 0 && strcmp(end, "B/s") != 0)
+        return -1;
+    if (!(v >= 1000 && v <= 1e12))
+        return -1;
+    *bytes_s_out = v;
+    return 0;
+}
+
 int options_parse(int argc, char **argv, struct options *o, struct err *e)
 {
     defaults(o);
@@ -463,6 +497,8 @@ int options_parse(int argc, char **argv, struct options *o, struct err *e)
     }
     if (o->cmd == CMD_HELP || o->cmd == CMD_VERSION)
         return 0;
+    if (o->fps == 0)
+        o->fps = o->cmd == CMD_DUMP ? 30 : 60;
     return validate(o, e);
 }
 

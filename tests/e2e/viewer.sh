@@ -7,7 +7,9 @@ source "$(dirname "$0")/lib/common.sh"
 NAMES=(suspend_and_resume_repaints demo_scene_starts_and_fills_window zoom_in_grows_the_model strafe_right_moves_model_left mouse_wheel_zooms_and_drag_orbits
        fly_yaw_left_moves_model_right tap_moves_the_same_after_idle resize_refills_the_window idle_viewer_writes_nothing
        tiny_and_huge_terminals quit_restores_terminal sigterm_on_a_stalled_terminal
-       stopped_continued_viewer_ends_on_sigterm hung_up_terminal_ends_the_viewer)
+       stopped_continued_viewer_ends_on_sigterm hung_up_terminal_ends_the_viewer
+       help_overlay_drawn_once_and_closed_by_q status_line_at_80_columns spin_rules
+       screenshot_key_writes_png_ans_and_a_command_that_reproduces_it)
 if ! have_tmux; then
     for n in "${NAMES[@]}"; do skip "$n" "tmux not installed"; done
     finish
@@ -18,7 +20,7 @@ start() {
     local s=$1 c=$2 r=$3; shift 3
     tm new-session -d -s "$s" -x "$c" -y "$r" \
         "$(printf '%q ' "$BIN" --colors truecolor "$@"); echo EXIT=\$? > $OUT/$s.exit; sleep 120"
-    wait_for 15 hud_has "$s" " fps " || { echo "no status line"; tm capture-pane -t "$s" -p | tail -3; return 1; }
+    wait_for 15 hud_has "$s" " fps" || { echo "no status line"; tm capture-pane -t "$s" -p | tail -3; return 1; }
 }
 hud_has() { tm capture-pane -t "$1" -p | tail -n 1 | grep -q -- "$2"; }
 # the picture of session $1 (status line dropped) as $OUT/$2.ppm; echo its stats
@@ -52,7 +54,7 @@ demo() {
 check demo_scene_starts_and_fills_window demo
 
 # a lone model on black: area and centroid tell where the camera went
-model_session() { start m 80 25 assets/sphere.obj --background 0,0,0 && keys m Space && settle m; }
+model_session() { start m 80 25 assets/sphere.obj --background 0,0,0 && settle m; }
 zoom() {
     model_session || return 1
     set -- $(picture m before); local a0=$3
@@ -64,7 +66,7 @@ zoom() {
 check zoom_in_grows_the_model zoom
 
 strafe() {
-    keys m r Space; settle m
+    keys m r; settle m
     set -- $(picture m s0); local x0=$4
     keys m d d; settle m
     set -- $(picture m s1); local x1=$4
@@ -77,7 +79,7 @@ check strafe_right_moves_model_left strafe
 # interpolation and depth methods; the status line names each
 method_keys() {
     start k 100 25 assets/teapot.obj --texture assets/checker.png --background 0,0,0 || return 1
-    keys k Space; settle k
+    settle k
     picture k r0 >/dev/null
     local want; want=$(md5sum < "$OUT/r0.ans")
     for r in scanline tiled; do
@@ -100,7 +102,7 @@ check method_keys_cycle_and_rasterizers_agree method_keys
 mouse() {
     local s=wide
     start $s 260 30 assets/cube.obj --background 0,0,0 || return 1
-    keys $s Space; settle $s
+    settle $s
     set -- $(picture $s m0); local a0=$3 x0=$4
     tm send-keys -t $s -H 1b 5b 3c 36 34 3b 32 35 30 3b 31 35 4d; settle $s     # ESC[<64;250;15M wheel up
     set -- $(picture $s m1); local a1=$3
@@ -132,14 +134,14 @@ mouse() {
     done
     settle $s; picture $s m5 >/dev/null
     cmp -s $OUT/m4.ppm $OUT/m5.ppm || { echo "a malformed report moved the camera"; return 1; }
-    hud_has $s " fps " || { echo "the viewer is gone after malformed reports"; return 1; }
+    hud_has $s " fps" || { echo "the viewer is gone after malformed reports"; return 1; }
     tm kill-session -t $s
 }
 check mouse_wheel_zooms_and_drag_orbits mouse
 
 fly_yaw() {
     keys m r o; settle m            # o: fly mode
-    tm capture-pane -t m -p | tail -n 1 | grep -q "| fly |" || { echo "status line does not say fly"; return 1; }
+    tm capture-pane -t m -p | tail -n 1 | grep -qE "\| fly( |$)" || { echo "status line does not say fly"; return 1; }
     set -- $(picture m y0); local x0=$4
     keys m Left; settle m
     set -- $(picture m y1); local x1=$4
@@ -177,7 +179,7 @@ idle() {
     local log=$OUT/pane.log
     : > "$log"
     tm pipe-pane -o -t m "cat >> $log"
-    keys m Space; sleep $((1 * SLOW)); keys m Space      # spin for a while, then stop
+    keys m Left Left Left                                # move a while, then nothing
     settle m; sleep 0.3
     local s0 s1 s2
     s0=$(stat -c %s "$log"); sleep 1; s1=$(stat -c %s "$log")
@@ -208,15 +210,15 @@ suspend_resume() {
     local s=z$RANDOM f=$OUT/stty-suspended.txt
     tm new-session -d -s $s -x 80 -y 24 bash --norc --noprofile
     tm send-keys -t $s "$(printf '%q ' "$BIN" --colors truecolor --background 40,40,40 assets/sphere.obj)" Enter
-    wait_for 15 hud_has $s " fps " || { echo "viewer did not start"; return 1; }
-    keys $s Space; settle $s
+    wait_for 15 hud_has $s " fps" || { echo "viewer did not start"; return 1; }
+    settle $s
     tm send-keys -t $s C-z
     wait_for 10 sh -c "tmux -L $SOCK capture-pane -t $s -p | grep -q Stopped" || { echo "not stopped"; return 1; }
     tm send-keys -t $s "stty -a > $f" Enter
     wait_for 10 test -s $f || return 1
     grep -qE '(^| )icanon( |$)' $f && grep -qE '(^| )echo( |$)' $f || { echo "suspended with a raw terminal"; return 1; }
     tm send-keys -t $s "clear; fg" Enter
-    wait_for 10 hud_has $s " fps " || { echo "no status line after fg"; return 1; }
+    wait_for 10 hud_has $s " fps" || { echo "no status line after fg"; return 1; }
     settle $s
     set -- $(picture $s resumed 40,40,40)
     echo "after fg: $*"
@@ -234,7 +236,7 @@ quit_ways() {
         echo "model $PWD/assets/cube.obj" > "$tag"   # a unique name to find the process by
         tm new-session -d -s $s -x 80 -y 24 \
             "sh -c 'trap \"\" INT; $(printf '%q ' "$BIN" --colors truecolor "$tag") 2>/dev/null; echo \$? > $f.rc; stty -a > $f; sleep 60'"
-        wait_for 15 hud_has $s " fps " || { echo "$how: viewer did not start"; rc=1; continue; }
+        wait_for 15 hud_has $s " fps" || { echo "$how: viewer did not start"; rc=1; continue; }
         case $how in
             TERM|HUP|SEGV|KILL) pkill -$how -f -- "^$BIN .*$tag" ;;   # rastty, not the sh around it
             # Esc with a DSR answer ("ESC [ 0 n") right behind it, inside the escape delay: what
@@ -273,6 +275,82 @@ quit_ways() {
 }
 check quit_restores_terminal quit_ways
 
+# The help overlay is drawn once, not with every frame, and q/Esc close it (not the viewer).
+help_overlay() {
+    local s=hp log=$OUT/help.log
+    start $s 100 40 --spin || return 1          # the demo, spinning: a frame every 1/60 s
+    : > $log; tm pipe-pane -o -t $s "cat >> $log"
+    keys $s h; sleep $((2 * SLOW))
+    local n; n=$(grep -ac "shading: wire flat" $log)
+    echo "help text sent $n times in 2 s of spinning"
+    [ "$n" -eq 1 ] || return 1
+    tm capture-pane -t $s -p | grep -q "shading: wire flat" || { echo "help not on screen"; return 1; }
+    keys $s q; sleep 0.5
+    tm capture-pane -t $s -p | grep -q "shading: wire flat" && { echo "q did not close the help"; return 1; }
+    hud_has $s " fps" || { echo "q quit the viewer instead of closing the help"; return 1; }
+    keys $s h Escape; sleep 0.5
+    hud_has $s " fps" || { echo "Esc quit the viewer instead of closing the help"; return 1; }
+    keys $s q
+    wait_for 5 test -s $OUT/$s.exit && grep -q EXIT=0 $OUT/$s.exit
+}
+check help_overlay_drawn_once_and_closed_by_q help_overlay
+
+# At 80 columns the status line still names the model, shading, filter, colour mode and fps.
+status80() {
+    start s80 80 24 assets/cube.obj || return 1
+    local line; line=$(tm capture-pane -t s80 -p | tail -n 1)
+    echo "status line: '$line'"
+    echo "$line" | grep -qE '^ cube\.obj \[1/1\] \| textured nearest \| truecolor \| [0-9]+ fps'
+}
+check status_line_at_80_columns status80
+
+# Auto-rotation: on for the demo, off for a model; --spin turns it on; the first camera key
+# stops it for good (Space does not bring it back); --no-spin keeps the demo still.
+spin_rules() {
+    local a b
+    start sd 80 24 || return 1
+    settle sd; a=$(tm capture-pane -t sd -e -p | head -n -1 | md5sum); sleep 0.5
+    b=$(tm capture-pane -t sd -e -p | head -n -1 | md5sum)
+    [ "$a" != "$b" ] || { echo "the demo does not spin"; return 1; }
+    keys sd Left; settle sd; a=$(tm capture-pane -t sd -e -p | head -n -1 | md5sum); sleep 0.5
+    b=$(tm capture-pane -t sd -e -p | head -n -1 | md5sum)
+    [ "$a" = "$b" ] || { echo "a camera key did not stop the spin"; return 1; }
+    keys sd Space; sleep 0.5
+    b=$(tm capture-pane -t sd -e -p | head -n -1 | md5sum)
+    [ "$a" = "$b" ] || { echo "Space restarted a spin a camera key stopped"; return 1; }
+    start sm 80 24 --spin assets/cube.obj || return 1
+    sleep 0.3; a=$(tm capture-pane -t sm -e -p | head -n -1 | md5sum); sleep 0.5
+    b=$(tm capture-pane -t sm -e -p | head -n -1 | md5sum)
+    [ "$a" != "$b" ] || { echo "--spin does not spin a model"; return 1; }
+    start sn 80 24 --no-spin || return 1
+    settle sn; a=$(tm capture-pane -t sn -e -p | head -n -1 | md5sum); sleep 0.5
+    b=$(tm capture-pane -t sn -e -p | head -n -1 | md5sum)
+    [ "$a" = "$b" ] || { echo "--no-spin: the demo spins"; return 1; }
+}
+check spin_rules spin_rules
+
+# S writes the frame as PNG and ANSI and, at exit, the render command line; running that
+# command writes the same PNG, byte for byte.
+screenshot() {
+    local d=$OUT/shots bin; mkdir -p $d; bin=$(cd "$(dirname "$BIN")" && pwd)/$(basename "$BIN")
+    tm new-session -d -s sh -x 90 -y 30 -c $d \
+        "$(printf '%q ' "$bin" --colors truecolor "$PWD/assets/demo.rsc"); sleep 60"
+    wait_for 15 hud_has sh " fps" || return 1
+    keys sh Left Up i c; settle sh; keys sh S
+    wait_for 5 test -s $d/rastty-001.png || { echo "no PNG"; return 1; }
+    test -s $d/rastty-001.ans || { echo "no ANSI"; return 1; }
+    keys sh q; sleep 0.5
+    local cmd; cmd=$(tm capture-pane -t sh -p -J | grep '^screenshot: ' | sed 's/^screenshot: //')
+    echo "printed: $cmd"
+    [ -n "$cmd" ] || return 1
+    mv $d/rastty-001.png $d/viewer.png
+    (cd $d && eval "\"$bin\" ${cmd#rastty }") || return 1
+    cmp $d/viewer.png $d/rastty-001.png || return 1
+    "$BIN" ansi2ppm $d/rastty-001.ans --out $d/ans.ppm && convert $d/viewer.png $d/png.ppm 2>/dev/null &&
+        { cmp $d/ans.ppm $d/png.ppm || return 1; } || echo "(no imagemagick: ANSI not compared)"
+}
+check screenshot_key_writes_png_ans_and_a_command_that_reproduces_it screenshot
+
 # A tag file name to find one viewer process by (pgrep -f), unique to this test run.
 tagged() { local tag=$OUT/$1-$$.rsc; echo "model $PWD/assets/cube.obj" > "$tag"; echo "$tag"; }
 pid_of() { pgrep -f -- "^$BIN .*$1" | head -n 1; }   # rastty, not a shell around it
@@ -285,7 +363,7 @@ stalled_term() {
     local s=st$RANDOM f=$OUT/stty-stalled.txt tag; tag=$(tagged stalled)
     tm new-session -d -s $s -x 120 -y 40 \
         "sh -c '$(printf '%q ' "$BIN" --colors truecolor "$tag") 2>/dev/null; echo \$? > $f.rc; stty -a > $f; sleep 60'"
-    wait_for 15 hud_has $s " fps " || { echo "viewer did not start"; return 1; }
+    wait_for 15 hud_has $s " fps" || { echo "viewer did not start"; return 1; }
     tm send-keys -t $s C-s                       # XOFF: the terminal stops taking output
     tm resize-window -t $s -x 200 -y 60          # a full frame, far more than the tty buffers
     sleep $((1 * SLOW))
@@ -308,7 +386,7 @@ stop_cont_term() {
     local s=sc$RANDOM tag; tag=$(tagged stopcont)
     tm new-session -d -s $s -x 80 -y 24 bash --norc --noprofile
     tm send-keys -t $s "$(printf '%q ' "$BIN" --colors truecolor "$tag")" Enter
-    wait_for 15 hud_has $s " fps " || { echo "viewer did not start"; return 1; }
+    wait_for 15 hud_has $s " fps" || { echo "viewer did not start"; return 1; }
     tm send-keys -t $s C-z
     wait_for 10 sh -c "tmux -L $SOCK capture-pane -t $s -p | grep -q Stopped" || { echo "not stopped"; return 1; }
     local pid; pid=$(pid_of "$tag")
@@ -326,7 +404,7 @@ check stopped_continued_viewer_ends_on_sigterm stop_cont_term
 hangup() {
     local s=hu$RANDOM tag; tag=$(tagged hangup)
     tm new-session -d -s $s -x 80 -y 24 "$(printf '%q ' "$BIN" --colors truecolor "$tag")"
-    wait_for 15 hud_has $s " fps " || { echo "viewer did not start"; return 1; }
+    wait_for 15 hud_has $s " fps" || { echo "viewer did not start"; return 1; }
     local pid; pid=$(pid_of "$tag")
     tm kill-session -t $s
     wait_for 5 gone "$pid" || { echo "still running after the hangup: $(ps -o stat=,pcpu= -p "$pid")"; kill -KILL "$pid"; return 1; }

@@ -1,0 +1,62 @@
+#!/usr/bin/env bash
+# slow_link.sh (issue 11): the viewer behind a slow link — ../shared/tools/slowlink.py, a pty
+# whose output leaves at RATE bytes/s through a deep queue, like ssh over a slow line.
+#   - key -> screen latency with the textured head spinning in truecolor, at 1 Mbit/s in
+#     160x48 and 4 Mbit/s in 320x90 (tests/e2e/lib/keylat.py presses f and times the status
+#     line): generous bounds here, the tight numbers are `make bench`'s
+#   - Ctrl-Z with a frame in flight: the status report's answer must not reach the shell
+source "$(dirname "$0")/lib/common.sh"
+
+LINK=${RASTTY_SHARED:-../shared}/tools/slowlink.py
+HEAD=$SHARED/african_head
+NAMES=(key_to_screen_at_1_mbit_160x48 key_to_screen_at_4_mbit_320x90
+       ctrl_z_with_a_frame_in_flight_leaks_nothing)
+if ! have_tmux; then
+    for n in "${NAMES[@]}"; do skip "$n" "tmux not installed"; done
+    finish
+fi
+if [ ! -f "$LINK" ] || [ ! -f "$HEAD/african_head.obj" ]; then
+    for n in "${NAMES[@]}"; do skip "$n" "no $LINK or shared african_head (../shared absent)"; done
+    finish
+fi
+
+hud_has() { tm capture-pane -t "$1" -p | tail -n 1 | grep -q -- "$2"; }
+
+# latency RATE SIZE MEDIAN_MS WORST_MS: median and worst key -> screen within the bounds
+latency() {
+    local rate=$1 size=$2 med_max=$(( $3 * SLOW )) worst_max=$(( $4 * SLOW ))
+    local out
+    out=$(/usr/bin/python3 tests/e2e/lib/keylat.py --socket "$SOCK-lat" --rate "$rate" \
+          --queue 1000000 --size "$size" --presses 8 --warmup 2 --slowlink "$LINK" -- \
+          "$BIN" --colors truecolor --spin "$HEAD/african_head.obj") || { echo "$out"; return 1; }
+    echo "$out" | tail -n 1
+    set -- $(echo "$out" | tail -n 1 | sed -E 's/.*median ([0-9]+) worst ([0-9]+).*/\1 \2/')
+    [ "$1" -le "$med_max" ] && [ "$2" -le "$worst_max" ] ||
+        { echo "want median <= $med_max ms, worst <= $worst_max ms"; return 1; }
+}
+# the issue's targets are 300 / 800 ms; today's numbers are in make bench
+check key_to_screen_at_1_mbit_160x48 latency 128000 160x48 1000 2500
+check key_to_screen_at_4_mbit_320x90 latency 512000 320x90 1000 2500
+
+# A shell behind a 20 KB/s link; the viewer spins in it (a frame is nearly always on its way
+# and its DSR answer with it); Ctrl-Z, then `fg`: the shell must read exactly "fg".
+ctrl_z() {
+    local s=cz
+    tm new-session -d -s $s -x 100 -y 30 "/usr/bin/python3 $LINK 20000 200000 -- bash --norc --noprofile"
+    sleep 0.5
+    tm send-keys -t $s "$(printf '%q ' "$BIN" --colors truecolor --spin "$HEAD/african_head.obj")" Enter
+    wait_for 30 hud_has $s " fps" || { echo "viewer did not start"; return 1; }
+    sleep 1
+    tm send-keys -t $s C-z
+    wait_for 20 sh -c "tmux -L $SOCK capture-pane -t $s -p | grep -q Stopped" || { echo "not stopped"; return 1; }
+    sleep 1                                     # anything still on its way arrives now
+    tm send-keys -t $s "fg" Enter
+    wait_for 30 hud_has $s " fps" || { echo "fg did not bring it back:"; tm capture-pane -t $s -p | grep -v '^$' | tail -4; return 1; }
+    tm send-keys -t $s q
+    wait_for 20 sh -c "tmux -L $SOCK capture-pane -t $s -p | grep -q 'fg$'" || true
+    local text; text=$(tm capture-pane -t $s -p -S - | grep -v '^$')
+    if echo "$text" | grep -qE '0n|nfg|\^\['; then echo "the answer reached the shell:"; echo "$text" | tail -5; return 1; fi
+}
+check ctrl_z_with_a_frame_in_flight_leaks_nothing ctrl_z
+
+finish

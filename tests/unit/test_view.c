@@ -1,0 +1,278 @@
+/* test_view.c: the viewer's keys, mouse, spin rules, status line and screenshot command,
+ * as pure functions of (state, event, time) — no terminal. */
+#include <math.h>
+#include <string.h>
+
+#include "options.h"
+#include "test.h"
+#include "view_hud.h"
+#include "view_shot.h"
+#include "view_state.h"
+
+static void start(struct view_state *s, bool spin)
+{
+    struct camera c;
+    camera_default(&c);
+    struct render_opts ro;
+    render_opts_default(&ro);
+    view_state_init(s, &c, &ro, spin, true, 60, 0);
+    view_state_scene(s, &c, &ro, 2);
+    s->dirty = s->hud_dirty = false;
+}
+
+/* the camera's yaw around the target, degrees (0 = looking down -Z from +Z) */
+static double yaw(const struct view_state *s)
+{
+    return atan2(s->cam.eye.x - s->cam.target.x, s->cam.eye.z - s->cam.target.z) * 180 / M_PI;
+}
+
+TEST(a_tap_turns_for_tap_s_from_the_press_however_long_the_idle)
+{
+    struct view_state s;
+    start(&s, false);
+    view_key(&s, IN_YAW_LEFT, 100.0); /* the last frame was long ago */
+    view_advance(&s, 0, 100.05);
+    view_advance(&s, 100.05, 101);
+    CHECK_NEAR(yaw(&s), -VIEW_TURN_DEG_S * VIEW_TAP_S, 1e-6); /* orbit: the eye moves right */
+    CHECK(s.dirty);
+    /* auto-repeat (presses closer than REPEAT_GAP) keeps it moving, each for REPEAT_HOLD */
+    start(&s, false);
+    view_key(&s, IN_YAW_RIGHT, 10.0);
+    view_key(&s, IN_YAW_RIGHT, 10.1);
+    view_key(&s, IN_YAW_RIGHT, 10.2);
+    view_advance(&s, 9, 12);
+    CHECK_NEAR(yaw(&s), VIEW_TURN_DEG_S * (10.2 + VIEW_REPEAT_HOLD_S - 10.0), 1e-6);
+}
+
+TEST(camera_keys_stop_the_spin_for_good_and_space_never_restarts_it)
+{
+    struct view_state s;
+    start(&s, true);
+    CHECK(view_animating(&s, 1));
+    view_key(&s, IN_PAUSE, 1);
+    CHECK(!view_animating(&s, 1.1));
+    view_key(&s, IN_PAUSE, 2);
+    CHECK(view_animating(&s, 2.1)); /* Space resumes a paused spin */
+    view_advance(&s, 2, 3);
+    CHECK_NEAR(yaw(&s), -VIEW_SPIN_DEG_S, 1e-6);
+    view_key(&s, IN_FORWARD, 4); /* a camera key */
+    CHECK(!s.spin);
+    view_advance(&s, 4, 10);
+    CHECK(!view_animating(&s, 10));
+    view_key(&s, IN_PAUSE, 11); /* does not bring it back */
+    CHECK(!view_animating(&s, 11));
+    CHECK_STR_CONTAINS(s.message, "no auto-rotation");
+    /* fov, reset and the mouse are camera keys too; o, m, f are not */
+    static const enum input_cmd stops[] = {IN_FOV_IN, IN_FOV_OUT, IN_RESET};
+    for (int i = 0; i < 3; i++) {
+        start(&s, true);
+        view_key(&s, stops[i], 1);
+        CHECK(!s.spin);
+    }
+    static const enum input_cmd keeps[] = {IN_ORBIT, IN_SHADE, IN_FILTER, IN_LIGHT, IN_HELP};
+    for (int i = 0; i < 5; i++) {
+        start(&s, true);
+        view_key(&s, keeps[i], 1);
+        CHECK(s.spin);
+    }
+    start(&s, true);
+    struct tty_event wheel = {.kind = TTY_MOUSE, .button = 4, .pressed = true};
+    view_mouse(&s, &wheel, 1);
+    CHECK(!s.spin);
+}
+
+TEST(an_untouched_spin_pauses_after_the_timeout)
+{
+    struct view_state s;
+    start(&s, true); /* timeout 60 s, last input at 0 */
+    CHECK(view_animating(&s, 59));
+    CHECK(!view_animating(&s, 61));
+    CHECK(s.paused && s.spin);
+    CHECK_STR_CONTAINS(s.message, "Space resumes");
+    view_key(&s, IN_PAUSE, 70);
+    CHECK(view_animating(&s, 71));
+    CHECK(view_animating(&s, 129)); /* the key restarted the clock */
+    CHECK(!view_animating(&s, 131));
+}
+
+TEST(mouse_wheel_zooms_and_a_drag_orbits)
+{
+    struct view_state s;
+    start(&s, false);
+    double d0 = camera_distance(&s.cam);
+    struct tty_event ev = {.kind = TTY_MOUSE, .button = 4, .pressed = true};
+    view_mouse(&s, &ev, 1);
+    CHECK_NEAR(camera_distance(&s.cam), 0.9 * d0, 1e-9);
+    ev = (struct tty_event){.kind = TTY_MOUSE, .button = 0, .mx = 30, .my = 10};
+    view_mouse(&s, &ev, 1); /* motion without a press: nothing */
+    CHECK_NEAR(yaw(&s), 0, 1e-9);
+    ev = (struct tty_event){.kind = TTY_MOUSE, .button = 1, .pressed = true, .mx = 10, .my = 10};
+    view_mouse(&s, &ev, 1);
+    ev = (struct tty_event){.kind = TTY_MOUSE, .button = 1, .released = true, .mx = 20, .my = 10};
+    view_mouse(&s, &ev, 1);
+    CHECK_NEAR(yaw(&s), 10 * 1.5, 1e-6); /* dragged right: the eye moves left around */
+    CHECK(!s.dragging);
+}
+
+TEST(q_and_esc_close_the_help_before_they_quit)
+{
+    struct view_state s;
+    start(&s, false);
+    CHECK_EQ_INT(view_key(&s, IN_HELP, 1), VIEW_HELP_OPENED);
+    CHECK_EQ_INT(view_key(&s, IN_QUIT, 2), VIEW_HELP_CLOSED);
+    CHECK(!s.help);
+    CHECK_EQ_INT(view_key(&s, IN_QUIT, 3), VIEW_QUIT);
+    CHECK_EQ_INT(view_key(&s, IN_SCREENSHOT, 4), VIEW_SCREENSHOT);
+    CHECK_EQ_INT(view_key(&s, IN_NEXT_SCENE, 4), VIEW_NEXT_SCENE);
+}
+
+TEST(render_option_keys_cycle_through_every_value)
+{
+    struct view_state s;
+    start(&s, false);
+    CHECK_STR_CONTAINS(view_shade_name(&s), "textured");
+    static const char *const names[] = {"wire", "flat", "gouraud", "phong", "textured"};
+    for (int i = 0; i < 5; i++) {
+        view_key(&s, IN_SHADE, 1);
+        CHECK_STR_CONTAINS(view_shade_name(&s), names[i]);
+    }
+    CHECK(s.ro.shade == SHADE_PHONG && s.ro.textures);
+    for (int i = 0; i < TEX_FILTER_COUNT; i++)
+        view_key(&s, IN_FILTER, 1);
+    CHECK_EQ_INT(s.ro.filter, TEX_NEAREST);
+    view_key(&s, IN_FILTER, 1);
+    CHECK_EQ_INT(s.ro.filter, TEX_BILINEAR);
+    view_key(&s, IN_CULL, 1);
+    CHECK_EQ_INT(s.ro.cull, CULL_BACK);
+    for (int i = 1; i < VIEW_COUNT; i++)
+        view_key(&s, IN_VIEW, 1);
+    CHECK_EQ_INT(s.ro.view, VIEW_COUNT - 1);
+    view_key(&s, IN_VIEW, 1);
+    CHECK_EQ_INT(s.ro.view, VIEW_COLOR);
+    /* the methods: each key cycles its axis and says which one is on */
+    view_key(&s, IN_RASTER, 1);
+    CHECK_EQ_INT(s.ro.raster, RASTER_SCANLINE);
+    CHECK_STR_CONTAINS(s.message, "rasterizer: scanline  (edge scanline tiled)");
+    for (int i = 1; i < PERSP_COUNT; i++)
+        view_key(&s, IN_PERSPECTIVE, 1);
+    CHECK_EQ_INT(s.ro.persp, PERSP_COUNT - 1);
+    view_key(&s, IN_PERSPECTIVE, 1);
+    CHECK_EQ_INT(s.ro.persp, PERSP_CORRECT);
+    view_key(&s, IN_DEPTH, 1);
+    CHECK_STR_CONTAINS(s.message, "depth buffer: w");
+    /* a new scene keeps the methods chosen with keys */
+    struct render_opts ro;
+    render_opts_default(&ro);
+    view_state_scene(&s, &s.home, &ro, 1);
+    CHECK(s.ro.raster == RASTER_SCANLINE && s.ro.depth == (enum depth_mode)1);
+}
+
+TEST(l_switches_between_the_headlight_and_the_world_lights)
+{
+    struct view_state s;
+    start(&s, false);
+    s.cam.eye = v3(-3, 0, 0);
+    struct render_opts ro;
+    view_frame_opts(&s, &ro);
+    CHECK_NEAR(ro.lights[0].dir.x, -1.0, 1e-9);
+    CHECK(ro.ambient_sky.x > 0.1);
+    view_key(&s, IN_LIGHT, 1);
+    view_frame_opts(&s, &ro);
+    CHECK(ro.lights[0].dir.x == 1 && ro.lights[0].dir.y == 1 && ro.lights[0].dir.z == 1);
+    CHECK(ro.ambient_sky.x == 0.1 && ro.ambient_ground.x == 0.1);
+}
+
+static void hud(const struct view_state *s, int width, char *out, size_t n)
+{
+    struct frame_stats st = {.tris_drawn = 2464, .tris_clipped = 3, .tris_culled = 7};
+    struct view_hud_info in = {.scene = "african_head.obj", .scene_i = 0, .n_scenes = 1,
+                               .texture = "african_head_diffuse.tga", .mode = PALETTE_TRUECOLOR,
+                               .fps = 59.6, .render_ms = 2.1, .encode_ms = 0.12, .bytes = 10240,
+                               .st = &st, .pacing = "link 125KB/s: 8fps tol 14"};
+    view_hud_compose(s, &in, width, 0, out, n);
+}
+
+TEST(the_status_line_keeps_the_essentials_first_at_80_columns)
+{
+    struct view_state s;
+    start(&s, false);
+    char line[512];
+    hud(&s, 80, line, sizeof line);
+    CHECK((int)strlen(line) <= 79);
+    CHECK(strncmp(line, " african_head.obj [1/1] | textured nearest | truecolor | 60 fps", 63) == 0);
+    CHECK(!strstr(line, "tris")); /* dropped whole, least important first */
+    if (t->failures)
+        fprintf(stderr, "    80: \"%s\"\n", line);
+    hud(&s, 250, line, sizeof line);
+    CHECK_STR_CONTAINS(line, "| link 125KB/s: 8fps tol 14 |");
+    CHECK_STR_CONTAINS(line, "| tex:african_head_diffuse.tga |");
+    CHECK_STR_CONTAINS(line, "| light:camera |");
+    CHECK_STR_CONTAINS(line, "| tris 2464 clip 3 cull 7");
+    /* every width: only whole fields (each kept field is one of the full set) */
+    char full[512];
+    strcpy(full, line);
+    for (int w = 10; w < 250; w += 7) {
+        hud(&s, w, line, sizeof line);
+        char *save, *f = strtok_r(line, "|", &save);
+        for (; f; f = strtok_r(NULL, "|", &save))
+            CHECK(strstr(full, f) != NULL);
+    }
+    /* what `i` adds, and a message replaces the line while it lasts */
+    view_key(&s, IN_INFO, 0);
+    hud(&s, 250, line, sizeof line);
+    CHECK_STR_CONTAINS(line, "eye 0.00,0.00,3.00 target 0.00,0.00,0.00 fov 50");
+    view_message(&s, "hello", 0);
+    hud(&s, 250, line, sizeof line);
+    CHECK_STR_CONTAINS(line, " hello ");
+}
+
+TEST(the_screenshot_command_reproduces_the_camera_and_methods_exactly)
+{
+    struct view_state s;
+    start(&s, false);
+    s.cam.eye = v3(0.1234567890123, -2.5e-7, 3.3333333333333335);
+    s.cam.target = v3(0.2, 0.3, -0.1);
+    s.cam.fov_deg = 47.123456789;
+    s.cam.near = 0.0123;
+    s.cam.far = 77.7;
+    view_key(&s, IN_SHADE, 0); /* wire */
+    view_key(&s, IN_SHADE, 0); /* flat, untextured */
+    view_key(&s, IN_FILTER, 0);
+    view_key(&s, IN_CULL, 0);
+    view_key(&s, IN_VIEW, 0);
+    view_key(&s, IN_RASTER, 0);
+    view_key(&s, IN_RASTER, 0);
+    view_key(&s, IN_PERSPECTIVE, 0);
+    view_key(&s, IN_DEPTH, 0);
+    char cmd[VIEW_SHOT_MAX];
+    const uint8_t bg[3] = {1, 2, 3};
+    struct view_shot_info in = {.model = "models/it's here.obj", .width = 160, .height = 94,
+                                .out = "rastty-001.png", .background_set = true,
+                                .background = bg, .sky = true};
+    view_shot_command(&s, &in, cmd, sizeof cmd);
+    CHECK_STR_CONTAINS(cmd, "rastty render 'models/it'\\''s here.obj' --size 160x94");
+    /* split like sh (the one quoted word by hand) and parse it back */
+    char buf[VIEW_SHOT_MAX];
+    strcpy(buf, strstr(cmd, "' --size") + 2);
+    char *argv[64] = {"rastty", "render", "models/it's here.obj"};
+    int argc = 3;
+    char *save, *w = strtok_r(buf, " ", &save);
+    for (; w && argc < 64; w = strtok_r(NULL, " ", &save))
+        argv[argc++] = w;
+    struct options o;
+    struct err e;
+    REQUIRE(options_parse(argc, argv, &o, &e) == 0);
+    CHECK(memcmp(&o.camera.eye, &s.cam.eye, sizeof(vec3)) == 0);
+    CHECK(memcmp(&o.camera.target, &s.cam.target, sizeof(vec3)) == 0);
+    CHECK(memcmp(&o.camera.up, &s.cam.up, sizeof(vec3)) == 0);
+    CHECK(o.camera.fov_deg == s.cam.fov_deg && o.camera.near == s.cam.near &&
+          o.camera.far == s.cam.far);
+    CHECK(o.render.shade == SHADE_FLAT && !o.render.textures);
+    CHECK(o.render.filter == s.ro.filter && o.render.cull == s.ro.cull &&
+          o.render.view == s.ro.view);
+    CHECK(o.render.raster == RASTER_TILED && o.render.persp == s.ro.persp &&
+          o.render.depth == s.ro.depth && s.ro.persp != PERSP_CORRECT);
+    CHECK(o.light_camera && o.sky_procedural && o.background_set);
+    CHECK(o.width == 160 && o.height == 94);
+    CHECK(strcmp(o.out, "rastty-001.png") == 0);
+}
