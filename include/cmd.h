@@ -35,7 +35,11 @@ int cmd_find_asset(const char *name, char *out, size_t n);
 int cmd_sky(const struct options *o, const struct scene *s, const struct render_opts *ro,
             struct skybox *tmp, const struct skybox **sky_out, struct err *e);
 /* scene_load, then --texture over every item, then the scene's warnings to stderr (one line
- * each, "warning: file:line: ..."); on failure nothing is left allocated. */
-int cmd_load_scene(const struct options *o, const char *path, struct scene *s, struct err *e);
+ * each, "warning: file:line: ..."); a model with uvs but no MTL material and no --texture
+ * gets the texture found beside it by name (texfind.h), unless --no-texture. The file found
+ * goes to found_out (size n, "" if none; may be NULL). On failure nothing is left
+ * allocated. */
+int cmd_load_scene(const struct options *o, const char *path, struct scene *s, char *found_out,
+                   size_t n, struct err *e);
 
 #endif

@@ -139,7 +139,7 @@ int cmd_dump(const struct options *o, struct err *e)
         return 2;
     }
     struct scene scene;
-    if (cmd_load_scene(o, o->inputs[0], &scene, e)) {
+    if (cmd_load_scene(o, o->inputs[0], &scene, NULL, 0, e)) {
         path_free(&cp);
         return 2;
     }

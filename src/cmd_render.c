@@ -13,6 +13,7 @@
 #include "pipeline.h"
 #include "scene.h"
 #include "ssaa.h"
+#include "texfind.h"
 
 #ifndef RASTTY_DATADIR
 #define RASTTY_DATADIR "/usr/local/share/rastty"
@@ -69,8 +70,19 @@ void cmd_view_setup(const struct options *o, const struct scene *s, double aspec
             ro->background[k] = s->background[k];
 }
 
-int cmd_load_scene(const struct options *o, const char *path, struct scene *s, struct err *e)
+/* A model as it came from a bare OBJ: one mesh, uvs, only the implicit material. */
+static bool wants_a_texture(const struct scene *s)
 {
+    const struct mesh *m = &s->meshes[0];
+    return s->n_meshes == 1 && s->n_items == 1 && m->has_uvs && m->n_textures == 0 &&
+           m->n_materials == 1 && m->materials[0].implicit;
+}
+
+int cmd_load_scene(const struct options *o, const char *path, struct scene *s, char *found_out,
+                   size_t n, struct err *e)
+{
+    if (found_out && n)
+        found_out[0] = '\0';
     if (scene_load(path, s, e))
         return -1;
     if (o->texture && scene_set_texture(s, o->texture, e)) {
@@ -82,6 +94,22 @@ int cmd_load_scene(const struct options *o, const char *path, struct scene *s, s
         fprintf(stderr, "warning: %s\n", s->warnings.msg[i]);
     if (s->warnings.dropped)
         fprintf(stderr, "warning: ... and %d more warnings\n", s->warnings.dropped);
+    size_t len = strlen(path);
+    bool model = len < 4 || strcmp(path + len - 4, ".rsc") != 0;
+    char found[4200];
+    if (!o->texture && o->render.textures && model && wants_a_texture(s) &&
+        texfind_beside(path, found, sizeof found) == 0) {
+        if (scene_set_texture(s, found, e)) {
+            char inner[sizeof e->msg];
+            memcpy(inner, e->msg, sizeof inner);
+            err_set(e, "%s (the texture found beside the model; --no-texture or --texture "
+                       "FILE to choose)", inner);
+            scene_free(s);
+            return -1;
+        }
+        if (found_out)
+            snprintf(found_out, n, "%s", found);
+    }
     return 0;
 }
 
@@ -126,7 +154,7 @@ int cmd_render(const struct options *o, struct err *e)
     struct scene scene;
     struct timespec l0, l1;
     clock_gettime(CLOCK_MONOTONIC, &l0);
-    if (cmd_load_scene(o, o->inputs[0], &scene, e))
+    if (cmd_load_scene(o, o->inputs[0], &scene, NULL, 0, e))
         return 2;
     clock_gettime(CLOCK_MONOTONIC, &l1);
     double load_ms = (l1.tv_sec - l0.tv_sec) * 1e3 + (l1.tv_nsec - l0.tv_nsec) * 1e-6;

@@ -447,8 +447,11 @@ static void texture_label(struct view *v, int i, const char *conv)
     }
     v->texture[i][0] = '\0';
     for (int m = 0; m < s->n_meshes; m++)
-        if (s->meshes[m].n_textures || s->items[m].texture_override)
+        if (s->meshes[m].n_textures)
             snprintf(v->texture[i], sizeof v->texture[i], "MTL");
+    for (int k = 0; k < s->n_items; k++)
+        if (s->items[k].texture_override)
+            snprintf(v->texture[i], sizeof v->texture[i], "scene file");
 }
 
 static int load_scenes(struct view *v, struct err *e)
@@ -470,9 +473,10 @@ static int load_scenes(struct view *v, struct err *e)
         v->scenes[i] = calloc(1, sizeof(struct scene));
         if (!v->scenes[i])
             return err_set(e, "out of memory");
-        if (cmd_load_scene(v->o, v->paths[i], v->scenes[i], e))
+        char found[4200];
+        if (cmd_load_scene(v->o, v->paths[i], v->scenes[i], found, sizeof found, e))
             return -1;
-        texture_label(v, i, NULL);
+        texture_label(v, i, found[0] ? found : NULL);
     }
     return 0;
 }

@@ -9,6 +9,7 @@ NAMES=(suspend_and_resume_repaints demo_scene_starts_and_fills_window zoom_in_gr
        tiny_and_huge_terminals quit_restores_terminal sigterm_on_a_stalled_terminal
        stopped_continued_viewer_ends_on_sigterm hung_up_terminal_ends_the_viewer
        help_overlay_drawn_once_and_closed_by_q status_line_at_80_columns spin_rules
+       status_line_names_the_texture
        screenshot_key_writes_png_ans_and_a_command_that_reproduces_it)
 if ! have_tmux; then
     for n in "${NAMES[@]}"; do skip "$n" "tmux not installed"; done
@@ -303,6 +304,18 @@ status80() {
     echo "$line" | grep -qE '^ cube\.obj \[1/1\] \| textured nearest \| truecolor \| [0-9]+ fps'
 }
 check status_line_at_80_columns status80
+
+# The status line names the texture in use: the file found beside a model, or "untextured".
+texture_named() {
+    local d=$OUT/tex; mkdir -p $d
+    grep -v '^mtllib\|^usemtl' assets/sphere.obj > $d/ball.obj
+    start tx1 200 24 $d/ball.obj || return 1
+    hud_has tx1 "| untextured |" || { tm capture-pane -t tx1 -p | tail -n 1; return 1; }
+    cp assets/checker.png $d/ball_diffuse.png
+    start tx2 200 24 $d/ball.obj || return 1
+    hud_has tx2 "| tex:ball_diffuse.png |" || { tm capture-pane -t tx2 -p | tail -n 1; return 1; }
+}
+check status_line_names_the_texture texture_named
 
 # Auto-rotation: on for the demo, off for a model; --spin turns it on; the first camera key
 # stops it for good (Space does not bring it back); --no-spin keeps the demo still.
