@@ -3,7 +3,12 @@
  *
  * Output never assumes a terminal: no initialisation codes, no alternate screen; every frame
  * starts at the home position (ESC[H), so `cat frames.ans` plays them back in place. With
- * --diff, frames after the first carry only the cells that changed. */
+ * --diff, frames after the first carry only the cells that changed.
+ * Colours: --colors, else on a terminal what it supports (termcaps.h; RASTTY_COLORS and the
+ * config file's colors count there), else — a file or a pipe — truecolor, whatever TERM
+ * says. Files and pipes get plain LF line ends (a tty playing them adds the CR).
+ * --out FILE.cast writes an asciicast v2 recording instead (cast.h): frame k at k / --fps
+ * seconds, the cursor hidden while it plays. */
 #include "cmd.h"
 
 #include <errno.h>
@@ -13,8 +18,10 @@
 #include <string.h>
 #include <sys/ioctl.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
+#include "cast.h"
 #include "decode.h"
 #include "encode.h"
 #include "file.h"
@@ -106,12 +113,18 @@ static void path_free(struct camera_path *cp)
     free(cp->target);
 }
 
-static enum palette_mode color_mode(const struct options *o)
+static enum palette_mode color_mode(const struct options *o, bool to_tty)
 {
     enum palette_mode m;
     if (o->colors && palette_mode_parse(o->colors, &m, NULL) == 0)
         return m;
-    return termcaps_detect_env(NULL);
+    return to_tty ? termcaps_detect_env(NULL) : PALETTE_TRUECOLOR;
+}
+
+static bool ends_with(const char *s, const char *suffix)
+{
+    size_t n = strlen(s), k = strlen(suffix);
+    return n >= k && strcmp(s + n - k, suffix) == 0;
 }
 
 int cmd_dump(const struct options *o, struct err *e)
@@ -149,7 +162,10 @@ int cmd_dump(const struct options *o, struct err *e)
     struct camera cam;
     struct render_opts ro;
     cmd_view_setup(o, &scene, (double)cols / (2.0 * rows), o->frame, &cam, &ro);
-    struct encode_opts eo = {.mode = color_mode(o),
+    bool to_tty = !o->out && isatty(STDOUT_FILENO);
+    bool cast = o->out && ends_with(o->out, ".cast");
+    struct encode_opts eo = {.mode = color_mode(o, to_tty),
+                             .lf_newline = !to_tty && !cast,
                              .tolerance = o->tolerance > 0 ? o->tolerance : 0,
                              .dither = o->dither,
                              .mark_frames = true};
@@ -193,7 +209,16 @@ int cmd_dump(const struct options *o, struct err *e)
         size_t n;
         struct encode_stats es_stats;
         const char *bytes = encode_fb(&es, &fb, &eo, &n, &es_stats);
-        if (fwrite(bytes, 1, n, out) != n) {
+        const char *name = strrchr(o->inputs[0], '/') ? strrchr(o->inputs[0], '/') + 1 : o->inputs[0];
+        if (cast && ((k == 0 && (cast_header(out, cols, rows, (long)time(NULL), name) ||
+                                 cast_event(out, 0, "\033[?25l", 6))) ||
+                     cast_event(out, k / o->fps, bytes, n) ||
+                     (k == frames - 1 && cast_event(out, (k + 1) / o->fps, "\033[?25h", 6)))) {
+            err_set(e, "rastty dump: %s: write failed: %s", file_quote(o->out, q, sizeof q),
+                    strerror(errno));
+            goto done;
+        }
+        if (!cast && fwrite(bytes, 1, n, out) != n) {
             err_set(e, "rastty dump: %s: write failed: %s",
                     o->out ? file_quote(o->out, q, sizeof q) : "standard output", strerror(errno));
             goto done;

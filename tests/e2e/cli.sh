@@ -36,4 +36,53 @@ else
     skip shared_head_finds_its_diffuse_texture "no shared african_head (../shared absent)"
 fi
 
+# dump to a file or a pipe: truecolor whatever TERM says (unless --colors), plain LF lines
+dump_files() {
+    local term
+    for term in dumb xterm vt100 ""; do
+        TERM=$term "$BIN" dump assets/cube.obj --frame --out $OUT/t.ans || return 1
+        grep -q $'\e\[38;2;\|\e\[48;2;' $OUT/t.ans || { echo "TERM='$term': not truecolor"; return 1; }
+        TERM=$term "$BIN" dump assets/cube.obj --frame > $OUT/p.ans || return 1
+        cmp $OUT/t.ans $OUT/p.ans || { echo "TERM='$term': the pipe differs from the file"; return 1; }
+    done
+    TERM=xterm-direct "$BIN" dump assets/cube.obj --frame --colors 256 --out $OUT/c.ans || return 1
+    grep -q $'\e\[48;5;' $OUT/c.ans && ! grep -q $'\e\[48;2;' $OUT/c.ans || { echo "--colors 256 ignored"; return 1; }
+    if grep -q $'\r' $OUT/t.ans; then echo "CR in a .ans file"; return 1; fi
+    [ "$(grep -c '' $OUT/t.ans)" -ge 23 ] || { echo "no line ends"; return 1; }
+}
+check dump_to_files_is_truecolor_with_lf_lines dump_files
+
+# --out FILE.cast: asciicast v2 — a JSON header, one JSON event per frame at k / --fps
+# seconds, whose bytes replay to the last frame.
+cast() {
+    "$BIN" dump assets/cube.obj --frame --cols 60 --rows 20 --frames 12 --orbit 8 --diff \
+        --fps 10 --out $OUT/spin.cast --ppm-dir $OUT || return 1
+    /usr/bin/python3 - $OUT/spin.cast $OUT/replay.ans <<'PY' || return 1
+import json, sys
+lines = open(sys.argv[1], encoding="utf-8").read().splitlines()
+h = json.loads(lines[0])
+assert h["version"] == 2 and h["width"] == 60 and h["height"] == 20, h
+ev = [json.loads(l) for l in lines[1:]]
+assert all(e[1] == "o" for e in ev)
+times = [e[0] for e in ev]
+assert times == sorted(times), times
+frames = [e for e in ev if e[2].startswith("\x1b[H")]
+assert [round(e[0], 6) for e in frames] == [round(k / 10, 6) for k in range(12)], times
+open(sys.argv[2], "w", encoding="utf-8", newline="").write("".join(e[2] for e in ev))
+print("cast: %d events over %.1f s" % (len(ev), times[-1]))
+PY
+    "$BIN" ansi2ppm $OUT/replay.ans --out $OUT/replay.ppm && cmp $OUT/replay.ppm $OUT/frame-0011.ppm || return 1
+    # and `asciinema play` (when installed) leaves the last frame on a terminal of that size
+    if command -v asciinema >/dev/null && have_tmux; then
+        tm new-session -d -s cast -x 60 -y 20 "asciinema play $OUT/spin.cast; touch $OUT/played; sleep 30"
+        wait_for 20 test -f $OUT/played || { echo "asciinema play did not finish"; return 1; }
+        capture cast $OUT/played.ans
+        "$BIN" ansi2ppm $OUT/played.ans --out $OUT/played.ppm &&
+            cmp $OUT/played.ppm $OUT/frame-0011.ppm || { echo "asciinema play shows another picture"; return 1; }
+    else
+        echo "(asciinema or tmux not installed: checked with python's json only)"
+    fi
+}
+check dump_out_cast_is_asciicast_v2 cast
+
 finish
