@@ -32,6 +32,7 @@ struct options {
     bool near_far_set;        /* --near or --far given */
     bool light_set, background_set;
     bool light_camera;        /* --light camera: the headlight (light.h) */
+    bool light_world;         /* config light = world: the viewer starts with the world lights */
     bool sky_procedural;      /* --sky procedural */
     bool frame;               /* --frame: fit the camera to the model's bounding sphere */
     struct render_opts render;

@@ -63,10 +63,10 @@ bool tty_stop_requested(void);
  * must be drawn again. */
 bool tty_suspend(struct tty *t);
 /* Send req, then a DSR, and collect the terminal's answer until the DSR's (which every
- * terminal sends, after the answers to anything before it) or timeout_ms. Returns the bytes
- * that came before the DSR answer in reply (NUL-terminated, at most cap - 1), or -1 on a
- * write error or a quit signal. Only before the first tty_next_event (ncurses must not have
- * read ahead). */
+ * terminal sends, after the answers to anything before it) or timeout_ms. Returns the number
+ * of bytes that came before the DSR answer, in reply (NUL-terminated, at most cap - 1), or
+ * -1 on a timeout, a write error or a quit signal. Only before the first tty_next_event
+ * (ncurses must not have read ahead). */
 int tty_query(const char *req, char *reply, size_t cap, int timeout_ms);
 /* A request whose answer (TTY_SYNC_REPLY) tells the caller the terminal has processed
  * everything written before it: append it to a frame to count frames in flight. */

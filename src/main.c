@@ -4,10 +4,14 @@
 #include <errno.h>
 #include <stdio.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "cmd.h"
+#include "config.h"
 #include "options.h"
 #include "view.h"
+
+extern char **environ;
 
 #define RASTTY_VERSION "0.1.0"
 
@@ -30,6 +34,19 @@ int main(int argc, char **argv)
     if (options_parse(argc, argv, &o, &e)) {
         fprintf(stderr, "%s\n", e.msg);
         return 2;
+    }
+    /* the user's defaults (config.h): the viewer's, and dump's colours on a terminal */
+    static struct config cfg;
+    bool dump_tty = o.cmd == CMD_DUMP && !o.out && isatty(STDOUT_FILENO);
+    if (o.cmd == CMD_VIEW || dump_tty) {
+        if (config_load((const char *const *)environ, &cfg, &e)) {
+            fprintf(stderr, "%s\n", e.msg);
+            return 2;
+        }
+        if (o.cmd == CMD_VIEW)
+            config_apply(&cfg, &o);
+        else if (!o.colors && cfg.colors[0])
+            o.colors = cfg.colors;
     }
     int rc;
     switch (o.cmd) {

@@ -1,10 +1,16 @@
 /* termcaps.c: colour-mode detection (see termcaps.h for the rules). */
 #include "termcaps.h"
 
+#include <errno.h>
 #include <fcntl.h>
+#include <signal.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <sys/select.h>
+#include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <curses.h>
@@ -66,7 +72,17 @@ static const char *truecolor_hint(const char *const *envp, const char *term)
     for (size_t i = 0; i < sizeof TRUECOLOR_TERMS / sizeof TRUECOLOR_TERMS[0]; i++)
         if (str_starts(term, TRUECOLOR_TERMS[i]))
             return "TERM";
+    if (strcmp(term, "st") == 0 || str_starts(term, "st-")) /* suckless st: 24-bit */
+        return "TERM";
     return NULL;
+}
+
+/* xterm's patch level from XTERM_VERSION ("XTerm(379)"), 0 if none. */
+static int xterm_patch(const char *const *envp)
+{
+    const char *v = env_get(envp, "XTERM_VERSION");
+    const char *p = v ? strchr(v, '(') : NULL;
+    return p ? atoi(p + 1) : 0;
 }
 
 static enum palette_mode decide(const char **why, const char *reason, enum palette_mode m)
@@ -100,7 +116,12 @@ enum palette_mode termcaps_detect(const char *const *envp, const struct termcaps
     if (ti->found && ti->rgb)
         return decide(why, "terminfo RGB/Tc", PALETTE_TRUECOLOR);
 
-    bool has_256 = strstr(term, "256color") || ti->colors >= 256 || in_tmux;
+    /* xterm sets XTERM_VERSION; its default TERM=xterm claims 8 colours: 24-bit colour since
+     * patch 331, 256 since patch 111 */
+    int xterm = str_starts(term, "xterm") && !in_screen ? xterm_patch(envp) : 0;
+    if (xterm >= 331 && !in_tmux)
+        return decide(why, "XTERM_VERSION (patch 331+)", PALETTE_TRUECOLOR);
+    bool has_256 = strstr(term, "256color") || ti->colors >= 256 || in_tmux || xterm > 0;
     const char *hint = truecolor_hint(envp, term);
     if (hint && (has_256 || strcmp(hint, "TERM") == 0) && !in_screen)
         return decide(why, "known truecolor terminal", PALETTE_TRUECOLOR);
@@ -146,4 +167,119 @@ enum palette_mode termcaps_detect_env(const char **why_out)
     struct termcaps_terminfo ti;
     termcaps_terminfo(getenv("TERM"), &ti);
     return termcaps_detect((const char *const *)environ, &ti, why_out);
+}
+
+/* Terminals whose XTVERSION name means 24-bit colour. */
+static const char *const TRUECOLOR_NAMES[] = {"tmux", "kitty", "WezTerm", "foot", "contour",
+                                              "iTerm2", "ghostty", "mintty", "Konsole"};
+
+/* The body of the next DCS string (ESC P ... ESC \) in *p, NUL-terminated into out; advances
+ * *p past it. 0 when there is none. */
+static int next_dcs(const char **p, char *out, size_t n)
+{
+    const char *s = strstr(*p, "\033P");
+    if (!s)
+        return 0;
+    s += 2;
+    const char *e = strstr(s, "\033\\");
+    size_t len = e ? (size_t)(e - s) : strlen(s);
+    len = len < n - 1 ? len : n - 1;
+    memcpy(out, s, len);
+    out[len] = '\0';
+    *p = e ? e + 2 : s + strlen(s);
+    return 1;
+}
+
+enum palette_mode termcaps_from_reply(enum palette_mode env, const char *reply,
+                                      const char **why_out)
+{
+    const char *why_dummy;
+    const char **why = why_out ? why_out : &why_dummy;
+    char d[256];
+    for (const char *p = reply; next_dcs(&p, d, sizeof d);) {
+        if (d[0] == '>' && d[1] == '|') { /* XTVERSION: ">|name(version)" or ">|name version" */
+            for (size_t i = 0; i < sizeof TRUECOLOR_NAMES / sizeof TRUECOLOR_NAMES[0]; i++)
+                if (str_starts(d + 2, TRUECOLOR_NAMES[i]))
+                    return decide(why, "XTVERSION names a truecolor terminal", PALETTE_TRUECOLOR);
+            if (str_starts(d + 2, "XTerm(") && atoi(d + 8) >= 331)
+                return decide(why, "XTVERSION: xterm patch 331+", PALETTE_TRUECOLOR);
+        } else if (str_starts(d, "1$r")) { /* DECRQSS: our colour, as the terminal keeps it */
+            if (strstr(d, "48:2::1:2:3") || strstr(d, "48:2:1:2:3") || strstr(d, "48;2;1;2;3"))
+                return decide(why, "DECRQSS: the terminal keeps 24-bit colour", PALETTE_TRUECOLOR);
+        } else if (str_starts(d, "1+r524742")) { /* XTGETTCAP: RGB is known */
+            return decide(why, "XTGETTCAP: RGB", PALETTE_TRUECOLOR);
+        }
+    }
+    *why = "no terminal answer said truecolor";
+    return env;
+}
+
+int termcaps_tmux_rgb(const char *features)
+{
+    if (!features || !*features)
+        return -1;
+    char buf[512];
+    snprintf(buf, sizeof buf, ",%s,", features);
+    buf[strcspn(buf, "\n")] = '\0';
+    return strstr(buf, ",RGB,") != NULL;
+}
+
+int termcaps_tmux_features(char *out, size_t n)
+{
+    if (n)
+        out[0] = '\0';
+    if (!getenv("TMUX") || !*getenv("TMUX") || n < 2)
+        return -1;
+    int fd[2];
+    if (pipe(fd))
+        return -1;
+    pid_t pid = fork();
+    if (pid < 0) {
+        close(fd[0]);
+        close(fd[1]);
+        return -1;
+    }
+    if (pid == 0) {
+        int null = open("/dev/null", O_RDWR);
+        dup2(fd[1], STDOUT_FILENO);
+        if (null >= 0) {
+            dup2(null, STDIN_FILENO);
+            dup2(null, STDERR_FILENO);
+        }
+        execlp("tmux", "tmux", "display-message", "-p", "#{client_termfeatures}", (char *)NULL);
+        _exit(127);
+    }
+    close(fd[1]);
+    size_t len = 0;
+    bool eof = false;
+    struct timespec t0, t;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    for (;;) {
+        clock_gettime(CLOCK_MONOTONIC, &t);
+        long left = 1000 - (long)((t.tv_sec - t0.tv_sec) * 1000 + (t.tv_nsec - t0.tv_nsec) / 1000000);
+        fd_set rd;
+        FD_ZERO(&rd);
+        FD_SET(fd[0], &rd);
+        struct timeval tv = {left / 1000, (left % 1000) * 1000};
+        if (left <= 0 || select(fd[0] + 1, &rd, NULL, NULL, &tv) <= 0)
+            break;
+        ssize_t r = read(fd[0], out + len, n - 1 - len);
+        if (r < 0 && errno == EINTR)
+            continue;
+        if (r <= 0 || (len += (size_t)r) >= n - 1) {
+            eof = r == 0;
+            break;
+        }
+    }
+    out[len] = '\0';
+    close(fd[0]);
+    int status;
+    if (!eof) /* no answer within a second: do not wait for it */
+        kill(pid, SIGKILL);
+    while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
+        ;
+    if (!eof)
+        return -1;
+    out[strcspn(out, "\n")] = '\0';
+    return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? 0 : -1;
 }

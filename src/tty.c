@@ -275,7 +275,7 @@ int tty_query(const char *req, char *reply, size_t cap, int timeout_ms)
         int left = timeout_ms - (int)((t1.tv_sec - t0.tv_sec) * 1000 +
                                       (t1.tv_nsec - t0.tv_nsec) / 1000000);
         if (left <= 0 || quit_signal || !wait_input(STDIN_FILENO, left))
-            return quit_signal ? -1 : (int)len; /* no answer to DSR in time */
+            return -1; /* no answer to DSR in time (what came is in reply) */
         char buf[256];
         ssize_t n = read(STDIN_FILENO, buf, sizeof buf);
         if (n <= 0)

@@ -481,14 +481,40 @@ static int load_scenes(struct view *v, struct err *e)
     return 0;
 }
 
+#define QUERY_MS 500 /* a terminal that does not answer DSR within this is not asked again */
+
 /* The colour mode: --colors (or RASTTY_COLORS, or the config file, which main put there),
- * else what the environment says. */
-static enum palette_mode colour_mode(const struct options *o)
+ * else what the environment says (termcaps.h); *ask_out: 256 or 16 and nothing explicit,
+ * so the terminal itself may know better. Inside tmux, tmux's record of its client. */
+static enum palette_mode colour_mode(const struct options *o, bool *ask_out)
 {
     enum palette_mode m;
+    *ask_out = false;
     if (o->colors && palette_mode_parse(o->colors, &m, NULL) == 0)
         return m;
-    return termcaps_detect_env(NULL);
+    m = termcaps_detect_env(NULL);
+    if (m != PALETTE_256 && m != PALETTE_16)
+        return m;
+    char features[512];
+    int rgb = termcaps_tmux_features(features, sizeof features) == 0 ? termcaps_tmux_rgb(features)
+                                                                     : -1;
+    if (rgb >= 0) /* a client is attached: tmux knows whether it passes 24-bit colour on */
+        return rgb ? PALETTE_TRUECOLOR : m;
+    *ask_out = true;
+    return m;
+}
+
+/* Ask the terminal (termcaps.h, TERMCAPS_QUERY); its DSR answer also measures the round
+ * trip for the pacing. */
+static void ask_terminal(struct view *v)
+{
+    char reply[1024];
+    double t0 = now_s();
+    if (tty_query(TERMCAPS_QUERY, reply, sizeof reply, QUERY_MS) < 0)
+        return;
+    pace_sent(&v->pace, t0, sizeof TERMCAPS_QUERY - 1 + sizeof TTY_SYNC_REQUEST - 1, 0, 1);
+    pace_answer(&v->pace, now_s());
+    v->mode = termcaps_from_reply(v->mode, reply, NULL);
 }
 
 int view_run(const struct options *o, struct err *e)
@@ -502,13 +528,13 @@ int view_run(const struct options *o, struct err *e)
         goto out;
     /* the demo spins unless told not to; a model given on the command line does not */
     bool spin = o->spin >= 0 ? o->spin : o->n_inputs == 0;
-    bool headlight = o->light_camera || !o->light_set;
+    bool headlight = o->light_camera || (!o->light_set && !o->light_world);
     struct camera cam;
     camera_default(&cam);
     view_state_init(&v->s, &cam, &o->render, spin, headlight,
                     o->spin_timeout >= 0 ? o->spin_timeout : VIEW_SPIN_TIMEOUT_S, now_s());
-    v->mode = colour_mode(o);
-    v->eo.mode = v->mode;
+    bool ask;
+    v->mode = colour_mode(o, &ask);
     /* over ssh, default to a small tolerance: far fewer bytes, invisible change */
     bool ssh = getenv("SSH_CONNECTION") || getenv("SSH_TTY");
     v->eo.tolerance = o->tolerance >= 0 ? o->tolerance : ssh ? 3 : 0;
@@ -523,6 +549,9 @@ int view_run(const struct options *o, struct err *e)
         rc = 2;
         goto out_tty;
     }
+    if (ask)
+        ask_terminal(v);
+    v->eo.mode = v->mode;
     if (resize(v, e) == 0) {
         enter_scene(v);
         rc = loop(v, e) ? 1 : 0;

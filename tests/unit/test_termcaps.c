@@ -60,6 +60,16 @@ TEST(detect_table_of_environments)
         /* a hint on a 16-colour TERM does not upgrade it, a truecolor TERM name does */
         {{"TERM=linux", "KITTY_WINDOW_ID=1"}, TI_8, PALETTE_16},
         {{"TERM=xterm-kitty"}, TI_NONE, PALETTE_TRUECOLOR},
+        /* xterm says its patch level: 24-bit since 331, 256 colours before, even with its
+         * default TERM=xterm (terminfo: 8); a stale XTERM_VERSION on a console changes nothing */
+        {{"TERM=xterm", "XTERM_VERSION=XTerm(379)"}, TI_8, PALETTE_TRUECOLOR},
+        {{"TERM=xterm", "XTERM_VERSION=XTerm(330)"}, TI_8, PALETTE_256},
+        {{"TERM=linux", "XTERM_VERSION=XTerm(379)"}, TI_8, PALETTE_16},
+        /* st: 24-bit; urxvt approximates 24-bit, so 256 (or 16 for its 88-colour entry) */
+        {{"TERM=st-256color"}, TI_256, PALETTE_TRUECOLOR},
+        {{"TERM=st"}, TI_8, PALETTE_TRUECOLOR},
+        {{"TERM=rxvt-unicode-256color", "COLORTERM=rxvt-xpm"}, TI_256, PALETTE_256},
+        {{"TERM=rxvt-unicode", "COLORTERM=rxvt-xpm"}, {true, false, 88}, PALETTE_16},
         /* fallbacks */
         {{"TERM=xterm-256color"}, TI_NONE, PALETTE_256},
         {{"TERM=rxvt-unicode"}, TI_256, PALETTE_256}, /* terminfo says 256 */
@@ -105,4 +115,43 @@ TEST(terminfo_lookup_reads_rgb_and_colors_without_keeping_state)
     if (termcaps_terminfo("vt100", &ti) == 0)
         CHECK(ti.colors < 8);
     CHECK(cur_term == before);
+}
+
+TEST(terminal_answers_decide_truecolor)
+{
+    /* answers recorded from the terminals (tmux 3.3a verbatim; others as their docs show) */
+    static const struct {
+        const char *who, *reply;
+        enum palette_mode want;
+    } rows[] = {
+        {"tmux", "\033P>|tmux 3.3a\033\\", PALETTE_TRUECOLOR},
+        {"xterm 379", "\033P>|XTerm(379)\033\\\033P1$r0;48:2::1:2:3m\033\\", PALETTE_TRUECOLOR},
+        {"xterm 330", "\033P>|XTerm(330)\033\\\033P1$r0;48;5;16m\033\\", PALETTE_256},
+        {"DECRQSS only", "\033P1$r0;48;2;1;2;3m\033\\", PALETTE_TRUECOLOR},
+        {"kitty", "\033P>|kitty(0.26.5)\033\\\033P1+r524742=38\033\\", PALETTE_TRUECOLOR},
+        {"XTGETTCAP only", "\033P1+r524742\033\\", PALETTE_TRUECOLOR},
+        {"XTGETTCAP: unknown", "\033P0+r524742\033\\", PALETTE_256},
+        {"DECRQSS: invalid", "\033P0$r\033\\", PALETTE_256},
+        {"urxvt, screen: nothing", "", PALETTE_256},
+        {"garbage", "\033P>|", PALETTE_256},
+        {"a key typed meanwhile", "x\033P>|foot(1.16)\033\\", PALETTE_TRUECOLOR},
+    };
+    for (size_t i = 0; i < sizeof rows / sizeof rows[0]; i++) {
+        const char *why = NULL;
+        enum palette_mode got = termcaps_from_reply(PALETTE_256, rows[i].reply, &why);
+        if (got != rows[i].want)
+            test_fail(t, __FILE__, __LINE__, "%s: got %s (%s)", rows[i].who,
+                      palette_mode_name(got), why ? why : "?");
+        CHECK(why != NULL);
+    }
+    CHECK_EQ_INT(termcaps_from_reply(PALETTE_16, "", NULL), PALETTE_16);
+}
+
+TEST(tmux_client_features_say_rgb_or_not)
+{
+    CHECK_EQ_INT(termcaps_tmux_rgb("256,bpaste,ccolour,clipboard,RGB,title\n"), 1);
+    CHECK_EQ_INT(termcaps_tmux_rgb("RGB"), 1);
+    CHECK_EQ_INT(termcaps_tmux_rgb("256,title,RGBX"), 0);
+    CHECK_EQ_INT(termcaps_tmux_rgb(""), -1); /* no client attached */
+    CHECK_EQ_INT(termcaps_tmux_rgb(NULL), -1);
 }
