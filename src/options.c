@@ -5,6 +5,7 @@
 #include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "fb.h"
 #include "ssaa.h"
@@ -435,6 +436,49 @@ int options_parse_rate(const char *s, double *bytes_s_out)
     return 0;
 }
 
+/* Edit distance (insertions, deletions, substitutions, adjacent swaps) between a[0..la)
+ * and b; saturates at 9 (only small distances matter). */
+static int distance(const char *a, size_t la, const char *b)
+{
+    size_t lb = strlen(b);
+    if (la > 40 || lb > 40)
+        return 9;
+    int d[41][41];
+    for (size_t i = 0; i <= la; i++)
+        for (size_t j = 0; j <= lb; j++) {
+            if (i == 0 || j == 0) {
+                d[i][j] = (int)(i + j);
+                continue;
+            }
+            int best = d[i - 1][j - 1] + (a[i - 1] != b[j - 1]);
+            best = d[i - 1][j] + 1 < best ? d[i - 1][j] + 1 : best;
+            best = d[i][j - 1] + 1 < best ? d[i][j - 1] + 1 : best;
+            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] &&
+                d[i - 2][j - 2] + 1 < best)
+                best = d[i - 2][j - 2] + 1;
+            d[i][j] = best;
+        }
+    return d[la][lb] < 9 ? d[la][lb] : 9;
+}
+
+/* The name closest to word among n names (stride bytes apart), if close enough to be a typo:
+ * at most 2 edits, and fewer than half the word. */
+static const char *nearest(const char *word, size_t len, const char *const *names, size_t n,
+                           size_t stride)
+{
+    const char *best = NULL;
+    int best_d = 3;
+    for (size_t i = 0; i < n; i++) {
+        const char *name = *(const char *const *)((const char *)names + i * stride);
+        int d = distance(word, len, name);
+        if (d < best_d && 2 * (size_t)d < len) {
+            best_d = d;
+            best = name;
+        }
+    }
+    return best;
+}
+
 int options_parse(int argc, char **argv, struct options *o, struct err *e)
 {
     defaults(o);
@@ -448,6 +492,14 @@ int options_parse(int argc, char **argv, struct options *o, struct err *e)
                 o->cmd = (enum options_cmd)c;
                 i = 2;
             }
+        /* not a subcommand, not a file, no dot or slash, but close to a subcommand: a typo */
+        const char *near = nearest(argv[1], strlen(argv[1]), cmd_names, CMD_COUNT,
+                                   sizeof cmd_names[0]);
+        if (i == 1 && near && !strpbrk(argv[1], "./") && access(argv[1], F_OK) != 0) {
+            char q[80];
+            return err_set(e, "rastty: unknown subcommand '%s' (did you mean %s? see rastty --help)",
+                           err_quote(argv[1], strlen(argv[1]), 60, q, sizeof q), near);
+        }
     }
     enum options_cmd cmd = o->cmd;
     bool only_inputs = false;
@@ -463,6 +515,8 @@ int options_parse(int argc, char **argv, struct options *o, struct err *e)
             only_inputs = true;
             continue;
         }
+        if (strcmp(a, "-h") == 0)
+            a = "--help";
         const char *eq = strchr(a, '=');
         size_t len = eq ? (size_t)(eq - a) : strlen(a);
         /* a name may mean different things to different subcommands (--frame): take the
@@ -475,9 +529,23 @@ int options_parse(int argc, char **argv, struct options *o, struct err *e)
                     f = &flags[k];
             }
         char q[80];
-        if (!named)
+        if (!named) {
+            /* the nearest flag of this subcommand, else of any */
+            const char *mine[sizeof flags / sizeof flags[0]];
+            size_t n_mine = 0;
+            for (size_t k = 0; k < sizeof flags / sizeof flags[0]; k++)
+                if (flags[k].cmds & (1u << cmd))
+                    mine[n_mine++] = flags[k].name;
+            const char *near = nearest(a, len, mine, n_mine, sizeof mine[0]);
+            if (!near)
+                near = nearest(a, len, &flags[0].name, sizeof flags / sizeof flags[0],
+                               sizeof flags[0]);
+            if (near)
+                return err_set(e, "rastty: unknown option '%s' (did you mean %s? see rastty --help)",
+                               err_quote(a, len, 60, q, sizeof q), near);
             return err_set(e, "rastty: unknown option '%s' (see rastty --help)",
                            err_quote(a, len, 60, q, sizeof q));
+        }
         if (!f)
             return err_set(e, "rastty %s: %s does not apply here (see rastty --help)",
                            cmd_names[cmd], named->name);
@@ -515,8 +583,8 @@ void options_usage(FILE *out)
     for (size_t k = 0; k < sizeof flags / sizeof flags[0]; k++) {
         const struct flag *f = &flags[k];
         char left[48];
-        snprintf(left, sizeof left, "%s%s%s", f->name, f->metavar ? " " : "",
-                 f->metavar ? f->metavar : "");
+        snprintf(left, sizeof left, "%s%s%s%s", f->name, f->id == F_HELP ? ", -h" : "",
+                 f->metavar ? " " : "", f->metavar ? f->metavar : "");
         if (f->arg == ARG_ENUM) {
             char names[160];
             int def;

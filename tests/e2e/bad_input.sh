@@ -51,7 +51,9 @@ check corrupt_texture expect 2 "fake.png" "$BIN" render assets/cube.obj --textur
 check scene_file_error_names_line expect 2 "bad.rsc:3:" "$BIN" render $D/bad.rsc --out $OUT/x.png
 check random_bytes_obj expect 2 "random.obj" "$BIN" render $D/random.obj --out $OUT/x.png
 check bad_flag_value expect 2 "--fov" "$BIN" render assets/cube.obj --fov abc --out $OUT/x.png
-check unknown_flag expect 2 "unknown option" "$BIN" render assets/cube.obj --frobnicate --out $OUT/x.png
+check unknown_flag expect 2 "unknown option '--frobnicate' \\(see" "$BIN" render assets/cube.obj --frobnicate --out $OUT/x.png
+check unknown_flag_suggests_the_nearest expect 2 "unknown option '--fames' \\(did you mean --frames\\?" "$BIN" dump assets/cube.obj --fames 3
+check unknown_subcommand_suggests_the_nearest expect 2 "unknown subcommand 'rendr' \\(did you mean render\\?" "$BIN" rendr assets/cube.obj --out $OUT/x.png
 check bad_light_value expect 2 "--light: .*camera" "$BIN" render assets/cube.obj --light cam --out $OUT/x.png
 check bad_sky_value expect 2 "--sky: expected procedural" "$BIN" render assets/cube.obj --sky cloudy --out $OUT/x.png
 check zero_size expect 2 "--size" "$BIN" render assets/cube.obj --size 0x0 --out $OUT/x.png

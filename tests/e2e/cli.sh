@@ -4,6 +4,13 @@
 source "$(dirname "$0")/lib/common.sh"
 
 HEAD=$SHARED/african_head
+# -h is --help
+short_help() {
+    "$BIN" -h > $OUT/h.txt && "$BIN" --help > $OUT/help.txt && cmp $OUT/h.txt $OUT/help.txt &&
+        grep -q -- "--help, -h" $OUT/help.txt && "$BIN" render -h | cmp - $OUT/help.txt
+}
+check dash_h_is_help short_help
+
 # A model without an MTL gets the texture beside it by name; --no-texture turns that off;
 # a corrupt texture found that way is an error that says how to avoid it.
 convention() {
