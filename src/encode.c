@@ -130,6 +130,9 @@ struct emitter {
     const char *limit; /* budgeted passes: no cell may end beyond this; NULL = no limit */
     int newline;       /* bytes to go down a row and back to column 0: 2 (CR LF) or 1 (LF) */
     bool capped;       /* a cell was left because the limit was reached */
+    double lambda2;    /* a second, lower price for cells lambda leaves (0 = none), when the
+                        * bytes still owed to lambda's cells (reserve) leave room */
+    long reserve;
 };
 
 /* "38;2;R;G;B;" / "48;5;I;" / "9I;" ... for one colour, with a trailing ';'. */
@@ -579,6 +582,7 @@ HOT int sq_diff(uint32_t shown, const uint8_t *px)
 /* What a cell the terminal may not show at all "costs" if left alone: four times the worst
  * real error, so such cells go first (they are what a cleared or resized screen shows). */
 #define UNKNOWN_SQ (4 * 6 * 255 * 255)
+#define RD_SLACK 32 /* bytes kept free for the owed cells' cursor moves and colour changes */
 
 /* Bytes of one colour's SGR parameters, trailing ';' included (put_colour's length). */
 HOT int colour_len(enum palette_mode mode, uint32_t c, bool bg)
@@ -696,8 +700,27 @@ HOT void emit_rows(struct encode_screen *s, struct emitter *em, const uint8_t *r
                 if (lambda > 0) {
                     int d_skip = unknown ? UNKNOWN_SQ
                                          : sq_diff(scr[c].top, pt) + sq_diff(scr[c].bot, pb);
-                    bool draw = rd_choose(s, em, mode, r, c, tgt[c], d_skip, pt, pb, lambda,
-                                          &shown);
+                    bool draw;
+                    if (em->lambda2 > 0) {
+                        /* lambda's cells, judged as if alone on the screen (cursor unknown,
+                         * no colours to reuse): a set the cells drawn around it cannot grow */
+                        struct emitter alone = *em;
+                        alone.fg = alone.bg = NO_COLOUR;
+                        alone.row = alone.col = -1;
+                        struct encode_cell unused;
+                        draw = rd_choose(s, &alone, mode, r, c, tgt[c], d_skip, pt, pb, lambda,
+                                         &unused) &&
+                               rd_choose(s, em, mode, r, c, tgt[c], d_skip, pt, pb, lambda, &shown);
+                    } else {
+                        draw = rd_choose(s, em, mode, r, c, tgt[c], d_skip, pt, pb, lambda, &shown);
+                    }
+                    bool owed = draw;
+                    if (!draw && em->lambda2 > 0 &&
+                        rd_choose(s, em, mode, r, c, tgt[c], d_skip, pt, pb, em->lambda2, &shown)) {
+                        long cost = move_len(em, r, c) + draw_len(em, mode, shown.top, shown.bot);
+                        long owing = em->reserve > 0 ? em->reserve : 0;
+                        draw = em->p + cost + owing + RD_SLACK <= em->limit;
+                    }
                     if (draw && em->p + move_len(em, r, c) +
                                         draw_len(em, mode, shown.top, shown.bot) > em->limit) {
                         draw = false; /* the budget is spent: a later frame draws it */
@@ -708,8 +731,10 @@ HOT void emit_rows(struct encode_screen *s, struct emitter *em, const uint8_t *r
                         em->st->max_err = dmax > em->st->max_err ? dmax : em->st->max_err;
                         continue;
                     }
+                    char *before = em->p;
                     goto_cell(em, r, c, tgt, scr);
                     draw_cell(em, mode, shown);
+                    em->reserve -= owed ? (long)(em->p - before) : 0;
                     scr[c] = shown;
                     em->st->cells_drawn++;
                     if (shown.top != tgt[c].top || shown.bot != tgt[c].bot) {
@@ -735,15 +760,15 @@ HOT void emit_rows(struct encode_screen *s, struct emitter *em, const uint8_t *r
  * updated, the frame's first byte in *start_out; returns its length. */
 static size_t encode_pass(struct encode_screen *s, const uint8_t *rgb, int h,
                           const struct encode_opts *o, int tol, bool full, bool home,
-                          double lambda, struct encode_stats *st, char **start_out,
-                          bool *capped_out)
+                          double lambda, double lambda2, long reserve,
+                          struct encode_stats *st, char **start_out, bool *capped_out)
 {
     char *body = s->out + PREFIX_BYTES;
     /* the budget, less what may follow the body (reset, synchronized output) or precede it */
     size_t room = o->budget > ENCODE_FRAME_MAX_BYTES ? o->budget - ENCODE_FRAME_MAX_BYTES : 0;
     struct emitter em = {body, NO_COLOUR, NO_COLOUR, home ? 0 : -1, home ? 0 : -1,
                          s->cols, o->mode, st, 0, 0, lambda > 0 ? body + room : NULL,
-                         o->lf_newline ? 1 : 2, false};
+                         o->lf_newline ? 1 : 2, false, lambda2, reserve};
     switch (o->mode) { /* one instantiation of the cell loop per mode */
     case PALETTE_TRUECOLOR:
         emit_rows(s, &em, rgb, h, o, tol, full, lambda, PALETTE_TRUECOLOR);
@@ -786,10 +811,13 @@ static size_t encode_pass(struct encode_screen *s, const uint8_t *rgb, int h,
  * budget: its size is the demand); if that is too big, search lambda (from the last frame's)
  * for the frame that spends the budget best, at most RD_PASSES passes. A pass never exceeds
  * the budget: when it would, it leaves the remaining cells ("capped": lambda was too small,
- * and the cells drawn were chosen in raster order, not by value). The answer is the smallest
- * lambda that is not capped, if it fills RD_CLOSE_ENOUGH of the budget, else the largest
- * capped one (many cells may share one price, e.g. a uniform fade: no lambda splits them).
- * The screen model is restored from s->saved before each retry. */
+ * and the cells drawn were chosen in raster order, not by value). The answer is hi, the
+ * smallest lambda that is not capped, if it fills RD_CLOSE_ENOUGH of the budget; else hi's
+ * cells plus, in the bytes hi leaves, cells lo (the largest capped lambda) would draw, in
+ * raster order (many cells may share one price — a uniform fade, a cleared screen — and no
+ * lambda splits them; hi's cells first, so the raster order never starves the valuable
+ * ones at the end of the screen). The screen model is restored from s->saved before each
+ * retry. */
 #define RD_PASSES 10
 #define RD_CLOSE_ENOUGH 0.92
 #define RD_FIRST_LAMBDA 64.0
@@ -801,7 +829,7 @@ static size_t encode_budget(struct encode_screen *s, const uint8_t *rgb, int h,
     size_t n_cells = (size_t)s->cols * (size_t)s->rows;
     memcpy(s->saved, s->cells, n_cells * sizeof *s->cells);
     struct encode_stats first = *st;
-    size_t demand = encode_pass(s, rgb, h, o, tol, full, home, 0, st, start_out, NULL);
+    size_t demand = encode_pass(s, rgb, h, o, tol, full, home, 0, 0, 0, st, start_out, NULL);
     st->demand = demand;
     if (demand <= o->budget) {
         s->lambda = 0;
@@ -815,7 +843,7 @@ static size_t encode_budget(struct encode_screen *s, const uint8_t *rgb, int h,
         memcpy(s->cells, s->saved, n_cells * sizeof *s->cells);
         *st = first;
         bool capped;
-        n = encode_pass(s, rgb, h, o, tol, false, home_rd, lambda, st, start_out, &capped);
+        n = encode_pass(s, rgb, h, o, tol, false, home_rd, lambda, 0, 0, st, start_out, &capped);
         last = lambda;
         if (!capped) {
             hi = lambda;
@@ -830,12 +858,13 @@ static size_t encode_budget(struct encode_screen *s, const uint8_t *rgb, int h,
             break;
         lambda = next;
     }
-    double best = hi > 0 && (lo == 0 || (double)hi_n >= RD_CLOSE_ENOUGH * (double)o->budget)
-                      ? hi : lo;
-    if (best != last) {
+    bool hi_fills = hi > 0 && (lo == 0 || (double)hi_n >= RD_CLOSE_ENOUGH * (double)o->budget);
+    double best = hi > 0 ? hi : lo;
+    if (best != last || !hi_fills) {
         memcpy(s->cells, s->saved, n_cells * sizeof *s->cells);
         *st = first;
-        n = encode_pass(s, rgb, h, o, tol, false, home_rd, best, st, start_out, NULL);
+        n = encode_pass(s, rgb, h, o, tol, false, home_rd, hi > 0 ? hi : HUGE_VAL,
+                        hi_fills ? 0 : lo, (long)hi_n, st, start_out, NULL);
     }
     st->demand = demand;
     st->lambda = best;
@@ -863,7 +892,7 @@ const char *encode_frame(struct encode_screen *s, const uint8_t *rgb, int w, int
     if (o->budget > 0 && o->mode != PALETTE_NONE) {
         n = encode_budget(s, rgb, h, o, tol, st.full, home, &st, &start);
     } else {
-        n = encode_pass(s, rgb, h, o, tol, st.full, home, 0, &st, &start, NULL);
+        n = encode_pass(s, rgb, h, o, tol, st.full, home, 0, 0, 0, &st, &start, NULL);
         st.demand = n;
     }
     s->valid = true;

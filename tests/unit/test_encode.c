@@ -903,3 +903,33 @@ TEST(lf_newline_frames_use_bare_lf_and_decode_the_same)
     encode_screen_free(&a);
     encode_screen_free(&b);
 }
+
+TEST(a_budget_spends_bytes_on_the_worst_cells_first_wherever_they_are)
+{
+    /* Every cell fades a little (many cells, one price), and the last cell on the screen
+     * turns from black to white. The budget holds a fraction of the fade: the white cell, the
+     * most error per byte, is drawn whatever its place in raster order. */
+    enum { C = 40, R = 12 };
+    static uint8_t rgb[C * 2 * R * 3];
+    struct encode_screen s;
+    REQUIRE(encode_screen_init(&s, C, R, NULL) == 0);
+    memset(rgb, 40, sizeof rgb);
+    for (int i = 0; i < C * 2 * R; i++)
+        rgb[3 * i] = (uint8_t)(40 + i % 7 * 9); /* varied: no two neighbours alike */
+    set_px(rgb, C, C - 1, 2 * R - 2, 0);
+    set_px(rgb, C, C - 1, 2 * R - 1, 0);
+    size_t n;
+    encode_frame(&s, rgb, C, 2 * R, &TRUE_FULL, &n, NULL);
+    for (size_t i = 0; i < sizeof rgb; i++)
+        rgb[i] = (uint8_t)(rgb[i] + 6);
+    set_px(rgb, C, C - 1, 2 * R - 2, 0xffffff);
+    set_px(rgb, C, C - 1, 2 * R - 1, 0xffffff);
+    struct encode_opts o = {.mode = PALETTE_TRUECOLOR, .diff = true, .budget = 1500};
+    struct encode_stats st;
+    encode_frame(&s, rgb, C, 2 * R, &o, &n, &st);
+    CHECK(st.demand > 4 * o.budget && n <= o.budget);
+    struct encode_cell last = s.cells[C * R - 1];
+    CHECK_EQ_INT(last.top, 0xffffff);
+    CHECK_EQ_INT(last.bot, 0xffffff);
+    encode_screen_free(&s);
+}
