@@ -18,9 +18,10 @@
  *
  * Ambient: render_opts' ambient_sky and ambient_ground, both LIGHT_AMBIENT by default — then
  * A(N) is exactly LIGHT_AMBIENT, the conventions' constant (render, dump, the Mesa oracle).
- * The headlight (--light camera, the viewer's default, light_use_camera) is one light from
- * over the viewer's shoulder plus a sky/ground hemisphere ambient, as model viewers light a
- * model: every side the camera looks at is lit, none goes black in profile. */
+ * The headlight (--light camera, the viewer's default, light_use_camera) is a key light from
+ * over the viewer's shoulder, a fill from the other side and a sky/ground hemisphere
+ * ambient, as model viewers light a model: every side the camera looks at is lit, none goes
+ * black in profile. */
 #ifndef RASTTY_LIGHT_H
 #define RASTTY_LIGHT_H
 
@@ -34,14 +35,21 @@
 #define LIGHT_AMBIENT 0.1f
 #define LIGHT_DIFFUSE 0.9f
 #define LIGHT_DEFAULT_ALBEDO 0.8f
-/* The headlight: camera-space direction toward it (right, up, toward the viewer), its
- * colour, and the hemisphere ambient from above and from below. */
+/* The headlight: a key light from over the viewer's right shoulder and a weaker fill from
+ * low on the left (camera-space directions toward them: right, up, toward the viewer; and
+ * their colours), and the hemisphere ambient from above and from below. The fill keeps the
+ * surfaces that face away from the key (the left-facing wall of a room, a ceiling) from
+ * going black: with the key alone the Cornell box's green wall was at 0.21 ambient only. */
 #define LIGHT_HEAD_RIGHT 0.35
 #define LIGHT_HEAD_UP 0.5
 #define LIGHT_HEAD_BACK 1.0
-#define LIGHT_HEAD_COLOR 0.8
-#define LIGHT_HEAD_SKY 0.3
-#define LIGHT_HEAD_GROUND 0.12
+#define LIGHT_HEAD_COLOR 0.7
+#define LIGHT_FILL_RIGHT (-0.6)
+#define LIGHT_FILL_UP (-0.4)
+#define LIGHT_FILL_BACK 0.6
+#define LIGHT_FILL_COLOR 0.3
+#define LIGHT_HEAD_SKY 0.35
+#define LIGHT_HEAD_GROUND 0.2
 
 /* The frame's lights, normalised and converted once per frame. */
 struct light_env {

@@ -28,10 +28,13 @@ void light_use_camera(struct render_opts *o, const struct camera *c)
     vec3 back = v3_norm(v3_sub(c->eye, c->target));
     vec3 right = v3_norm(v3_cross(c->up, back));
     vec3 up = v3_cross(back, right);
-    o->n_lights = 1;
+    o->n_lights = 2;
     o->lights[0].dir = v3_add(v3_add(v3_scale(right, LIGHT_HEAD_RIGHT), v3_scale(up, LIGHT_HEAD_UP)),
                               v3_scale(back, LIGHT_HEAD_BACK));
     o->lights[0].color = v3(LIGHT_HEAD_COLOR, LIGHT_HEAD_COLOR, LIGHT_HEAD_COLOR);
+    o->lights[1].dir = v3_add(v3_add(v3_scale(right, LIGHT_FILL_RIGHT), v3_scale(up, LIGHT_FILL_UP)),
+                              v3_scale(back, LIGHT_FILL_BACK));
+    o->lights[1].color = v3(LIGHT_FILL_COLOR, LIGHT_FILL_COLOR, LIGHT_FILL_COLOR);
     o->ambient_sky = v3(LIGHT_HEAD_SKY, LIGHT_HEAD_SKY, LIGHT_HEAD_SKY);
     o->ambient_ground = v3(LIGHT_HEAD_GROUND, LIGHT_HEAD_GROUND, LIGHT_HEAD_GROUND);
 }
