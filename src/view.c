@@ -391,6 +391,8 @@ static int loop(struct view *v, struct err *e)
             v->s.message[0] = '\0';
             v->s.hud_dirty = true;
         }
+        if (v->s.hud_dirty) /* draw it before waiting (a message just ended, say) */
+            timeout = 0;
         struct tty_event ev;
         for (int n = 0; n < 256; n++) {
             enum tty_event_kind k = tty_next_event(&v->tty, n == 0 ? timeout : 0, &ev);
