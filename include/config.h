@@ -33,9 +33,10 @@ struct config {
     double bandwidth;         /* 0 not set */
 };
 
-/* Read the file named by the environment (envp: "NAME=value" strings, NULL-terminated; the
- * process's environ in rastty), then RASTTY_COLORS over its colours. */
-int config_load(const char *const *envp, struct config *c, struct err *e);
+/* Read the file ($XDG_CONFIG_HOME/rastty/config, else $HOME/.config/rastty/config; NULL or
+ * empty values count as unset), then RASTTY_COLORS (rastty_colors) over its colours. */
+int config_load(const char *xdg_config_home, const char *home, const char *rastty_colors,
+                struct config *c, struct err *e);
 /* Parse one file's text (path for messages). */
 int config_parse(const char *path, const char *text, struct config *c, struct err *e);
 /* Fill what the command line left unset. */

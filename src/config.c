@@ -9,15 +9,6 @@
 
 #include "file.h"
 
-static const char *env_get(const char *const *envp, const char *name)
-{
-    size_t n = strlen(name);
-    for (; envp && *envp; envp++)
-        if (strncmp(*envp, name, n) == 0 && (*envp)[n] == '=')
-            return *envp + n + 1;
-    return NULL;
-}
-
 /* A --colors value, or "auto" (= not set); else -1. */
 static int set_colors(struct config *c, const char *v)
 {
@@ -130,11 +121,11 @@ int config_parse(const char *path, const char *text, struct config *c, struct er
     return 0;
 }
 
-int config_load(const char *const *envp, struct config *c, struct err *e)
+int config_load(const char *xdg, const char *home, const char *env, struct config *c,
+                struct err *e)
 {
     *c = (struct config){.spin = -1, .spin_timeout = -1};
     char path[4200];
-    const char *xdg = env_get(envp, "XDG_CONFIG_HOME"), *home = env_get(envp, "HOME");
     if (xdg && *xdg)
         snprintf(path, sizeof path, "%s/rastty/config", xdg);
     else if (home && *home)
@@ -158,7 +149,6 @@ int config_load(const char *const *envp, struct config *c, struct err *e)
         if (rc)
             return -1;
     }
-    const char *env = env_get(envp, "RASTTY_COLORS");
     if (env && *env && set_colors(c, env)) {
         char q[64];
         return err_set(e, "rastty: RASTTY_COLORS: expected auto, truecolor, 256, 16 or none, "

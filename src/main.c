@@ -3,6 +3,7 @@
  * loads a scene (scene.c -> obj.c), draws it (pipeline.c) and writes the image (image.c). */
 #include <errno.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
@@ -10,8 +11,6 @@
 #include "config.h"
 #include "options.h"
 #include "view.h"
-
-extern char **environ;
 
 #define RASTTY_VERSION "0.1.0"
 
@@ -39,7 +38,8 @@ int main(int argc, char **argv)
     static struct config cfg;
     bool dump_tty = o.cmd == CMD_DUMP && !o.out && isatty(STDOUT_FILENO);
     if (o.cmd == CMD_VIEW || dump_tty) {
-        if (config_load((const char *const *)environ, &cfg, &e)) {
+        if (config_load(getenv("XDG_CONFIG_HOME"), getenv("HOME"), getenv("RASTTY_COLORS"), &cfg,
+                        &e)) {
             fprintf(stderr, "%s\n", e.msg);
             return 2;
         }

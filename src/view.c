@@ -291,7 +291,7 @@ static void screenshot(struct view *v, double t)
         view_message(&v->s, v->drawn ? "too many screenshots" : "nothing drawn yet", t);
         return;
     }
-    char png[20], ans[20];
+    char png[32], ans[32];
     int k = 1;
     for (; k < 1000; k++) {
         snprintf(png, sizeof png, "rastty-%03d.png", k);

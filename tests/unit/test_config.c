@@ -68,13 +68,11 @@ TEST(config_file_errors_name_the_line)
 
 TEST(rastty_colors_beats_the_file_and_a_missing_file_is_fine)
 {
-    char dir[] = "/tmp/rastty-config-XXXXXX", path[128], xdg[160];
+    char dir[] = "/tmp/rastty-config-XXXXXX", path[128];
     REQUIRE(mkdtemp(dir));
-    snprintf(xdg, sizeof xdg, "XDG_CONFIG_HOME=%s", dir);
-    const char *env[] = {xdg, "RASTTY_COLORS=16", NULL};
     struct config c;
     struct err e;
-    REQUIRE(config_load(env, &c, &e) == 0); /* no file yet */
+    REQUIRE(config_load(dir, "/nonexistent", "16", &c, &e) == 0); /* no file yet */
     CHECK(strcmp(c.colors, "16") == 0);
     snprintf(path, sizeof path, "%s/rastty", dir);
     mkdir(path, 0700);
@@ -83,13 +81,13 @@ TEST(rastty_colors_beats_the_file_and_a_missing_file_is_fine)
     REQUIRE(f);
     fputs("colors = none\nspin = on\n", f);
     fclose(f);
-    REQUIRE(config_load(env, &c, &e) == 0);
+    REQUIRE(config_load(dir, NULL, "16", &c, &e) == 0);
     CHECK(strcmp(c.colors, "16") == 0 && c.spin == 1);
-    const char *env2[] = {xdg, NULL};
-    REQUIRE(config_load(env2, &c, &e) == 0);
+    REQUIRE(config_load(dir, NULL, NULL, &c, &e) == 0);
     CHECK(strcmp(c.colors, "none") == 0);
-    const char *env3[] = {xdg, "RASTTY_COLORS=lots", NULL};
-    CHECK(config_load(env3, &c, &e) == -1);
+    REQUIRE(config_load("", dir, "", &c, &e) == 0); /* $HOME/.config/rastty: none there */
+    CHECK(c.colors[0] == '\0' && c.spin == -1);
+    CHECK(config_load(dir, NULL, "lots", &c, &e) == -1);
     CHECK_STR_CONTAINS(e.msg, "RASTTY_COLORS");
     unlink(path);
     snprintf(path, sizeof path, "%s/rastty", dir);
