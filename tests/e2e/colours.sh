@@ -57,7 +57,7 @@ hud_has() { tm capture-pane -t "$1" -p | tail -n 1 | grep -q -- "$2"; }
 # a client attached (a second tmux server's pane): tmux's client_termfeatures.
 in_tmux() {
     tm new-session -d -s t1 -x 120 -y 24 "env -u COLORTERM TERM=tmux-256color $(printf '%q ' "$BIN" "$CUBE"); sleep 30"
-    wait_for 15 hud_has t1 " fps " || return 1
+    wait_for 15 hud_has t1 " fps" || return 1
     echo "detached: $(tm capture-pane -t t1 -p | tail -n 1 | cut -c1-70)"
     hud_has t1 "| truecolor |" || return 1
     local outer=$SOCK-outer
@@ -66,7 +66,7 @@ in_tmux() {
     wait_for 10 sh -c "tmux -L $SOCK list-clients | grep -q t2" || { tmux -L $outer kill-server; echo "no client"; return 1; }
     echo "client features: $(tm display -p -t t2 '#{client_termfeatures}')"
     tm new-window -t t2 "env -u COLORTERM TERM=tmux-256color $(printf '%q ' "$BIN" "$CUBE"); sleep 30"
-    wait_for 15 hud_has t2 " fps " || { tmux -L $outer kill-server; return 1; }
+    wait_for 15 hud_has t2 " fps" || { tmux -L $outer kill-server; return 1; }
     echo "attached: $(tm capture-pane -t t2 -p | tail -n 1 | cut -c1-70)"
     hud_has t2 "| truecolor |"; local rc=$?
     tmux -L $outer kill-server
@@ -80,7 +80,7 @@ spin_timeout() {
     printf 'spin-timeout = 1\n' > $OUT/st/rastty/config
     local log=$OUT/spin.log
     tm new-session -d -s sp -x 200 -y 24 "XDG_CONFIG_HOME=$OUT/st $(printf '%q ' "$BIN" --colors truecolor --spin "$CUBE"); sleep 30"
-    wait_for 15 hud_has sp " fps " || return 1
+    wait_for 15 hud_has sp " fps" || return 1
     : > $log; tm pipe-pane -o -t sp "cat >> $log"
     # it pauses after a second; the message about it goes; the status line says so
     wait_for 10 hud_has sp "| spin paused |" || { echo "status: $(tm capture-pane -t sp -p | tail -n 1)"; return 1; }
