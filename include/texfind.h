@@ -9,7 +9,8 @@
  *                                                     -> spot_texture.png)
  *   DIR/texture.EXT, DIR/diffuse.EXT
  * Only a lookup: nothing is loaded. Callers (cmd_load_scene) use it when the model has uvs,
- * no material from an MTL and no --texture. */
+ * no material from an MTL and no --texture; a file found that does not decode is a warning
+ * (the model draws untextured), as a model's own missing map_Kd is. */
 #ifndef RASTTY_TEXFIND_H
 #define RASTTY_TEXFIND_H
 

@@ -99,15 +99,11 @@ int cmd_load_scene(const struct options *o, const char *path, struct scene *s, c
     char found[4200];
     if (!o->texture && o->render.textures && model && wants_a_texture(s) &&
         texfind_beside(path, found, sizeof found) == 0) {
-        if (scene_set_texture(s, found, e)) {
-            char inner[sizeof e->msg];
-            memcpy(inner, e->msg, sizeof inner);
-            err_set(e, "%s (the texture found beside the model; --no-texture or --texture "
-                       "FILE to choose)", inner);
-            scene_free(s);
-            return -1;
-        }
-        if (found_out)
+        /* like a model's own map_Kd, a texture nobody named is a warning, not an error */
+        struct err why = {""};
+        if (scene_set_texture(s, found, &why))
+            fprintf(stderr, "warning: %s (found beside the model; drawn untextured)\n", why.msg);
+        else if (found_out)
             snprintf(found_out, n, "%s", found);
     }
     return 0;
