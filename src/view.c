@@ -353,8 +353,9 @@ static int act(struct view *v, enum view_action a, double t, bool *quit, struct 
     return 0;
 }
 
-/* Ctrl-Z: collect the answer to the frame in flight first, or it reaches the shell's prompt
- * after the stop ("^[[0n", and `fg` typed after it becomes `nfg`). */
+/* Ctrl-Z and q: collect the answer to the frame in flight first, or it reaches the shell's
+ * prompt after the stop or the exit ("^[[0n", and `fg` typed after it becomes `nfg`). A
+ * quit signal does not wait: the terminal may be gone or stalled. */
 static void drain_answers(struct view *v)
 {
     double r = v->pace.rate > 0 ? v->pace.rate : PACE_SLOWEST_RATE;
@@ -559,6 +560,8 @@ int view_run(const struct options *o, struct err *e)
         rc = loop(v, e) ? 1 : 0;
         if (rc == 0 && tty_quit_signal()) /* the shell convention for "killed by" */
             rc = 128 + tty_quit_signal();
+        else /* q: the answer in flight goes to us, not to the shell's prompt */
+            drain_answers(v);
     }
 out_tty:
     tty_close(&v->tty);

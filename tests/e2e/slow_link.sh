@@ -4,13 +4,13 @@
 #   - key -> screen latency with the textured head spinning in truecolor, at 1 Mbit/s in
 #     160x48 and 4 Mbit/s in 320x90 (tests/e2e/lib/keylat.py presses f and times the status
 #     line): generous bounds here, the tight numbers are `make bench`'s
-#   - Ctrl-Z with a frame in flight: the status report's answer must not reach the shell
+#   - Ctrl-Z or q with a frame in flight: the status report's answer must not reach the shell
 source "$(dirname "$0")/lib/common.sh"
 
 LINK=${RASTTY_SHARED:-../shared}/tools/slowlink.py
 HEAD=$SHARED/african_head
 NAMES=(key_to_screen_at_1_mbit_160x48 key_to_screen_at_4_mbit_320x90
-       ctrl_z_with_a_frame_in_flight_leaks_nothing)
+       ctrl_z_and_q_with_a_frame_in_flight_leak_nothing)
 if ! have_tmux; then
     for n in "${NAMES[@]}"; do skip "$n" "tmux not installed"; done
     finish
@@ -39,7 +39,8 @@ check key_to_screen_at_1_mbit_160x48 latency 128000 160x48 1000 2500
 check key_to_screen_at_4_mbit_320x90 latency 512000 320x90 1000 2500
 
 # A shell behind a 20 KB/s link; the viewer spins in it (a frame is nearly always on its way
-# and its DSR answer with it); Ctrl-Z, then `fg`: the shell must read exactly "fg".
+# and its DSR answer with it); Ctrl-Z, then `fg`: the shell must read exactly "fg"; then q:
+# nothing after the viewer either.
 ctrl_z() {
     local s=cz
     tm new-session -d -s $s -x 100 -y 30 "/usr/bin/python3 $LINK 20000 200000 -- bash --norc --noprofile"
@@ -57,6 +58,6 @@ ctrl_z() {
     local text; text=$(tm capture-pane -t $s -p -S - | grep -v '^$')
     if echo "$text" | grep -qE '0n|nfg|\^\['; then echo "the answer reached the shell:"; echo "$text" | tail -5; return 1; fi
 }
-check ctrl_z_with_a_frame_in_flight_leaks_nothing ctrl_z
+check ctrl_z_and_q_with_a_frame_in_flight_leak_nothing ctrl_z
 
 finish
