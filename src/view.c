@@ -392,7 +392,8 @@ static int loop(struct view *v, struct err *e)
             v->s.message[0] = '\0';
             v->s.hud_dirty = true;
         }
-        if (v->s.hud_dirty) /* draw it before waiting (a message just ended, say) */
+        if (v->s.hud_dirty && !v->s.dirty) /* draw it before waiting (a message ended, say);
+                                              * with a frame due it goes out with the frame */
             timeout = 0;
         struct tty_event ev;
         for (int n = 0; n < 256; n++) {
