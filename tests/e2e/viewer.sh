@@ -301,7 +301,7 @@ status80() {
     start s80 80 24 assets/cube.obj || return 1
     local line; line=$(tm capture-pane -t s80 -p | tail -n 1)
     echo "status line: '$line'"
-    echo "$line" | grep -qE '^ cube\.obj \[1/1\] \| textured nearest \| truecolor \| [0-9]+ fps'
+    echo "$line" | grep -qE '^ cube\.obj \[1/1\] \| textured trilinear \| truecolor \| [0-9]+ fps'
 }
 check status_line_at_80_columns status80
 

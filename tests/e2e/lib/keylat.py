@@ -44,8 +44,14 @@ def status():
               check=False)
 
 
+CYCLE = ["nearest", "bilinear", "trilinear"]  # the f key's order
+
+
 def filt(line):
-    return "bilinear" if "bilinear" in line else "nearest" if "nearest" in line else None
+    for f in CYCLE:
+        if " " + f + " " in line:
+            return f
+    return None
 
 
 inner = " ".join(shlex.quote(x) for x in
@@ -68,7 +74,7 @@ try:
     for i in range(a.presses):
         time.sleep(random.uniform(0.2, 0.7))
         before = filt(status())
-        want = "nearest" if before == "bilinear" else "bilinear"
+        want = CYCLE[(CYCLE.index(before) + 1) % len(CYCLE)] if before else None
         t0 = time.monotonic()
         tm("send-keys", "-t", S, "f")
         seen = None
