@@ -220,17 +220,22 @@ static inline i4 texture_wrap4(f4 x, int n)
     return i;
 }
 
-/* the rgb of the texels at (i, j), j counted from the bottom, one vector per channel */
+/* the rgb of the texels at (i, j), j counted from the bottom, one vector per channel: one
+ * 32-bit load per texel (RGBA8 in memory order), split into channels in vector registers */
 static inline void texture_fetch4(const struct texture_level *lv, i4 i, i4 j, i4 rgb_out[3])
 {
     i4 idx = (i4_set(lv->h - 1) - j) * i4_set(lv->w) + i;
-    int32_t c[3][SIMD_LANES];
-    for (int l = 0; l < SIMD_LANES; l++) {
-        const uint8_t *p = lv->rgba + (size_t)idx[l] * 4;
-        c[0][l] = p[0], c[1][l] = p[1], c[2][l] = p[2];
-    }
-    for (int ch = 0; ch < 3; ch++)
-        rgb_out[ch] = (i4){c[ch][0], c[ch][1], c[ch][2], c[ch][3]};
+    uint32_t w[SIMD_LANES];
+    for (int l = 0; l < SIMD_LANES; l++)
+        __builtin_memcpy(&w[l], lv->rgba + (size_t)idx[l] * 4, 4);
+    i4 v = {(int32_t)w[0], (int32_t)w[1], (int32_t)w[2], (int32_t)w[3]};
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+    rgb_out[0] = (v >> 24) & i4_set(255), rgb_out[1] = (v >> 16) & i4_set(255);
+    rgb_out[2] = (v >> 8) & i4_set(255);
+#else
+    rgb_out[0] = v & i4_set(255), rgb_out[1] = (v >> 8) & i4_set(255);
+    rgb_out[2] = (v >> 16) & i4_set(255);
+#endif
 }
 
 /* texture_bilinear, four samples of one level at once */
