@@ -47,6 +47,10 @@ void skybox_free(struct skybox *s);
 /* Fill every pixel whose depth is still 1 (nothing drawn) with the sky seen through cam
  * (orthographic cameras see the sky as a perspective camera with the same fov would). */
 void skybox_draw(const struct skybox *s, const struct camera *cam, struct fb *fb);
+/* The same for rows y0 .. y1 - 1 only: bands of rows can be filled on different threads
+ * (every pixel depends on its own position alone, so the result does not depend on the bands). */
+void skybox_draw_rows(const struct skybox *s, const struct camera *cam, struct fb *fb, int y0,
+                      int y1);
 /* Bilinear sample of one level in direction d (for tests). */
 void skybox_sample(const struct skybox *s, int level, vec3 d, float rgb_out[3]);
 

@@ -350,6 +350,40 @@ static void vertex_stage(struct pipeline *p, const struct mesh *m,
     workers_run(p->workers, vertex_chunks, &j);
 }
 
+/* the sky in bands of rows, handed out like the vertex chunks */
+struct sky_job {
+    const struct skybox *sky;
+    const struct camera *cam;
+    struct fb *fb;
+    atomic_int next;
+};
+
+#define SKY_BAND 8
+
+static void sky_bands(void *arg, int k)
+{
+    struct sky_job *j = arg;
+    (void)k;
+    for (;;) {
+        int y0 = atomic_fetch_add_explicit(&j->next, 1, memory_order_relaxed) * SKY_BAND;
+        if (y0 >= j->fb->h)
+            return;
+        skybox_draw_rows(j->sky, j->cam, j->fb, y0, y0 + SKY_BAND);
+    }
+}
+
+static void sky_stage(struct pipeline *p, const struct skybox *sky, const struct camera *cam,
+                      struct fb *fb)
+{
+    if (p->n_threads == 1 || fb->h < 2 * SKY_BAND) {
+        skybox_draw(sky, cam, fb);
+        return;
+    }
+    struct sky_job j = {.sky = sky, .cam = cam, .fb = fb};
+    atomic_init(&j.next, 0);
+    workers_run(p->workers, sky_bands, &j);
+}
+
 int pipeline_draw(struct pipeline *p, const struct draw_item *items, int n_items,
                   const struct skybox *sky, const struct camera *cam,
                   const struct render_opts *o, struct fb *fb, struct frame_stats *stats,
@@ -376,7 +410,7 @@ int pipeline_draw(struct pipeline *p, const struct draw_item *items, int n_items
     bool wire = f.span.mode == SHADE_WIRE;
     /* wire frames have no surface colour: the sky goes everywhere, before anything else */
     if (show_sky && wire)
-        skybox_draw(sky, cam, fb);
+        sky_stage(p, sky, cam, fb);
     /* pass 1: surfaces (wire: depth only, for hidden lines), through the batch; pass 2:
      * edges, depth-tested against every item's surfaces when asked */
     bool pass1 = !wire || o->hidden_lines;
@@ -432,7 +466,7 @@ int pipeline_draw(struct pipeline *p, const struct draw_item *items, int n_items
                     stats->pixels_shaded += p->ctx[k].shaded;
                 }
             if (show_sky && !wire) /* the sky goes where the surfaces left room */
-                skybox_draw(sky, cam, fb);
+                sky_stage(p, sky, cam, fb);
         }
     }
     if (o->view == VIEW_DEPTH)

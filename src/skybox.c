@@ -226,7 +226,8 @@ void skybox_sample(const struct skybox *s, int level, vec3 d, float rgb_out[3])
     sample_face(&s->level[level], f, sc / ma, tc / ma, rgb_out);
 }
 
-void skybox_draw(const struct skybox *s, const struct camera *cam, struct fb *fb)
+void skybox_draw_rows(const struct skybox *s, const struct camera *cam, struct fb *fb, int y0,
+                      int y1)
 {
     if (s->n_levels == 0)
         return;
@@ -245,7 +246,9 @@ void skybox_draw(const struct skybox *s, const struct camera *cam, struct fb *fb
         frac = 0;
     }
     const struct skybox_level *l0 = &s->level[level], *l1 = &s->level[level + (frac > 0)];
-    for (int y = 0; y < fb->h; y++) {
+    y0 = y0 < 0 ? 0 : y0;
+    y1 = y1 > fb->h ? fb->h : y1;
+    for (int y = y0; y < y1; y++) {
         double ny = 1 - 2 * (y + 0.5) / fb->h;
         vec3 row = v3_add(f, v3_scale(u, ny * ty));
         for (int x = 0; x < fb->w; x++) {
@@ -272,4 +275,9 @@ void skybox_draw(const struct skybox *s, const struct camera *cam, struct fb *fb
             fb->rgb[3 * i + 2] = fb_quantize(c[2]);
         }
     }
+}
+
+void skybox_draw(const struct skybox *s, const struct camera *cam, struct fb *fb)
+{
+    skybox_draw_rows(s, cam, fb, 0, fb->h);
 }

@@ -8,6 +8,7 @@
 
 #include "obj.h"
 #include "pipeline.h"
+#include "skybox.h"
 #include "test.h"
 
 /* an n x n grid over [-s,s]^2 in the plane y = 0 (two triangles a cell), uv = (x, z) / 2 */
@@ -293,8 +294,11 @@ TEST(thread_count_never_changes_the_picture)
 {
     /* a textured grid through the near plane (clipped, many tiles, triangles across tile
      * edges), drawn with 1, 2, 3 and 5 threads, every rasterizer and two interpolation
-     * methods, overdraw counted: the same bytes, depths, counts and statistics */
+     * methods, overdraw counted, the sky behind it (drawn in bands of rows): the same
+     * bytes, depths, counts and statistics */
     char *obj = grid_obj(30, 6);
+    struct skybox sky;
+    REQUIRE(skybox_procedural(&sky, v3(1, 1, 1), NULL) == 0);
     struct scene1 s;
     REQUIRE(scene1_init(&s, obj, 203, 117, 0) == 0);
     free(obj);
@@ -322,8 +326,12 @@ TEST(thread_count_never_changes_the_picture)
                 o.persp = persps[pi];
                 o.threads = threads[ti];
                 struct frame_stats st;
-                REQUIRE(pipeline_draw(s.p, &s.item, 1, NULL, &cam, &o, &s.fb, &st, NULL) == 0);
+                REQUIRE(pipeline_draw(s.p, &s.item, 1, &sky, &cam, &o, &s.fb, &st, NULL) == 0);
                 if (ti == 0) {
+                    size_t sky_px = 0;
+                    for (size_t i = 0; i < n; i++)
+                        sky_px += !fb_covered(&s.fb, i) && s.fb.rgb[3 * i + 2] > 0;
+                    CHECK(sky_px > n / 10); /* the sky shows, not only the grid */
                     memcpy(rgb, s.fb.rgb, n * 3);
                     memcpy(depth, s.fb.depth, n * sizeof *depth);
                     memcpy(od, s.fb.overdraw, n * sizeof *od);
@@ -343,5 +351,6 @@ TEST(thread_count_never_changes_the_picture)
     free(rgb);
     free(depth);
     free(od);
+    skybox_free(&sky);
     scene1_free(&s);
 }
