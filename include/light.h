@@ -70,14 +70,27 @@ void light_use_camera(struct render_opts *o, const struct camera *c);
 void light_base_color(const struct material *m, const float *kd_override, int textured,
                       float base_out[3]);
 
+/* x^n. A whole n from 1 to LIGHT_POW_INT_MAX (every shared model's Ns) by squaring, exactly
+ * as the reference shader (32: five squarings); any other n through powf. */
+#define LIGHT_POW_INT_MAX 1024
+
+static inline int light_pow_int(float n)
+{
+    return n >= 1 && n <= LIGHT_POW_INT_MAX && n == (float)(int)n ? (int)n : 0;
+}
+
 static inline float light_pow(float x, float n)
 {
-    if (n == 32.0f) { /* five squarings, exactly as the reference shader */
-        x *= x;
-        x *= x;
-        x *= x;
-        x *= x;
-        return x * x;
+    int k = light_pow_int(n);
+    if (k) {
+        float r = 1;
+        for (;;) {
+            if (k & 1)
+                r *= x;
+            if ((k >>= 1) == 0)
+                return r;
+            x *= x;
+        }
     }
     return x > 0 || n <= 0 ? powf(x, n) : 0; /* 0^n = 0 exactly (n > 0): skip the call */
 }
@@ -138,12 +151,16 @@ static inline void light_normalize4(f4 v[3])
 /* x^n in each lane, exactly as light_pow */
 static inline f4 light_pow4(f4 x, float n)
 {
-    if (n == 32.0f) {
-        x *= x;
-        x *= x;
-        x *= x;
-        x *= x;
-        return x * x;
+    int k = light_pow_int(n);
+    if (k) {
+        f4 r = f4_set(1);
+        for (;;) {
+            if (k & 1)
+                r *= x;
+            if ((k >>= 1) == 0)
+                return r;
+            x *= x;
+        }
     }
     f4 r;
     for (int l = 0; l < SIMD_LANES; l++) /* 0^n = 0 exactly: most lanes face away */

@@ -360,3 +360,27 @@ TEST(four_lane_terms_equal_one_lane_terms_with_a_hemisphere)
         }
     }
 }
+
+TEST(specular_power_by_squaring_for_whole_exponents)
+{
+    /* whole exponents (every shared model's Ns) multiply, others call powf; all agree with
+     * powf to n ulps (each squaring doubles the relative error: at n = 1024 that is 1e-4,
+     * a 40th of an 8-bit step), 0^n = 0, x^1 = x exactly, and the four lanes equal one lane */
+    const float ns[] = {1, 2, 5, 16, 32, 77, 1024, 2.5f, 0.5f, 1025};
+    const float xs[] = {0, 0.25f, 0.5f, 0.9f, 0.999f, 1};
+    for (size_t a = 0; a < sizeof ns / sizeof *ns; a++) {
+        f4 x4 = {xs[1], xs[2], xs[3], xs[4]};
+        f4 p4 = light_pow4(x4, ns[a]);
+        for (size_t b = 0; b < sizeof xs / sizeof *xs; b++) {
+            float got = light_pow(xs[b], ns[a]), want = powf(xs[b], ns[a]);
+            CHECK(fabsf(got - want) <= ldexpf(ns[a] < 1 ? 1 : ns[a], -23) * want + 1e-38f);
+        }
+        for (int l = 0; l < SIMD_LANES; l++)
+            CHECK(p4[l] == light_pow(x4[l], ns[a]));
+    }
+    CHECK(light_pow(0.3f, 1) == 0.3f);
+    CHECK(light_pow(0, 16) == 0);
+    float x = 0.9f, x2 = x * x, x4 = x2 * x2, x8 = x4 * x4, x16 = x8 * x8;
+    CHECK(light_pow(x, 16) == x16); /* squarings, not powf */
+    CHECK(light_pow(x, 5) == x * x4);
+}
