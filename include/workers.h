@@ -8,6 +8,8 @@
 #ifndef RASTTY_WORKERS_H
 #define RASTTY_WORKERS_H
 
+#include <stddef.h>
+
 #include "err.h"
 
 struct workers;
@@ -19,6 +21,13 @@ struct workers *workers_new(int n, struct err *e);
 void workers_destroy(struct workers *w);
 int workers_count(const struct workers *w); /* extra threads, 0 for NULL */
 void workers_run(struct workers *w, workers_fn fn, void *arg);
+
+/* workers_for(pool, n, chunk, fn, arg) calls fn(arg, i0, i1) on ranges [i0, i1) that cover
+ * 0 .. n-1 exactly once, chunk items each (the last may be shorter), handed out to every
+ * thread through a shared counter; on the calling thread alone, in one call, when the pool
+ * is empty or n < 2 * chunk (too little work to share). */
+typedef void (*workers_range_fn)(void *arg, size_t i0, size_t i1);
+void workers_for(struct workers *w, size_t n, size_t chunk, workers_range_fn fn, void *arg);
 
 #define WORKERS_MAX 63
 

@@ -12,12 +12,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "decode.h"
 #include "encode.h"
 #include "pipeline.h"
 #include "ssaa.h"
+#include "timing.h"
 
 struct config {
     const char *name;
@@ -55,32 +55,6 @@ static const struct config configs[] = {
     {"256 budget 25K", PALETTE_256, true, 0, 25000},
 };
 enum { N_CONFIGS = sizeof configs / sizeof configs[0] };
-
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-static double pctl(double *v, int n, double p)
-{
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
-    int i = (int)ceil(p * n) - 1;
-    return v[i < 0 ? 0 : i >= n ? n - 1 : i];
-}
 
 /* sum of squared channel differences */
 static double sq_err(const uint8_t *a, const uint8_t *b, size_t n)
@@ -145,9 +119,9 @@ static int bench_scene(const struct options *o, const char *path, int cols, int 
                                      .tolerance = configs[i].tolerance,
                                      .budget = configs[i].budget};
             size_t n;
-            double t0 = now_ms();
+            double t0 = timing_now_ms();
             const char *bytes = encode_fb(&t[i].es, &fb, &eo, &n, NULL);
-            double dt = now_ms() - t0;
+            double dt = timing_now_ms() - t0;
             if (k == frames) { /* the same frame again: a static scene */
                 if (configs[i].diff && !configs[i].budget) /* budgets may still refine */
                     static_bytes += n;
@@ -170,7 +144,7 @@ static int bench_scene(const struct options *o, const char *path, int cols, int 
     printf("\n%s: %d frames, %dx%d cells (%dx%d px), orbit %g deg/frame, render median %.2f "
            "ms, p95 %.2f ms\n",
            scene.name, frames, cols, rows, cols, 2 * rows, o->orbit_deg,
-           median(render_ms, frames), pctl(render_ms, frames, 0.95));
+           timing_median(render_ms, frames), timing_percentile(render_ms, frames, 0.95));
     printf("  %-16s %10s %10s %10s %10s %10s %8s %11s\n", "encoding", "median B", "mean B",
            "p95 B", "enc med ms", "PSNR dB", "min dB", "max |err|");
     for (int i = 0; i < N_CONFIGS; i++) {
@@ -180,8 +154,8 @@ static int bench_scene(const struct options *o, const char *path, int cols, int 
         double mse = t[i].sq / ((double)npx * frames);
         double psnr = mse > 0 ? 10 * log10(255.0 * 255.0 / mse) : INFINITY;
         printf("  %-16s %10.0f %10.0f %10.0f %10.4f %10.2f %8.2f %11d\n", configs[i].name,
-               median(t[i].bytes, frames), sum / frames, pctl(t[i].bytes, frames, 0.95),
-               median(t[i].enc_ms, frames), psnr, t[i].worst_psnr, t[i].max_dev);
+               timing_median(t[i].bytes, frames), sum / frames, timing_percentile(t[i].bytes, frames, 0.95),
+               timing_median(t[i].enc_ms, frames), psnr, t[i].worst_psnr, t[i].max_dev);
     }
     printf("  static scene (same frame again, all unbudgeted diff encodings): %llu bytes\n",
            (unsigned long long)static_bytes);

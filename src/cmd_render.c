@@ -4,7 +4,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 #include <unistd.h>
 
 #include "file.h"
@@ -14,6 +13,7 @@
 #include "scene.h"
 #include "ssaa.h"
 #include "texfind.h"
+#include "timing.h"
 
 #ifndef RASTTY_DATADIR
 #define RASTTY_DATADIR "/usr/local/share/rastty"
@@ -135,12 +135,6 @@ void cmd_print_stats(const struct frame_stats *st)
             (unsigned long long)st->pixels_shaded, st->render_ms);
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 int cmd_render(const struct options *o, struct err *e)
 {
     char q[FILE_QUOTE_SIZE];
@@ -148,12 +142,10 @@ int cmd_render(const struct options *o, struct err *e)
         return err_set(e, "rastty render: --out %s: use a .ppm or .png file name",
                        file_quote(o->out, q, sizeof q)), 2;
     struct scene scene;
-    struct timespec l0, l1;
-    clock_gettime(CLOCK_MONOTONIC, &l0);
+    double l0 = timing_now_ms();
     if (cmd_load_scene(o, o->inputs[0], &scene, NULL, 0, e))
         return 2;
-    clock_gettime(CLOCK_MONOTONIC, &l1);
-    double load_ms = (l1.tv_sec - l0.tv_sec) * 1e3 + (l1.tv_nsec - l0.tv_nsec) * 1e-6;
+    double load_ms = timing_now_ms() - l0;
     struct camera cam;
     struct render_opts ro;
     cmd_view_setup(o, &scene, (double)o->width / o->height, o->frame, &cam, &ro);
@@ -188,9 +180,9 @@ int cmd_render(const struct options *o, struct err *e)
                             "--fov %.9g --near %.9g --far %.9g\n",
                     cam.eye.x, cam.eye.y, cam.eye.z, cam.target.x, cam.target.y, cam.target.z,
                     cam.up.x, cam.up.y, cam.up.z, cam.fov_deg, cam.near, cam.far);
-            qsort(ms, (size_t)drawn, sizeof *ms, cmp_double);
-            fprintf(stderr, "frames=%d median_ms=%.4f min_ms=%.4f load_ms=%.2f\n", drawn,
-                    ms[drawn / 2], ms[0], load_ms);
+            double med = timing_median(ms, drawn); /* sorts ms: ms[0] is the fastest */
+            fprintf(stderr, "frames=%d median_ms=%.4f min_ms=%.4f load_ms=%.2f\n", drawn, med,
+                    ms[0], load_ms);
         }
         fb_free(&fb);
     }

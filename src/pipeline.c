@@ -1,10 +1,8 @@
 /* pipeline.c: one frame over a list of draw items (see pipeline.h). */
 #include "pipeline.h"
 
-#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "batch.h"
 #include "clip.h"
@@ -13,6 +11,7 @@
 #include "setup.h"
 #include "shade.h"
 #include "span.h"
+#include "timing.h"
 #include "vertex.h"
 #include "workers.h"
 
@@ -88,13 +87,6 @@ static int use_threads(struct pipeline *p, int n, struct err *e)
         return -1;
     p->n_threads = n;
     return 0;
-}
-
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
 }
 
 /* Is the bounding sphere (object space) entirely outside one frustum plane? Planes come from
@@ -314,74 +306,44 @@ static void frame_init(struct frame *f, const struct camera *cam, const struct r
     f->span.depth = o->depth;
 }
 
-/* the vertex stage on every thread: chunks of vertices from a shared counter */
+/* the vertex stage on every thread, in chunks of vertices */
 struct vertex_job {
     const struct mesh *m;
     const struct vertex_uniforms *u;
     struct vertex_out *out;
-    atomic_uint next;
 };
 
-#define VERTEX_CHUNK 4096
-
-static void vertex_chunks(void *arg, int k)
+static void vertex_chunk(void *arg, size_t i0, size_t i1)
 {
-    struct vertex_job *j = arg;
-    (void)k;
-    for (;;) {
-        uint32_t c = atomic_fetch_add_explicit(&j->next, 1, memory_order_relaxed);
-        uint32_t i0 = c * VERTEX_CHUNK;
-        if (i0 >= j->m->n_verts)
-            return;
-        uint32_t i1 = i0 + VERTEX_CHUNK < j->m->n_verts ? i0 + VERTEX_CHUNK : j->m->n_verts;
-        vertex_run(j->m, j->u, j->out, i0, i1);
-    }
+    const struct vertex_job *j = arg;
+    vertex_run(j->m, j->u, j->out, (uint32_t)i0, (uint32_t)i1);
 }
 
 static void vertex_stage(struct pipeline *p, const struct mesh *m,
                          const struct vertex_uniforms *u, struct vertex_out *out)
 {
-    if (p->n_threads == 1 || m->n_verts < 2 * VERTEX_CHUNK) {
-        vertex_run(m, u, out, 0, m->n_verts);
-        return;
-    }
-    struct vertex_job j = {.m = m, .u = u, .out = out};
-    atomic_init(&j.next, 0);
-    workers_run(p->workers, vertex_chunks, &j);
+    struct vertex_job j = {m, u, out};
+    workers_for(p->workers, m->n_verts, 4096, vertex_chunk, &j);
 }
 
-/* the sky in bands of rows, handed out like the vertex chunks */
+/* the sky on every thread, in bands of 8 rows */
 struct sky_job {
     const struct skybox *sky;
     const struct camera *cam;
     struct fb *fb;
-    atomic_int next;
 };
 
-#define SKY_BAND 8
-
-static void sky_bands(void *arg, int k)
+static void sky_band(void *arg, size_t y0, size_t y1)
 {
-    struct sky_job *j = arg;
-    (void)k;
-    for (;;) {
-        int y0 = atomic_fetch_add_explicit(&j->next, 1, memory_order_relaxed) * SKY_BAND;
-        if (y0 >= j->fb->h)
-            return;
-        skybox_draw_rows(j->sky, j->cam, j->fb, y0, y0 + SKY_BAND);
-    }
+    const struct sky_job *j = arg;
+    skybox_draw_rows(j->sky, j->cam, j->fb, (int)y0, (int)y1);
 }
 
 static void sky_stage(struct pipeline *p, const struct skybox *sky, const struct camera *cam,
                       struct fb *fb)
 {
-    if (p->n_threads == 1 || fb->h < 2 * SKY_BAND) {
-        skybox_draw(sky, cam, fb);
-        return;
-    }
-    struct sky_job j = {.sky = sky, .cam = cam, .fb = fb};
-    atomic_init(&j.next, 0);
-    workers_run(p->workers, sky_bands, &j);
+    struct sky_job j = {sky, cam, fb};
+    workers_for(p->workers, (size_t)fb->h, 8, sky_band, &j);
 }
 
 int pipeline_draw(struct pipeline *p, const struct draw_item *items, int n_items,
@@ -389,7 +351,7 @@ int pipeline_draw(struct pipeline *p, const struct draw_item *items, int n_items
                   const struct render_opts *o, struct fb *fb, struct frame_stats *stats,
                   struct err *e)
 {
-    double t0 = now_ms();
+    double t0 = timing_now_ms();
     memset(stats, 0, sizeof *stats);
     if (use_threads(p, o->threads > 0 ? o->threads : workers_cores(), e))
         return -1;
@@ -473,6 +435,6 @@ int pipeline_draw(struct pipeline *p, const struct draw_item *items, int n_items
         fb_show_depth(fb);
     else if (o->view == VIEW_OVERDRAW)
         fb_show_overdraw(fb);
-    stats->render_ms = now_ms() - t0;
+    stats->render_ms = timing_now_ms() - t0;
     return 0;
 }

@@ -2,6 +2,7 @@
 #include "workers.h"
 
 #include <pthread.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <unistd.h>
 
@@ -119,4 +120,35 @@ int workers_cores(void)
 {
     long n = sysconf(_SC_NPROCESSORS_ONLN);
     return n < 1 ? 1 : n > WORKERS_MAX + 1 ? WORKERS_MAX + 1 : (int)n;
+}
+
+struct range_job {
+    size_t n, chunk;
+    workers_range_fn fn;
+    void *arg;
+    atomic_size_t next; /* the next chunk to hand out */
+};
+
+static void range_chunks(void *arg, int k)
+{
+    struct range_job *j = arg;
+    (void)k;
+    for (;;) {
+        size_t i0 = atomic_fetch_add_explicit(&j->next, 1, memory_order_relaxed) * j->chunk;
+        if (i0 >= j->n)
+            return;
+        j->fn(j->arg, i0, j->n - i0 > j->chunk ? i0 + j->chunk : j->n);
+    }
+}
+
+void workers_for(struct workers *w, size_t n, size_t chunk, workers_range_fn fn, void *arg)
+{
+    if (!w || w->n == 0 || n < 2 * chunk) {
+        if (n > 0)
+            fn(arg, 0, n);
+        return;
+    }
+    struct range_job j = {.n = n, .chunk = chunk, .fn = fn, .arg = arg};
+    atomic_init(&j.next, 0);
+    workers_run(w, range_chunks, &j);
 }
