@@ -7,7 +7,10 @@ WARN    := -std=c11 -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing
 DEFS    := -D_DEFAULT_SOURCE -D_POSIX_C_SOURCE=200809L -fno-math-errno -ffp-contract=off
 OPT     ?= -O3 -g
 CFLAGS  += $(WARN) $(DEFS) $(OPT) -Iinclude -DRASTTY_DATADIR='"$(PREFIX)/share/rastty"'  $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
-LDLIBS  += $(shell pkg-config --libs $(PKGS) 2>/dev/null || echo -lncursesw -lstb -lpng16 -ljpeg -lassimp) -lpthread -lm
+# meshoptimizer (mesh level of detail) has no pkg-config file in Debian: its shared library
+# brings its own C++ runtime (libstdc++) as a dependency
+LDLIBS  += $(shell pkg-config --libs $(PKGS) 2>/dev/null || echo -lncursesw -lstb -lpng16 -ljpeg -lassimp) \
+           -lmeshoptimizer -lpthread -lm
 
 # `make V=1` shows full command lines
 Q       := $(if $(V),,@)
@@ -17,10 +20,11 @@ MAINOBJ := $(BUILD)/obj/main.o
 UNITSRC := $(wildcard tests/unit/*.c)
 UNITOBJ := $(patsubst tests/unit/%.c,$(BUILD)/tests/%.o,$(UNITSRC))
 
-# build: the first seven; tests: OSMesa (the oracle), tmux and procps (pkill) for the
+# build: the first eight; tests: OSMesa (the oracle), tmux and procps (pkill) for the
 # end-to-end tests, ncurses-term (xterm-direct terminfo), python3 (asset checks)
 DEBIAN_PKGS := build-essential pkg-config libncurses-dev libstb-dev libpng-dev \
-               libjpeg62-turbo-dev libassimp-dev libosmesa6-dev tmux ncurses-term procps python3
+               libjpeg62-turbo-dev libassimp-dev libmeshoptimizer-dev libosmesa6-dev tmux \
+               ncurses-term procps python3
 
 .PHONY: all test unit check-asan asan-build bench chart deps install uninstall clean help fuzz
 
