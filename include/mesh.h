@@ -56,6 +56,7 @@ struct mesh {
     bool has_normals; /* some corner had a vn (others may have generated normals) */
     float bbox_min[3], bbox_max[3]; /* over the positions used by triangles */
     float center[3], radius;        /* bounding sphere: bbox centre, farthest used vertex */
+    struct mesh_lod *lod; /* simplified levels (lod.h), or NULL; a level's own is NULL */
 };
 
 /* Building a mesh from corner-indexed data (what an OBJ file or a generator describes).
@@ -85,7 +86,8 @@ struct mesh_source {
  * tri_material value must index them). Errors: no triangles, an index out of range, out of
  * memory; on failure the geometry fields are NULL/0. */
 int mesh_build(const struct mesh_source *src, struct mesh *out, struct err *e);
-/* Frees everything the mesh owns (textures included) and zeroes it; a zeroed mesh is fine. */
+/* Frees everything the mesh owns (textures and levels of detail included) and zeroes it; a
+ * zeroed mesh is fine. */
 void mesh_free(struct mesh *m);
 
 #endif

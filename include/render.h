@@ -42,6 +42,14 @@ enum persp_method { PERSP_CORRECT, PERSP_AFFINE, PERSP_SPAN8, PERSP_SPAN16, PERS
 /* Supersampling (--ssaa N; ssaa.h does it around pipeline_draw, which ignores the field):
  * k x k samples per pixel with k = render_ssaa_factor(), averaged with a box filter. */
 enum ssaa_method { SSAA_1, SSAA_2, SSAA_4, SSAA_8, SSAA_COUNT };
+/* Mesh level of detail (--lod; lod.h picks the level per frame and draw item): off draws
+ * every mesh in full, auto the coarsest level whose error stays under lod_px pixels on
+ * screen, RATIO (LOD_RATIO) the level nearest to that fraction of the triangles. Only off
+ * and auto have names (render_lod_names, the chart's `lod` axis). */
+enum lod_mode { LOD_OFF, LOD_AUTO, LOD_RATIO };
+#define LOD_NAMED 2
+/* auto's error bound in pixels, chosen from the methods chart (README, "Level of detail") */
+#define LOD_DEFAULT_PX 0.15f
 
 /* What the framebuffer's colour shows after the frame (the viewer's `v` key). */
 enum debug_view { VIEW_COLOR, VIEW_DEPTH, VIEW_NORMALS, VIEW_OVERDRAW, VIEW_WIRE_OVERLAY,
@@ -60,6 +68,9 @@ struct render_opts {
     enum depth_mode depth;      /* --depth: what the depth buffer stores */
     int threads;                /* --threads: 0 = one per core; the picture never depends on it */
     enum ssaa_method ssaa;      /* --ssaa: samples per pixel (ssaa.h) */
+    enum lod_mode lod;          /* --lod: which simplified level of each mesh is drawn */
+    float lod_ratio;            /* LOD_RATIO: fraction of the triangles kept, (0, 1] */
+    float lod_px;               /* LOD_AUTO: largest error on screen, in pixels (> 0) */
     enum cull_mode cull;
     enum debug_view view;
     bool textures;       /* sample material / override textures (else albedo = kd) */
@@ -82,16 +93,20 @@ struct frame_stats {
     uint64_t pixels_tested; /* fragments inside a triangle */
     uint64_t pixels_shaded; /* fragments that passed the depth test */
     uint64_t meshes_culled; /* whole meshes outside the frustum (bounding sphere) */
+    uint64_t tris_full;     /* what tris_in would be at full detail (--lod off) */
+    int lod_min, lod_max;   /* levels of detail drawn (0 = full), over the drawn items; -1 none */
     double render_ms;
 };
 
-/* Defaults from the conventions: phong, nearest, edge rasterizer, perspective-correct, float
- * window depth, no supersampling, no culling, textures on, black background, white wire
- * colour, one white light toward (1,1,1), ambient 0.1. */
+/* Defaults from the conventions: phong, trilinear, edge rasterizer, perspective-correct, float
+ * window depth, no supersampling, every mesh in full (lod off; auto's bound LOD_DEFAULT_PX),
+ * no culling, textures on, black background, white wire colour, one white light toward
+ * (1,1,1), ambient 0.1. */
 void render_opts_default(struct render_opts *o);
 /* The ideal image's methods — rastty's most accurate setting, the reference every method is
- * measured against (bench --chart): perspective-correct, trilinear, --ssaa 8. Everything else
- * (shading, lights, depth method, rasterizer, ...) is left as it is. */
+ * measured against (bench --chart): perspective-correct, trilinear, --ssaa 8, meshes in full
+ * (lod off). Everything else (shading, lights, depth method, rasterizer, ...) is left as it
+ * is. */
 void render_opts_ideal(struct render_opts *o);
 
 /* --ssaa's k: 1, 2, 4 or 8 samples per axis */
@@ -108,7 +123,7 @@ struct render_enum {
 };
 extern const struct render_enum render_shade_names, render_cull_names, render_filter_names,
     render_view_names, render_raster_names, render_persp_names, render_depth_names,
-    render_ssaa_names;
+    render_ssaa_names, render_lod_names;
 
 const char *render_shade_name(enum shade_mode m);
 const char *render_cull_name(enum cull_mode m);

@@ -34,6 +34,8 @@
 
 #define SCENE_MAX_ITEMS 64
 
+struct lod_job;
+
 struct scene {
     char name[64];                      /* for the HUD: file name, printable ASCII only */
     struct mesh meshes[SCENE_MAX_ITEMS]; /* distinct model files, n_meshes of them */
@@ -52,6 +54,7 @@ struct scene {
     bool has_sky;
     struct skybox sky;
     vec3 bound_lo, bound_hi;            /* world-space box around every item */
+    struct lod_job *lod_job;            /* levels of detail being built (lod.h), or NULL */
 };
 
 /* One model drawn as given (identity model matrix). */
@@ -62,6 +65,13 @@ int scene_load_file(const char *path, struct scene *out, struct err *e);
 int scene_load(const char *path, struct scene *out, struct err *e);
 /* Draw every item with this texture instead of its own (--texture). */
 int scene_set_texture(struct scene *s, const char *path, struct err *e);
+/* Build every mesh's levels of detail (lod.h): wait = before returning; else on a background
+ * thread (the viewer: the first frames draw the meshes in full, then the levels arrive).
+ * Again: nothing. -1 only when out of memory. */
+int scene_build_lod(struct scene *s, bool wait, struct err *e);
+/* Are the levels built (or none asked for)? */
+bool scene_lod_done(const struct scene *s);
+/* Stops a background build first. */
 void scene_free(struct scene *s);
 
 #endif

@@ -6,6 +6,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "lod.h"
+
 /* How many vertices of one position a corner compares with before making its own: keeps a
  * file that gives one position thousands of different uvs linear, at the price of a few
  * duplicate vertices. */
@@ -234,6 +236,7 @@ oom:
 
 void mesh_free(struct mesh *m)
 {
+    lod_free(m);
     drop_geometry(m);
     free(m->materials);
     for (uint32_t i = 0; i < m->n_textures; i++)

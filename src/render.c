@@ -11,6 +11,7 @@ static const char *const raster_names[] = {"edge", "scanline", "tiled"};
 static const char *const persp_names[] = {"correct", "affine", "span8", "span16", "span32"};
 static const char *const depth_names[] = {"z", "w", "z16", "rz"};
 static const char *const ssaa_names[] = {"1", "2", "4", "8"};
+static const char *const lod_names[] = {"off", "auto"}; /* LOD_RATIO is a number */
 #define COUNT(a) ((int)(sizeof a / sizeof *a))
 _Static_assert(COUNT(shade_names) == SHADE_COUNT, "shade names");
 _Static_assert(COUNT(cull_names) == CULL_COUNT, "cull names");
@@ -20,6 +21,7 @@ _Static_assert(COUNT(raster_names) == RASTER_COUNT, "raster names");
 _Static_assert(COUNT(persp_names) == PERSP_COUNT, "persp names");
 _Static_assert(COUNT(depth_names) == DEPTH_COUNT, "depth names");
 _Static_assert(COUNT(ssaa_names) == SSAA_COUNT, "ssaa names");
+_Static_assert(COUNT(lod_names) == LOD_NAMED && LOD_AUTO == 1, "lod names");
 
 const struct render_enum render_shade_names = {shade_names, SHADE_COUNT};
 const struct render_enum render_cull_names = {cull_names, CULL_COUNT};
@@ -29,6 +31,7 @@ const struct render_enum render_raster_names = {raster_names, RASTER_COUNT};
 const struct render_enum render_persp_names = {persp_names, PERSP_COUNT};
 const struct render_enum render_depth_names = {depth_names, DEPTH_COUNT};
 const struct render_enum render_ssaa_names = {ssaa_names, SSAA_COUNT};
+const struct render_enum render_lod_names = {lod_names, LOD_NAMED};
 
 void render_opts_default(struct render_opts *o)
 {
@@ -39,6 +42,9 @@ void render_opts_default(struct render_opts *o)
     o->persp = PERSP_CORRECT;
     o->depth = DEPTH_Z;
     o->ssaa = SSAA_1;
+    o->lod = LOD_OFF;
+    o->lod_ratio = 1;
+    o->lod_px = LOD_DEFAULT_PX;
     o->cull = CULL_NONE;
     o->view = VIEW_COLOR;
     o->textures = true;
@@ -54,6 +60,7 @@ void render_opts_ideal(struct render_opts *o)
     o->persp = PERSP_CORRECT;
     o->filter = TEX_TRILINEAR;
     o->ssaa = SSAA_8;
+    o->lod = LOD_OFF;
 }
 
 const char *render_shade_name(enum shade_mode m) { return shade_names[m]; }

@@ -9,6 +9,7 @@
 
 #include "file.h"
 #include "lex.h"
+#include "lod.h"
 #include "model.h"
 
 #define MAX_TOKENS 32
@@ -398,8 +399,27 @@ int scene_load(const char *path, struct scene *s, struct err *e)
     return scene_load_model(path, s, e);
 }
 
+int scene_build_lod(struct scene *s, bool wait, struct err *e)
+{
+    if (s->lod_job)
+        return 0;
+    if (lod_start(s->meshes, s->n_meshes, &s->lod_job, e))
+        return -1;
+    if (wait) {
+        lod_finish(s->lod_job, false);
+        s->lod_job = NULL;
+    }
+    return 0;
+}
+
+bool scene_lod_done(const struct scene *s)
+{
+    return lod_done(s->lod_job);
+}
+
 void scene_free(struct scene *s)
 {
+    lod_finish(s->lod_job, true); /* before the meshes it builds levels for */
     for (int i = 0; i < SCENE_MAX_ITEMS; i++)
         mesh_free(&s->meshes[i]);
     texture_cache_free(&s->textures); /* after the meshes: they borrow from it */
