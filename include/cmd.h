@@ -37,8 +37,9 @@ int cmd_sky(const struct options *o, const struct scene *s, const struct render_
 /* scene_load, then --texture over every item, then the scene's warnings to stderr (one line
  * each, "warning: file:line: ..."); a model with uvs but no MTL material and no --texture
  * gets the texture found beside it by name (texfind.h), unless --no-texture. The file found
- * goes to found_out (size n, "" if none; may be NULL). On failure nothing is left
- * allocated. */
+ * goes to found_out (size n, "" if none; may be NULL). Then the levels of detail when they
+ * may be drawn (--lod not off: built before returning; the viewer: always, in the
+ * background). On failure nothing is left allocated. */
 int cmd_load_scene(const struct options *o, const char *path, struct scene *s, char *found_out,
                    size_t n, struct err *e);
 

@@ -36,6 +36,7 @@ struct options {
     bool sky_procedural;      /* --sky procedural */
     bool frame;               /* --frame: fit the camera to the model's bounding sphere */
     struct render_opts render;
+    bool lod_set;             /* --lod given (the viewer's default is auto, the others' off) */
     const char *texture;      /* --texture */
     const char *out;          /* --out */
     const char *depth_out;    /* --depth-out */

@@ -82,6 +82,10 @@ static int bench_scene(const struct options *o, const char *path, int cols, int 
     struct scene scene;
     if (scene_load(path, &scene, e))
         return 2;
+    if (o->render.lod != LOD_OFF && scene_build_lod(&scene, true, e)) {
+        scene_free(&scene);
+        return 1;
+    }
     struct camera cam;
     struct render_opts ro;
     cmd_view_setup(o, &scene, (double)cols / (2.0 * rows), !scene.has_camera, &cam, &ro);

@@ -106,6 +106,13 @@ int cmd_load_scene(const struct options *o, const char *path, struct scene *s, c
         else if (found_out)
             snprintf(found_out, n, "%s", found);
     }
+    /* levels of detail when they may be drawn: the viewer builds them in the background
+     * (its first frames draw the meshes in full), the others before the first frame */
+    bool view = o->cmd == CMD_VIEW;
+    if ((view || o->render.lod != LOD_OFF) && scene_build_lod(s, !view, e)) {
+        scene_free(s);
+        return -1;
+    }
     return 0;
 }
 
@@ -133,6 +140,14 @@ void cmd_print_stats(const struct frame_stats *st)
             (unsigned long long)st->tris_drawn, (unsigned long long)st->tris_empty,
             (unsigned long long)st->pixels_tested,
             (unsigned long long)st->pixels_shaded, st->render_ms);
+    if (st->lod_max < 0)
+        fprintf(stderr, "lod: no mesh drawn\n");
+    else if (st->lod_min == st->lod_max)
+        fprintf(stderr, "lod: level %d, %llu of %llu triangles\n", st->lod_max,
+                (unsigned long long)st->tris_in, (unsigned long long)st->tris_full);
+    else
+        fprintf(stderr, "lod: levels %d-%d, %llu of %llu triangles\n", st->lod_min, st->lod_max,
+                (unsigned long long)st->tris_in, (unsigned long long)st->tris_full);
 }
 
 int cmd_render(const struct options *o, struct err *e)

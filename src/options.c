@@ -29,6 +29,7 @@ enum flag_id {
     F_DEPTH_OUT, F_STATS, F_REPEAT, F_THREADS, F_COLS, F_ROWS, F_FRAMES, F_ORBIT, F_CAMERA_PATH,
     F_COLORS, F_TOLERANCE, F_DITHER, F_DIFF, F_PPM_DIR, F_FRAME_INDEX, F_FPS, F_NO_HUD, F_CHART,
     F_SWEEP, F_CSV, F_SVG, F_MODELS, F_HELP, F_VERSION, F_SPIN, F_NO_SPIN, F_BANDWIDTH, F_SKY,
+    F_LOD,
 };
 
 struct flag {
@@ -67,6 +68,7 @@ static const struct flag flags[] = {
     ENUM_FLAG("--depth", C_DRAW | C_BENCH, "depth buffer", render_depth_names, render.depth),
     {"--threads", F_THREADS, ARG_VALUE, C_DRAW | C_BENCH, "N", "rendering threads, 1..64 (default: $RASTTY_THREADS, else one per core)", NULL, 0},
     ENUM_FLAG("--ssaa", C_DRAW | C_BENCH, "supersampling: M x M samples a pixel, box filter", render_ssaa_names, render.ssaa),
+    {"--lod", F_LOD, ARG_VALUE, C_DRAW | C_BENCH, "M", "mesh level of detail: off, auto (the coarsest level whose error is under 0.15 px on screen; auto:PX another bound) or RATIO (the level nearest that fraction of the triangles, 0..1) (default: auto in the viewer, else off)", NULL, 0},
     {"--background", F_BACKGROUND, ARG_VALUE, C_DRAW, "R,G,B", "background colour, 0..255 each (default 0,0,0)", NULL, 0},
     {"--sky", F_SKY, ARG_VALUE, C_DRAW, "procedural", "the generated sky behind the scene (the viewer's default)", NULL, 0},
     ENUM_FLAG("--cull", C_DRAW | C_BENCH, "face culling", render_cull_names, render.cull),
@@ -199,6 +201,29 @@ static int parse_size(const char *s, int *w, int *h)
         return -1;
     *x = '\0';
     return parse_int(buf, 1, FB_MAX_DIM, w) || parse_int(x + 1, 1, FB_MAX_DIM, h) ? -1 : 0;
+}
+
+/* --lod: off | auto | auto:PX | RATIO */
+static int parse_lod(const char *s, struct render_opts *r)
+{
+    double d;
+    if (strcmp(s, "off") == 0 || strcmp(s, "auto") == 0) {
+        r->lod = s[0] == 'o' ? LOD_OFF : LOD_AUTO;
+        r->lod_px = LOD_DEFAULT_PX;
+        return 0;
+    }
+    if (strncmp(s, "auto:", 5) == 0) {
+        if (parse_double(s + 5, &d) || !(d > 0 && d <= 1e6))
+            return -1;
+        r->lod = LOD_AUTO;
+        r->lod_px = (float)d;
+        return 0;
+    }
+    if (parse_double(s, &d) || !(d > 0 && d <= 1))
+        return -1;
+    r->lod = LOD_RATIO;
+    r->lod_ratio = (float)d;
+    return 0;
 }
 
 static void defaults(struct options *o)
@@ -355,6 +380,12 @@ static int apply(struct options *o, const struct flag *f, const char *v, struct 
     case F_CSV: o->csv = v; return 0;
     case F_SVG: o->svg = v; return 0;
     case F_MODELS: o->models = v; return 0;
+    case F_LOD:
+        if (parse_lod(v, &o->render))
+            return bad(e, f->name, "expected off, auto, auto:PX (pixels > 0) or RATIO (a fraction "
+                                   "of the triangles, 0 < RATIO <= 1)", v);
+        o->lod_set = true;
+        return 0;
     case F_HELP: o->cmd = CMD_HELP; return 0;
     case F_VERSION: o->cmd = CMD_VERSION; return 0;
     }

@@ -7,6 +7,7 @@
 #include "batch.h"
 #include "clip.h"
 #include "line.h"
+#include "lod.h"
 #include "raster.h"
 #include "setup.h"
 #include "shade.h"
@@ -18,6 +19,7 @@
 struct item_verts {
     struct vertex_out *v;
     uint32_t cap;
+    const struct mesh *level; /* the level of detail this frame draws (chosen once a frame) */
 };
 
 struct pipeline {
@@ -159,12 +161,12 @@ static void add_setup(struct pipeline *p, struct frame *f, const struct vertex_o
     f->stats->tris_drawn++;
 }
 
-/* The front end for one item's filled triangles; depth_only: the hidden-line pre-pass
- * (every face, whatever the culling; no shading records). */
+/* The front end for one item's filled triangles (m: the item's mesh at the level of detail
+ * drawn); depth_only: the hidden-line pre-pass (every face, whatever the culling; no shading
+ * records). */
 static int front_end(struct pipeline *p, struct frame *f, const struct draw_item *item,
-                     struct vertex_out *vo, bool depth_only, struct err *e)
+                     const struct mesh *m, struct vertex_out *vo, bool depth_only, struct err *e)
 {
-    const struct mesh *m = item->mesh;
     const struct render_opts *o = f->o;
     struct frame_stats *stats = f->stats;
     struct batch *bt = &p->batch;
@@ -346,6 +348,23 @@ static void sky_stage(struct pipeline *p, const struct skybox *sky, const struct
     workers_for(p->workers, (size_t)fb->h, 8, sky_band, &j);
 }
 
+/* The item's mesh at the level of detail the frame draws (lod.h), noted in stats. */
+static const struct mesh *lod_mesh(const struct draw_item *item, const struct camera *cam,
+                                   int fb_h, const struct render_opts *o, double scale,
+                                   struct frame_stats *stats)
+{
+    const struct mesh *m = item->mesh;
+    int level = 0;
+    if (o->lod != LOD_OFF) {
+        vec3 c = m4_mul_point(item->model, v3(m->center[0], m->center[1], m->center[2]));
+        double px = lod_pixels_per_unit(cam, fb_h, c, m->radius * scale) * scale;
+        level = lod_choose(m, o, px);
+    }
+    stats->lod_min = stats->lod_min < 0 || level < stats->lod_min ? level : stats->lod_min;
+    stats->lod_max = level > stats->lod_max ? level : stats->lod_max;
+    return lod_level(m, level);
+}
+
 int pipeline_draw(struct pipeline *p, const struct draw_item *items, int n_items,
                   const struct skybox *sky, const struct camera *cam,
                   const struct render_opts *o, struct fb *fb, struct frame_stats *stats,
@@ -353,6 +372,7 @@ int pipeline_draw(struct pipeline *p, const struct draw_item *items, int n_items
 {
     double t0 = timing_now_ms();
     memset(stats, 0, sizeof *stats);
+    stats->lod_min = stats->lod_max = -1;
     if (use_threads(p, o->threads > 0 ? o->threads : workers_cores(), e))
         return -1;
     fb->depth_mode = o->depth;
@@ -399,7 +419,10 @@ int pipeline_draw(struct pipeline *p, const struct draw_item *items, int n_items
                         f.u.normal_f[r][c] = (float)f.u.normal_matrix.m[r][c];
                 }
             f.u.mvp = m4_mul(pv, item->model);
-            if (sphere_outside(m, f.u.mvp, max_scale(item->model))) {
+            double scale = max_scale(item->model);
+            if (counts)
+                stats->tris_full += m->n_tris;
+            if (sphere_outside(m, f.u.mvp, scale)) {
                 if (counts) {
                     stats->meshes_culled++;
                     stats->tris_in += m->n_tris;
@@ -407,13 +430,17 @@ int pipeline_draw(struct pipeline *p, const struct draw_item *items, int n_items
                 }
                 continue;
             }
+            /* room for the mesh in full: changing levels never allocates */
             struct vertex_out *vo = item_verts(p, it, m->n_verts, e);
             if (!vo)
                 return -1;
+            if (counts) /* once a frame: a background build may add levels meanwhile */
+                p->items[it].level = lod_mesh(item, cam, fb->h, o, scale, stats);
+            m = p->items[it].level;
             if (pass == 1 || !pass1) /* pass 2 reuses pass 1's vertices */
                 vertex_stage(p, m, &f.u, vo);
             if (pass == 1) {
-                if (front_end(p, &f, item, vo, wire, e))
+                if (front_end(p, &f, item, m, vo, wire, e))
                     return -1;
             } else {
                 draw_edges(m, vo, o, !wire || o->hidden_lines, !wire, fb, stats);
