@@ -4,7 +4,9 @@
  * The status line is a list of fields, most important first: the scene, shading and texture
  * filter, colour mode, frame rate; then what the pacing did to the picture (pace.h), a
  * debug view, fly mode, the camera (`i`), the texture file ("untextured" when none), the
- * light and the methods (rasterizer, interpolation, depth buffer); then culling, bytes,
+ * light and the methods (rasterizer, interpolation, depth buffer), the level of detail (mode,
+ * level drawn, triangles submitted of the full count: "lod auto L1 149.6k/300.6k", "..."
+ * while the levels are being built); then culling, bytes,
  * timings, triangle counts and the help key. A line too narrow
  * for all of them drops whole fields, least important first (and the rightmost of equals),
  * never cutting one: at 80 columns the first five always fit. A new field is one line in
@@ -27,6 +29,7 @@ struct view_hud_info {
     size_t bytes;               /* the last frame's */
     const struct frame_stats *st;
     const char *pacing;         /* pace_describe(): "" when the link keeps up */
+    bool lod_building;          /* the scene's levels of detail are still being built */
 };
 
 /* The status line for a terminal `width` columns wide (at most width - 1 characters: the

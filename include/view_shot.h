@@ -3,7 +3,8 @@
  * The screenshot key (S) writes the framebuffer as PNG and ANSI (view.c) and prints this
  * command at exit: same scene file, framebuffer size, camera (every number with 17
  * significant digits, so it round-trips exactly), light (--light camera for the headlight),
- * shading, texture, filter, culling, methods (--raster, --persp, --depth), debug view,
+ * shading, texture, filter, culling, methods (--raster, --persp, --depth, --ssaa, --lod:
+ * render builds every level before drawing, the viewer in the background), debug view,
  * background and the viewer's default sky
  * (--sky procedural). Rendering it gives the same pixels as the PNG. Pure. */
 #ifndef RASTTY_VIEW_SHOT_H

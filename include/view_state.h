@@ -75,7 +75,8 @@ struct view_state {
 void view_state_init(struct view_state *s, const struct camera *cam, const struct render_opts *ro,
                      bool spin, bool headlight, double spin_timeout, double now);
 /* A new scene: its camera becomes home and its lights the world lights; modes chosen with
- * keys (shading, filter, culling, debug view, light mode) are kept. */
+ * keys (shading, filter, culling, debug view, methods, level of detail, light mode) are
+ * kept. */
 void view_state_scene(struct view_state *s, const struct camera *cam,
                       const struct render_opts *scene_ro, double extent);
 enum view_action view_key(struct view_state *s, enum input_cmd c, double t);

@@ -57,6 +57,7 @@ struct view {
     int fb_cols, fb_rows;   /* cells used by the picture */
     bool help_drawn;        /* the help overlay is on the screen */
     bool drawn;             /* fb holds a frame (for screenshots) */
+    bool lod_pending;       /* the scene's levels of detail are still being built */
     /* stats for the status line */
     struct frame_stats st;
     struct encode_stats est;
@@ -139,6 +140,7 @@ static void enter_scene(struct view *v)
     /* a model alone is framed, unless the command line placed the camera */
     cmd_view_setup(v->o, s, aspect, !v->o->camera_set, &cam, &ro);
     view_state_scene(&v->s, &cam, &ro, v3_len(v3_sub(s->bound_hi, s->bound_lo)));
+    v->lod_pending = !scene_lod_done(s);
     skybox_free(&v->default_sky); /* its sun follows the scene's first light */
 }
 
@@ -182,7 +184,7 @@ static void hud_draw(struct view *v, double t)
         .scene = v->scenes[v->cur]->name, .scene_i = v->cur, .n_scenes = v->n_scenes,
         .texture = v->texture[v->cur][0] ? v->texture[v->cur] : NULL, .mode = v->eo.mode,
         .fps = v->fps, .render_ms = v->st.render_ms, .encode_ms = v->encode_ms,
-        .bytes = v->est.bytes, .st = &v->st};
+        .bytes = v->est.bytes, .st = &v->st, .lod_building = v->lod_pending};
     char pacing[96];
     pace_describe(&v->pace, v->est.max_err, pacing, sizeof pacing);
     in.pacing = pacing;
@@ -392,6 +394,13 @@ static int loop(struct view *v, struct err *e)
             v->s.message[0] = '\0';
             v->s.hud_dirty = true;
         }
+        if (v->lod_pending && scene_lod_done(v->scenes[v->cur])) {
+            v->lod_pending = false; /* the levels are in: draw with them */
+            v->s.dirty = v->s.hud_dirty = true;
+            timeout = 0;
+        } else if (v->lod_pending && (timeout < 0 || timeout > 50)) {
+            timeout = 50; /* look again soon */
+        }
         if (v->s.hud_dirty && !v->s.dirty) /* draw it before waiting (a message ended, say);
                                               * with a frame due it goes out with the frame */
             timeout = 0;
@@ -535,7 +544,10 @@ int view_run(const struct options *o, struct err *e)
     bool headlight = o->light_camera || (!o->light_set && !o->light_world);
     struct camera cam;
     camera_default(&cam);
-    view_state_init(&v->s, &cam, &o->render, spin, headlight,
+    struct render_opts ro = o->render;
+    if (!o->lod_set) /* the viewer draws what the terminal can show */
+        ro.lod = LOD_AUTO;
+    view_state_init(&v->s, &cam, &ro, spin, headlight,
                     o->spin_timeout >= 0 ? o->spin_timeout : VIEW_SPIN_TIMEOUT_S, now_s());
     bool ask;
     v->mode = colour_mode(o, &ask);

@@ -71,6 +71,19 @@ void view_hud_compose(const struct view_state *s, const struct view_hud_info *in
     else
         add(&f, 2, "%s %s %s", render_raster_name(s->ro.raster), render_persp_name(s->ro.persp),
             render_depth_name(s->ro.depth));
+    if (st) {
+        char level[24] = "", mode[24];
+        if (s->ro.lod == LOD_RATIO)
+            snprintf(mode, sizeof mode, "%g", s->ro.lod_ratio);
+        else
+            snprintf(mode, sizeof mode, "%s", render_lod_names.names[s->ro.lod]);
+        if (st->lod_min >= 0 && st->lod_min != st->lod_max)
+            snprintf(level, sizeof level, " L%d-%d", st->lod_min, st->lod_max);
+        else if (st->lod_max >= 0)
+            snprintf(level, sizeof level, " L%d", st->lod_max);
+        add(&f, 2, "lod %s%s%s %.1fk/%.1fk", mode, in->lod_building ? "..." : "", level,
+            (double)st->tris_in / 1e3, (double)st->tris_full / 1e3);
+    }
     if (s->spin)
         add(&f, 3, "%s", s->paused ? "spin paused" : "spin");
     if (s->ro.cull != CULL_NONE)

@@ -78,6 +78,12 @@ void view_shot_command(const struct view_state *s, const struct view_shot_info *
         render_persp_name(s->ro.persp), render_depth_name(s->ro.depth));
     if (s->ro.ssaa != SSAA_1)
         put(&b, " --ssaa %s", render_ssaa_names.names[s->ro.ssaa]);
+    if (s->ro.lod == LOD_RATIO)
+        put(&b, " --lod %.9g", s->ro.lod_ratio);
+    else if (s->ro.lod == LOD_AUTO && s->ro.lod_px == LOD_DEFAULT_PX)
+        put(&b, " --lod auto");
+    else if (s->ro.lod == LOD_AUTO)
+        put(&b, " --lod auto:%.9g", s->ro.lod_px);
     if (s->ro.view != VIEW_COLOR)
         put(&b, " --view %s", render_view_name(s->ro.view));
     if (s->ro.hidden_lines)

@@ -58,6 +58,9 @@ void view_state_scene(struct view_state *s, const struct camera *cam,
     s->ro.raster = keep.raster;
     s->ro.persp = keep.persp;
     s->ro.depth = keep.depth;
+    s->ro.lod = keep.lod;
+    s->ro.lod_ratio = keep.lod_ratio;
+    s->ro.lod_px = keep.lod_px;
     s->extent = extent > 0 ? extent : 1;
     s->dirty = s->hud_dirty = true;
 }
@@ -152,6 +155,11 @@ enum view_action view_key(struct view_state *s, enum input_cmd c, double t)
     case IN_DEPTH:
         s->ro.depth = (enum depth_mode)cycle_method(s, "depth buffer", &render_depth_names,
                                                     (int)s->ro.depth, t);
+        break;
+    case IN_LOD: /* auto and off (a --lod RATIO goes to auto) */
+        s->ro.lod = s->ro.lod == LOD_AUTO ? LOD_OFF : LOD_AUTO;
+        view_message(s, s->ro.lod == LOD_AUTO ? "level of detail: auto  (L: off)"
+                                              : "level of detail: off  (L: auto)", t);
         break;
     case IN_LIGHT:
         s->headlight = !s->headlight;

@@ -160,11 +160,23 @@ TEST(render_option_keys_cycle_through_every_value)
     CHECK_EQ_INT(s.ro.persp, PERSP_CORRECT);
     view_key(&s, IN_DEPTH, 1);
     CHECK_STR_CONTAINS(s.message, "depth buffer: w");
-    /* a new scene keeps the methods chosen with keys */
+    /* L: the level of detail between auto and off (a RATIO goes to auto) */
+    CHECK_EQ_INT(s.ro.lod, LOD_OFF);
+    view_key(&s, IN_LOD, 1);
+    CHECK_EQ_INT(s.ro.lod, LOD_AUTO);
+    CHECK_STR_CONTAINS(s.message, "level of detail: auto");
+    view_key(&s, IN_LOD, 1);
+    CHECK_EQ_INT(s.ro.lod, LOD_OFF);
+    CHECK_STR_CONTAINS(s.message, "level of detail: off");
+    s.ro.lod = LOD_RATIO;
+    view_key(&s, IN_LOD, 1);
+    CHECK_EQ_INT(s.ro.lod, LOD_AUTO);
+    /* a new scene keeps the methods and the level of detail chosen with keys */
     struct render_opts ro;
     render_opts_default(&ro);
     view_state_scene(&s, &s.home, &ro, 1);
     CHECK(s.ro.raster == RASTER_SCANLINE && s.ro.depth == (enum depth_mode)1);
+    CHECK_EQ_INT(s.ro.lod, LOD_AUTO);
 }
 
 TEST(l_switches_between_the_headlight_and_the_world_lights)
@@ -184,7 +196,8 @@ TEST(l_switches_between_the_headlight_and_the_world_lights)
 
 static void hud(const struct view_state *s, int width, char *out, size_t n)
 {
-    struct frame_stats st = {.tris_drawn = 2464, .tris_clipped = 3, .tris_culled = 7};
+    struct frame_stats st = {.tris_drawn = 2464, .tris_clipped = 3, .tris_culled = 7,
+                             .tris_in = 1246, .tris_full = 2492, .lod_min = 1, .lod_max = 1};
     struct view_hud_info in = {.scene = "african_head.obj", .scene_i = 0, .n_scenes = 1,
                                .texture = "african_head_diffuse.tga", .mode = PALETTE_TRUECOLOR,
                                .fps = 59.6, .render_ms = 2.1, .encode_ms = 0.12, .bytes = 10240,
@@ -204,15 +217,16 @@ TEST(the_status_line_keeps_the_essentials_first_at_80_columns)
     CHECK(!strstr(line, "tris")); /* dropped whole, least important first */
     if (t->failures)
         fprintf(stderr, "    80: \"%s\"\n", line);
-    hud(&s, 250, line, sizeof line);
+    hud(&s, 300, line, sizeof line);
     CHECK_STR_CONTAINS(line, "| link 125KB/s: 8fps tol 14 |");
     CHECK_STR_CONTAINS(line, "| tex:african_head_diffuse.tga |");
     CHECK_STR_CONTAINS(line, "| light:camera |");
+    CHECK_STR_CONTAINS(line, "| lod off L1 1.2k/2.5k |");
     CHECK_STR_CONTAINS(line, "| tris 2464 clip 3 cull 7");
     /* every width: only whole fields (each kept field is one of the full set) */
     char full[512];
     strcpy(full, line);
-    for (int w = 10; w < 250; w += 7) {
+    for (int w = 10; w < 300; w += 7) {
         hud(&s, w, line, sizeof line);
         char *save, *f = strtok_r(line, "|", &save);
         for (; f; f = strtok_r(NULL, "|", &save))
@@ -245,6 +259,8 @@ TEST(the_screenshot_command_reproduces_the_camera_and_methods_exactly)
     view_key(&s, IN_RASTER, 0);
     view_key(&s, IN_PERSPECTIVE, 0);
     view_key(&s, IN_DEPTH, 0);
+    view_key(&s, IN_LOD, 0); /* auto */
+    s.ro.lod_px = 0.3f;
     char cmd[VIEW_SHOT_MAX];
     const uint8_t bg[3] = {1, 2, 3};
     struct view_shot_info in = {.model = "models/it's here.obj", .width = 160, .height = 94,
@@ -273,6 +289,7 @@ TEST(the_screenshot_command_reproduces_the_camera_and_methods_exactly)
           o.render.view == s.ro.view);
     CHECK(o.render.raster == RASTER_TILED && o.render.persp == s.ro.persp &&
           o.render.depth == s.ro.depth && s.ro.persp != PERSP_CORRECT);
+    CHECK(o.render.lod == LOD_AUTO && o.render.lod_px == s.ro.lod_px);
     CHECK(o.light_camera && o.sky_procedural && o.background_set);
     CHECK(o.width == 160 && o.height == 94);
     CHECK(strcmp(o.out, "rastty-001.png") == 0);
