@@ -2,19 +2,23 @@
  *
  * A fixed scene set (built-in assets: the demo scene, a grazing textured ground seen with a
  * 20-degree roll, a textured sphere on magenta — the crack test; shared models when their
- * folder is there: the textured african_head, the 300k-triangle sports car) is drawn at each
- * size (160x96, a terminal's worth, and 640x480) with
+ * folder is there: the textured african_head, and the dense meshes — the 300k-triangle sports
+ * car, the 225k-triangle lost_empire and the 69k-triangle bunny) is drawn at each size
+ * (160x96, a terminal's worth, and 640x480) with
  *   - the default methods, and every other value of every axis varied alone from them;
  *   - the fastest combination (per axis the value fastest in a pilot run, over all scenes of
  *     that size) and the most accurate (per axis the value with the best pooled PSNR, ties to
- *     the faster), unless another row already has those methods.
+ *     the faster; an axis whose default is the ideal's, lod off, keeps it: a coarser mesh at
+ *     one sample a pixel may score higher by the luck of its aliasing, never under the
+ *     ideal's supersampling), unless another row already has those methods.
  * Per row: ms/frame (median of `repeat` frames, wall clock around ssaa_draw, one thread;
  * the rows of a scene take turns, in a new random order each round, so load from other
  * processes falls on every method alike; each turn draws the row twice and times the second
  * frame, so a method is timed with its own data in the caches, as a viewer draws it, not
  * with the previous row's — without this the row after a --ssaa 8 row, whose framebuffer
  * is 140 MB at 640x480, came out 15% slower than the same work elsewhere); error against the
- * scene's ideal image (render_opts_ideal: perspective-correct, trilinear, --ssaa 8): PSNR over
+ * scene's ideal image (render_opts_ideal: perspective-correct, trilinear, --ssaa 8, lod off;
+ * every scene's levels of detail are built before it is drawn): PSNR over
  * all pixels and channels, and the fraction of pixels with a channel off by more than 8;
  * terminal bytes of the frame encoded as one full truecolor frame (encode.h).
  *
@@ -26,11 +30,12 @@
  * Axes are data: chart_axes[] lists each method axis once (its CSV column, its names, its
  * render_opts field), so a new axis is one entry there. The CSV starts with
  *   scene,size,raster,persp,depth,filter,ssaa,ms,psnr_db,frac_gt8,bytes
- * and axes after the first CHART_CSV_AXES follow `bytes`, then `shimmer` (empty where not
- * measured), so the header only grows. */
+ * and axes after the first CHART_CSV_AXES follow `bytes` (part 3: lod), then `shimmer` (empty
+ * where not measured), so the header only grows. */
 #ifndef RASTTY_CHART_H
 #define RASTTY_CHART_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdio.h>
 
@@ -42,8 +47,10 @@ struct chart_axis {
     const char *name;                 /* CSV column; the flag is --name */
     const struct render_enum *values; /* value names; the default is render_opts_default's */
     size_t field;                     /* offsetof(struct render_opts, ...), an int-sized enum */
+    bool ideal_is_default;            /* the ideal image uses this axis's default (lod off):
+                                       * the most accurate combination keeps it */
 };
-#define CHART_AXES 5     /* entries of chart_axes */
+#define CHART_AXES 6     /* entries of chart_axes */
 #define CHART_CSV_AXES 5 /* of them, the columns before ms */
 #define CHART_SHIMMER_FRAMES 9
 #define CHART_SHIMMER_DEG 0.5

@@ -13,11 +13,12 @@
 #include "timing.h"
 
 const struct chart_axis chart_axes[CHART_AXES] = {
-    {"raster", &render_raster_names, offsetof(struct render_opts, raster)},
-    {"persp", &render_persp_names, offsetof(struct render_opts, persp)},
-    {"depth", &render_depth_names, offsetof(struct render_opts, depth)},
-    {"filter", &render_filter_names, offsetof(struct render_opts, filter)},
-    {"ssaa", &render_ssaa_names, offsetof(struct render_opts, ssaa)},
+    {"raster", &render_raster_names, offsetof(struct render_opts, raster), false},
+    {"persp", &render_persp_names, offsetof(struct render_opts, persp), false},
+    {"depth", &render_depth_names, offsetof(struct render_opts, depth), false},
+    {"filter", &render_filter_names, offsetof(struct render_opts, filter), false},
+    {"ssaa", &render_ssaa_names, offsetof(struct render_opts, ssaa), false},
+    {"lod", &render_lod_names, offsetof(struct render_opts, lod), true},
 };
 _Static_assert(CHART_CSV_AXES <= CHART_AXES, "CSV axes are a prefix of the axes");
 
@@ -52,6 +53,10 @@ static const struct chart_scene_def scene_defs[] = {
      CAM_SCENE, {0}, {0}, {0}, false},
     {"car", true, "sports_car/sportsCar.obj", NULL, CAM_FRAME, {2, 1, 3}, {0, 0, 0}, {0, 1, 0},
      false},
+    /* the other dense shared models, for the level of detail */
+    {"empire", true, "lost_empire/lost_empire.obj", NULL, CAM_FRAME, {2, 1, 3}, {0, 0, 0},
+     {0, 1, 0}, false},
+    {"bunny", true, "bunny/bunny.obj", NULL, CAM_FRAME, {2, 1, 3}, {0, 0, 0}, {0, 1, 0}, false},
 };
 enum { N_SCENE_DEFS = sizeof scene_defs / sizeof scene_defs[0] };
 
@@ -121,7 +126,7 @@ static int load_scenes(const struct chart_config *c, struct loaded *ls, int *n_o
         ls[n].s = s;
         n++;
         *n_out = n;
-        if (scene_load(path, s, e))
+        if (scene_load(path, s, e) || scene_build_lod(s, true, e))
             return -1;
         if (d->texture) {
             snprintf(path, sizeof path, "%s/%s", dir, d->texture);
@@ -435,6 +440,8 @@ static void choose_combos(const struct chart *c, int w, int h, int fast[CHART_AX
             double db = g.mse > 0 ? 10 * log10(255.0 * 255.0 / g.mse) : INFINITY;
             if (g.ms < fast_ms)
                 fast_ms = g.ms, fast[a] = v;
+            if (chart_axes[a].ideal_is_default)
+                continue;
             if (db > best_db || (db == best_db && isinf(db) && g.frac < best_frac))
                 best_db = db, best_frac = g.frac, best[a] = v;
         }
@@ -558,7 +565,7 @@ void chart_row_label(const struct chart_row *r, char *out, size_t n)
         snprintf(out, n, "most accurate");
     } else {
         const char *v = chart_axes[r->axis].values->names[r->value[r->axis]];
-        if (strlen(v) <= 3) /* "w", "z16", "4": say which axis */
+        if (strlen(v) <= 4) /* "w", "z16", "4", "auto": say which axis */
             snprintf(out, n, "%s %s", chart_axes[r->axis].name, v);
         else
             snprintf(out, n, "%s", v);
@@ -639,7 +646,7 @@ struct point {
 static uint32_t row_color(const struct chart_row *r, bool svg)
 {
     static const uint32_t axis_col[CHART_AXES] = {0x1f77b4, 0xff7f0e, 0x2ca02c, 0x9467bd,
-                                                  0xd62728};
+                                                  0xd62728, 0x8c564b};
     if (r->kind == CHART_DEFAULT)
         return svg ? 0x000000 : 0xffffff;
     if (r->kind == CHART_FASTEST)
