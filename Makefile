@@ -88,8 +88,13 @@ build/asan/rastty: $(BUILD)/librastty.a $(MAINOBJ)
 	@echo "  LD      $@"
 	$(Q)$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $(MAINOBJ) $(BUILD)/librastty.a $(LDLIBS)
 
-bench: rastty assets oracle-build
+bench: rastty assets oracle-build build/bench/reorder
 	@tests/bench.sh
+
+# does meshoptimizer's vertex-cache / overdraw reordering pay? (tests/bench_lod.sh runs it)
+build/bench/reorder: tests/bench/reorder.c $(BUILD)/librastty.a
+	@mkdir -p $(dir $@)
+	$(Q)$(CC) $(CFLAGS) -o $@ $< $(BUILD)/librastty.a $(LDLIBS)
 
 # The README's chart: every method on the scene set at 160x96 and 640x480 (several minutes;
 # run it on a quiet machine). Shared models from ../shared/models (or RASTTY_SHARED).

@@ -5,8 +5,9 @@
 #   2. key -> screen latency of the viewer behind a slow link (1 and 4 Mbit/s);
 #   3. render time per frame of the demo scene and the big shared models;
 #   4. every rendering method: ms/frame and error against Mesa (tests/bench_methods.sh);
-#   5. rastty against Mesa llvmpipe on the speed workloads, side by side (tests/bench_speed.sh);
-#   6. where each method fails: the six stress sweeps (rastty bench --sweep NAME).
+#   5. mesh level of detail: --lod auto's bound against error and speed (tests/bench_lod.sh);
+#   6. rastty against Mesa llvmpipe on the speed workloads, side by side (tests/bench_speed.sh);
+#   7. where each method fails: the six stress sweeps (rastty bench --sweep NAME).
 # The full methods chart takes minutes: `make chart`.
 # Needs ../shared (or $RASTTY_SHARED) for the shared models; skips those parts without it.
 set -eu
@@ -60,6 +61,8 @@ for size in "160 48" "320 96"; do
 done
 echo
 tests/bench_methods.sh
+echo
+tests/bench_lod.sh
 echo
 tests/bench_speed.sh
 echo
