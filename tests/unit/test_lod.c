@@ -1,0 +1,519 @@
+/* test_lod.c: levels of detail (lod.h) — the chain keeps a closed mesh closed and every
+ * triangle's material and uvs, its error estimate is the size of the real one, auto picks
+ * coarser levels farther away by the projected-error rule, RATIO picks the nearest level,
+ * off draws the very same bytes, and meshes too small or broken get no levels. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "lod.h"
+#include "pipeline.h"
+#include "scene.h"
+#include "test.h"
+
+/* A UV sphere of radius r around the origin: `slices` around, `stacks` from pole to pole,
+ * outward winding, normals = positions, a uv seam at u = 0/1 (same positions, other uvs)
+ * and two materials (the northern half 0, the southern 1): seams of every kind. */
+static int sphere_r(struct mesh *m, int slices, int stacks, float rad)
+{
+    int n_pos = 2 + (stacks - 1) * slices;
+    int n_uv = (stacks + 1) * (slices + 1);
+    int n_tris = 2 * slices * (stacks - 1);
+    float *pos = malloc((size_t)n_pos * 3 * sizeof *pos);
+    float *uv = malloc((size_t)n_uv * 2 * sizeof *uv);
+    struct mesh_corner *c = malloc((size_t)n_tris * 3 * sizeof *c);
+    uint16_t *mat = malloc((size_t)n_tris * sizeof *mat);
+    if (!pos || !uv || !c || !mat)
+        return -1;
+    /* position 0 = north pole, 1 = south pole, then ring r (1..stacks-1), slice s */
+    pos[0] = 0, pos[1] = rad, pos[2] = 0, pos[3] = 0, pos[4] = -rad, pos[5] = 0;
+    for (int r = 1; r < stacks; r++)
+        for (int s = 0; s < slices; s++) {
+            double th = M_PI * r / stacks, ph = 2 * M_PI * s / slices;
+            float *p = &pos[3 * (2 + (r - 1) * slices + s)];
+            p[0] = rad * (float)(sin(th) * cos(ph)), p[1] = rad * (float)cos(th);
+            p[2] = rad * (float)(-sin(th) * sin(ph));
+        }
+    for (int r = 0; r <= stacks; r++)
+        for (int s = 0; s <= slices; s++) {
+            uv[2 * (r * (slices + 1) + s)] = (float)s / slices;
+            uv[2 * (r * (slices + 1) + s) + 1] = 1 - (float)r / stacks;
+        }
+#define P(r, s) ((r) == 0 ? 0u : (r) == stacks ? 1u : (uint32_t)(2 + ((r) - 1) * slices + (s) % slices))
+#define UV(r, s) ((uint32_t)((r) * (slices + 1) + (s)))
+    int t = 0;
+    for (int r = 0; r < stacks; r++)
+        for (int s = 0; s < slices; s++) {
+            struct mesh_corner a = {P(r, s), UV(r, s), P(r, s)};
+            struct mesh_corner b = {P(r + 1, s), UV(r + 1, s), P(r + 1, s)};
+            struct mesh_corner d = {P(r + 1, s + 1), UV(r + 1, s + 1), P(r + 1, s + 1)};
+            struct mesh_corner e = {P(r, s + 1), UV(r, s + 1), P(r, s + 1)};
+            uint16_t mm = r < stacks / 2 ? 0 : 1;
+            if (r > 0) { /* a, b, e (not at the north pole: a == e there) */
+                c[3 * t] = a, c[3 * t + 1] = b, c[3 * t + 2] = e, mat[t++] = mm;
+            }
+            if (r < stacks - 1) {
+                c[3 * t] = e, c[3 * t + 1] = b, c[3 * t + 2] = d, mat[t++] = mm;
+            }
+        }
+#undef P
+#undef UV
+    struct mesh_source src = {.pos = pos, .uv = uv, .nrm = pos, .n_pos = (uint32_t)n_pos,
+                              .n_uv = (uint32_t)n_uv, .n_nrm = (uint32_t)n_pos, .corners = c,
+                              .tri_material = mat, .n_tris = (uint32_t)t};
+    memset(m, 0, sizeof *m);
+    int rc = mesh_build(&src, m, NULL);
+    free(pos);
+    free(uv);
+    free(c);
+    free(mat);
+    if (rc)
+        return -1;
+    m->materials = calloc(2, sizeof *m->materials);
+    if (!m->materials)
+        return -1;
+    m->n_materials = 2;
+    for (int i = 0; i < 2; i++) {
+        m->materials[i].kd[i] = 1; /* red north, green south */
+        m->materials[i].ns = 32;
+        m->materials[i].texture = -1;
+    }
+    return 0;
+}
+
+static int sphere(struct mesh *m, int slices, int stacks)
+{
+    return sphere_r(m, slices, stacks, 1);
+}
+
+/* a vertex with its material, compared as bytes (bsearch over the source's) */
+struct keyed {
+    struct mesh_vertex v;
+    uint16_t material;
+};
+
+static int by_key(const void *a, const void *b)
+{
+    const struct keyed *x = a, *y = b;
+    int c = memcmp(&x->v, &y->v, sizeof x->v);
+    return c ? c : x->material - y->material;
+}
+
+static const struct mesh *sort_mesh; /* qsort's context */
+
+static int by_position(const void *a, const void *b)
+{
+    const float *p = sort_mesh->verts[*(const uint32_t *)a].pos;
+    const float *q = sort_mesh->verts[*(const uint32_t *)b].pos;
+    int c = memcmp(p, q, 3 * sizeof *p);
+    return c ? c : (*(const uint32_t *)a > *(const uint32_t *)b) - (*(const uint32_t *)a < *(const uint32_t *)b);
+}
+
+/* position ids of a level's vertices (equal positions, equal id) */
+static uint32_t *position_ids(const struct mesh *l)
+{
+    uint32_t *order = malloc((size_t)l->n_verts * sizeof *order);
+    uint32_t *id = malloc((size_t)l->n_verts * sizeof *id);
+    if (!order || !id) {
+        free(order);
+        free(id);
+        return NULL;
+    }
+    for (uint32_t i = 0; i < l->n_verts; i++)
+        order[i] = i;
+    sort_mesh = l;
+    qsort(order, l->n_verts, sizeof *order, by_position);
+    for (uint32_t i = 0; i < l->n_verts; i++)
+        id[order[i]] = i > 0 && memcmp(l->verts[order[i]].pos, l->verts[order[i - 1]].pos,
+                                       sizeof l->verts[0].pos) == 0
+                           ? id[order[i - 1]]
+                           : i;
+    free(order);
+    return id;
+}
+
+static int by_u64(const void *a, const void *b)
+{
+    uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
+    return (x > y) - (x < y);
+}
+
+/* Closed and consistently wound, by position: every directed edge once, its reverse once;
+ * returns the number of faults */
+static int open_edges(const struct mesh *l)
+{
+    uint32_t *id = position_ids(l);
+    uint64_t *e = malloc((size_t)l->n_tris * 3 * sizeof *e);
+    if (!id || !e) {
+        free(id);
+        free(e);
+        return -1;
+    }
+    size_t n = 0;
+    int bad = 0;
+    for (uint32_t t = 0; t < l->n_tris; t++)
+        for (int k = 0; k < 3; k++) {
+            uint32_t a = id[l->tris[t][k]], b = id[l->tris[t][(k + 1) % 3]];
+            if (a == b)
+                bad++; /* a triangle with two corners at one position */
+            e[n++] = (uint64_t)a << 32 | b;
+        }
+    qsort(e, n, sizeof *e, by_u64);
+    for (size_t i = 0; i < n; i++) {
+        uint64_t rev = e[i] << 32 | e[i] >> 32;
+        bad += (i + 1 < n && e[i + 1] == e[i]) || !bsearch(&rev, e, n, sizeof *e, by_u64);
+    }
+    free(id);
+    free(e);
+    return bad;
+}
+
+/* the farthest any point of the level's surface lies inside the sphere of radius rad (its
+ * vertices are on it), sampled on a barycentric grid */
+static double sphere_deviation(const struct mesh *l, double rad)
+{
+    double worst = 0;
+    for (uint32_t t = 0; t < l->n_tris; t++) {
+        const float *p[3] = {l->verts[l->tris[t][0]].pos, l->verts[l->tris[t][1]].pos,
+                             l->verts[l->tris[t][2]].pos};
+        for (int i = 0; i <= 16; i++)
+            for (int j = 0; i + j <= 16; j++) {
+                double a = i / 16.0, b = j / 16.0, c = 1 - a - b, r2 = 0;
+                for (int k = 0; k < 3; k++) {
+                    double x = a * p[0][k] + b * p[1][k] + c * p[2][k];
+                    r2 += x * x;
+                }
+                worst = fmax(worst, rad - sqrt(r2));
+            }
+    }
+    return worst;
+}
+
+TEST(lod_levels_keep_closed_meshes_closed_and_every_material_and_uv)
+{
+    struct mesh m, copy;
+    /* radius 10: the error is in object units, not the simplifier's relative ones */
+    REQUIRE(sphere_r(&m, 128, 64, 10) == 0);
+    REQUIRE(sphere_r(&copy, 128, 64, 10) == 0);
+    CHECK_EQ_INT(open_edges(&m), 0); /* the source is closed */
+    REQUIRE(lod_build(&m, NULL) == 0);
+    int n = lod_level_count(&m);
+    CHECK(n >= 5);
+    /* the source itself is left as it was */
+    CHECK(m.n_verts == copy.n_verts && m.n_tris == copy.n_tris);
+    CHECK(memcmp(m.verts, copy.verts, m.n_verts * sizeof *m.verts) == 0);
+    CHECK(memcmp(m.tris, copy.tris, m.n_tris * sizeof *m.tris) == 0);
+    CHECK(memcmp(m.tri_material, copy.tri_material, m.n_tris * sizeof *m.tri_material) == 0);
+    struct keyed *src = calloc(m.n_verts, sizeof *src);
+    REQUIRE(src);
+    for (uint32_t v = 0; v < m.n_verts; v++)
+        src[v].v = m.verts[v], src[v].material = m.vert_material[v];
+    qsort(src, m.n_verts, sizeof *src, by_key);
+    for (int k = 1; k < n; k++) {
+        const struct mesh *l = lod_level(&m, k), *up = lod_level(&m, k - 1);
+        CHECK(l->n_tris <= up->n_tris * 3 / 4 && l->n_tris >= LOD_MIN_TRIS);
+        CHECK(lod_level_error(&m, k) > lod_level_error(&m, k - 1));
+        CHECK(l->materials == m.materials && l->textures == m.textures);
+        int open = open_edges(l), mixed = 0, unused = 0, foreign = 0;
+        if (open)
+            test_fail(t, __FILE__, __LINE__, "level %d: %d open or doubled edges", k, open);
+        for (uint32_t i = 0; i < l->n_tris; i++) {
+            CHECK(l->tri_material[i] < l->n_materials);
+            for (int c = 0; c < 3; c++)
+                mixed += l->vert_material[l->tris[i][c]] != l->tri_material[i];
+        }
+        /* every vertex is one of the source's, whole (position, uv, normal), and used */
+        char *used = calloc(l->n_verts, 1);
+        REQUIRE(used);
+        for (uint32_t i = 0; i < l->n_tris; i++)
+            for (int c = 0; c < 3; c++)
+                used[l->tris[i][c]] = 1;
+        for (uint32_t v = 0; v < l->n_verts; v++) {
+            unused += !used[v];
+            struct keyed key = {l->verts[v], l->vert_material[v]};
+            foreign += !bsearch(&key, src, m.n_verts, sizeof *src, by_key);
+        }
+        free(used);
+        CHECK_EQ_INT(mixed, 0);
+        CHECK_EQ_INT(unused, 0);
+        CHECK_EQ_INT(foreign, 0);
+        /* the reported error is the size of the real one: a quadric estimate, not a bound
+         * (0.49 to 0.91 of the deepest sag from the sphere here) */
+        double dev = sphere_deviation(l, 10), err = lod_level_error(&m, k);
+        if (!(0.4 * dev <= err && err <= 2 * dev))
+            test_fail(t, __FILE__, __LINE__, "level %d (%u triangles): error %.5f, real %.5f",
+                      k, l->n_tris, err, dev);
+    }
+    free(src);
+    mesh_free(&m);
+    mesh_free(&copy);
+}
+
+/* pixels per object unit for the sphere at distance d, 96 pixels high */
+static double px_at(const struct mesh *m, double d)
+{
+    struct camera cam;
+    camera_default(&cam);
+    cam.eye = v3(0, 0, d);
+    return lod_pixels_per_unit(&cam, 96, v3(m->center[0], m->center[1], m->center[2]), m->radius);
+}
+
+TEST(lod_auto_picks_the_coarsest_level_under_the_bound_coarser_far_away)
+{
+    struct mesh m;
+    REQUIRE(sphere(&m, 64, 32) == 0);
+    REQUIRE(lod_build(&m, NULL) == 0);
+    int n = lod_level_count(&m);
+    REQUIRE(n >= 3);
+    struct render_opts o;
+    render_opts_default(&o);
+    o.lod = LOD_AUTO;
+    /* 96 px high, fov 50: the nearest point of the unit sphere at d - 1 */
+    CHECK_NEAR(px_at(&m, 5), 96 / (2 * 4 * tan(25 * M_PI / 180)), 1e-5);
+    int last = 0, seen_coarser = 0;
+    for (double d = 2; d < 2000; d *= 1.5) {
+        double px = px_at(&m, d);
+        int k = lod_choose(&m, &o, px);
+        CHECK(k >= last); /* never finer farther away */
+        CHECK(lod_level_error(&m, k) * px < o.lod_px);
+        CHECK(k == n - 1 || lod_level_error(&m, k + 1) * px >= o.lod_px);
+        seen_coarser |= k > 0;
+        last = k;
+    }
+    CHECK_EQ_INT(lod_choose(&m, &o, px_at(&m, 2)), 0);
+    CHECK_EQ_INT(last, n - 1);
+    CHECK(seen_coarser);
+    /* a smaller bound never picks a coarser level */
+    o.lod_px = 0.01f;
+    CHECK(lod_choose(&m, &o, px_at(&m, 20)) <= lod_choose(&m, &(struct render_opts){
+                                                              .lod = LOD_AUTO, .lod_px = 1},
+                                                          px_at(&m, 20)));
+    /* off: always the mesh itself */
+    o.lod = LOD_OFF;
+    CHECK_EQ_INT(lod_choose(&m, &o, px_at(&m, 1000)), 0);
+    mesh_free(&m);
+}
+
+TEST(lod_auto_in_a_frame_far_away_draws_fewer_triangles)
+{
+    struct mesh m;
+    REQUIRE(sphere(&m, 64, 32) == 0);
+    REQUIRE(lod_build(&m, NULL) == 0);
+    struct draw_item item = {.mesh = &m, .model = m4_identity()};
+    struct fb fb;
+    REQUIRE(fb_init(&fb, 160, 96, false, NULL) == 0);
+    struct pipeline *p = pipeline_new();
+    REQUIRE(p);
+    struct render_opts o;
+    render_opts_default(&o);
+    o.lod = LOD_AUTO;
+    struct camera cam;
+    camera_default(&cam);
+    struct frame_stats near, far;
+    cam.eye = v3(0, 0, 2.5);
+    REQUIRE(pipeline_draw(p, &item, 1, NULL, &cam, &o, &fb, &near, NULL) == 0);
+    cam.eye = v3(0, 0, 40);
+    REQUIRE(pipeline_draw(p, &item, 1, NULL, &cam, &o, &fb, &far, NULL) == 0);
+    CHECK(far.lod_max > near.lod_max);
+    CHECK_EQ_INT(near.tris_in, lod_level(&m, near.lod_max)->n_tris);
+    CHECK_EQ_INT(far.tris_in, lod_level(&m, far.lod_max)->n_tris);
+    CHECK_EQ_INT(far.tris_full, m.n_tris);
+    CHECK(far.tris_in < near.tris_in);
+    pipeline_destroy(p);
+    fb_free(&fb);
+    mesh_free(&m);
+}
+
+TEST(lod_ratio_picks_the_level_nearest_by_ratio)
+{
+    struct mesh m;
+    REQUIRE(sphere(&m, 64, 32) == 0);
+    REQUIRE(lod_build(&m, NULL) == 0);
+    int n = lod_level_count(&m);
+    REQUIRE(n >= 3);
+    struct render_opts o;
+    render_opts_default(&o);
+    o.lod = LOD_RATIO;
+    double n0 = m.n_tris;
+    for (int k = 0; k < n; k++) {
+        o.lod_ratio = (float)(lod_level(&m, k)->n_tris / n0);
+        CHECK_EQ_INT(lod_choose(&m, &o, 1), k);
+    }
+    /* between levels 1 and 2: the nearer by ratio (the geometric mean is the border) */
+    double g = sqrt((double)lod_level(&m, 1)->n_tris * lod_level(&m, 2)->n_tris) / n0;
+    o.lod_ratio = (float)(g * 1.02);
+    CHECK_EQ_INT(lod_choose(&m, &o, 1), 1);
+    o.lod_ratio = (float)(g / 1.02);
+    CHECK_EQ_INT(lod_choose(&m, &o, 1), 2);
+    o.lod_ratio = 1e-6f;
+    CHECK_EQ_INT(lod_choose(&m, &o, 1), n - 1);
+    o.lod_ratio = 1;
+    CHECK_EQ_INT(lod_choose(&m, &o, 1), 0);
+    mesh_free(&m);
+}
+
+static int covered_count(const struct fb *fb)
+{
+    int n = 0;
+    for (int i = 0; i < fb->w * fb->h; i++)
+        n += fb_covered(fb, (size_t)i);
+    return n;
+}
+
+TEST(lod_off_draws_the_same_bytes_and_every_level_culls_right)
+{
+    struct mesh m, plain;
+    REQUIRE(sphere(&m, 64, 32) == 0);
+    REQUIRE(sphere(&plain, 64, 32) == 0);
+    REQUIRE(lod_build(&m, NULL) == 0);
+    struct fb a, b;
+    REQUIRE(fb_init(&a, 96, 64, false, NULL) == 0 && fb_init(&b, 96, 64, false, NULL) == 0);
+    struct pipeline *p = pipeline_new();
+    REQUIRE(p);
+    struct camera cam;
+    camera_default(&cam);
+    cam.eye = v3(0.6, 0.9, 2.4);
+    struct render_opts o;
+    render_opts_default(&o);
+    struct frame_stats st;
+    struct draw_item it = {.mesh = &m, .model = m4_identity()};
+    struct draw_item ip = {.mesh = &plain, .model = m4_identity()};
+    /* off, with a chain built, draws exactly what a mesh without one draws */
+    cam.eye = v3(0, 0, 30); /* far: auto would pick a coarse level here */
+    REQUIRE(pipeline_draw(p, &it, 1, NULL, &cam, &o, &a, &st, NULL) == 0);
+    REQUIRE(pipeline_draw(p, &ip, 1, NULL, &cam, &o, &b, &st, NULL) == 0);
+    CHECK(memcmp(a.rgb, b.rgb, (size_t)a.w * a.h * 3) == 0);
+    CHECK(memcmp(a.depth, b.depth, (size_t)a.w * a.h * sizeof *a.depth) == 0);
+    CHECK_EQ_INT(st.lod_max, 0);
+    /* every level, closed and wound outward: back-face culling leaves the coverage whole */
+    cam.eye = v3(0.6, 0.9, 2.4);
+    o.lod = LOD_RATIO;
+    for (int k = 0; k < lod_level_count(&m); k++) {
+        o.lod_ratio = (float)lod_level(&m, k)->n_tris / (float)m.n_tris;
+        o.cull = CULL_NONE;
+        REQUIRE(pipeline_draw(p, &it, 1, NULL, &cam, &o, &a, &st, NULL) == 0);
+        CHECK_EQ_INT(st.lod_max, k);
+        int all = covered_count(&a);
+        o.cull = CULL_BACK;
+        REQUIRE(pipeline_draw(p, &it, 1, NULL, &cam, &o, &b, &st, NULL) == 0);
+        CHECK_EQ_INT(covered_count(&b), all);
+        CHECK(st.tris_culled > 0);
+        /* the northern half red, the southern green: both drawn, nothing else */
+        int red = 0, green = 0, other = 0;
+        for (int i = 0; i < b.w * b.h; i++) {
+            const uint8_t *c = &b.rgb[3 * i];
+            if (!fb_covered(&b, (size_t)i))
+                continue;
+            red += c[0] > 0 && c[1] == c[2];
+            green += c[1] > 0 && c[0] == c[2];
+            other += !(c[0] > 0 && c[1] == c[2]) && !(c[1] > 0 && c[0] == c[2]);
+        }
+        CHECK(red > 200 && green > 200);
+        CHECK_EQ_INT(other, 0);
+    }
+    pipeline_destroy(p);
+    fb_free(&a);
+    fb_free(&b);
+    mesh_free(&m);
+    mesh_free(&plain);
+}
+
+TEST(lod_small_or_broken_meshes_get_no_levels)
+{
+    struct mesh m;
+    /* too small: 2 * 12 * 15 = 360 triangles */
+    REQUIRE(sphere(&m, 12, 16) == 0);
+    REQUIRE(lod_build(&m, NULL) == 0);
+    CHECK_EQ_INT(lod_level_count(&m), 1);
+    mesh_free(&m);
+    /* NaN and infinite positions */
+    REQUIRE(sphere(&m, 64, 32) == 0);
+    m.verts[5].pos[1] = NAN;
+    REQUIRE(lod_build(&m, NULL) == 0);
+    CHECK_EQ_INT(lod_level_count(&m), 1);
+    mesh_free(&m);
+    REQUIRE(sphere(&m, 64, 32) == 0);
+    m.verts[5].pos[1] = INFINITY;
+    REQUIRE(lod_build(&m, NULL) == 0);
+    CHECK_EQ_INT(lod_level_count(&m), 1);
+    mesh_free(&m);
+    /* every vertex at one point: nothing to measure, nothing to simplify */
+    REQUIRE(sphere(&m, 64, 32) == 0);
+    for (uint32_t v = 0; v < m.n_verts; v++)
+        m.verts[v].pos[0] = m.verts[v].pos[1] = m.verts[v].pos[2] = 1;
+    REQUIRE(lod_build(&m, NULL) == 0);
+    CHECK_EQ_INT(lod_level_count(&m), 1);
+    mesh_free(&m);
+    /* a bumpy grid of "blocks": every quad cut out by its own uvs, so each inner position
+     * has four vertices (uv seams in every direction) — lost_empire's structure; the
+     * simplifier can move none of them and stalls */
+    enum { G = 60 };
+    float *pos = malloc((G + 1) * (G + 1) * 3 * sizeof *pos), *uv = malloc(G * G * 8 * sizeof *uv);
+    struct mesh_corner *c = malloc(G * G * 6 * sizeof *c);
+    REQUIRE(pos && uv && c);
+    for (int y = 0; y <= G; y++)
+        for (int x = 0; x <= G; x++) {
+            float *p = &pos[3 * (y * (G + 1) + x)];
+            p[0] = (float)x, p[1] = (float)y, p[2] = 0.1f * (float)((x * 7 + y * 3) % 5);
+        }
+    for (int q = 0; q < G * G; q++) {
+        int x = q % G, y = q / G;
+        static const float quv[8] = {0, 0, 1, 0, 1, 1, 0, 1};
+        static const int o[6] = {0, 1, 2, 0, 2, 3};
+        memcpy(&uv[8 * q], quv, sizeof quv);
+        uint32_t P[4] = {(uint32_t)(y * (G + 1) + x), (uint32_t)(y * (G + 1) + x + 1),
+                         (uint32_t)((y + 1) * (G + 1) + x + 1), (uint32_t)((y + 1) * (G + 1) + x)};
+        for (int k = 0; k < 6; k++)
+            c[6 * q + k] = (struct mesh_corner){P[o[k]], (uint32_t)(4 * q + o[k]), MESH_NONE};
+    }
+    struct mesh_source src = {.pos = pos, .uv = uv, .n_pos = (G + 1) * (G + 1), .n_uv = 4 * G * G,
+                              .corners = c, .n_tris = 2 * G * G};
+    memset(&m, 0, sizeof m);
+    REQUIRE(mesh_build(&src, &m, NULL) == 0);
+    m.materials = calloc(1, sizeof *m.materials);
+    m.n_materials = 1;
+    REQUIRE(lod_build(&m, NULL) == 0);
+    CHECK_EQ_INT(lod_level_count(&m), 1);
+    mesh_free(&m);
+    free(pos);
+    free(uv);
+    free(c);
+    /* no per-vertex materials (a mesh made by hand): no levels */
+    REQUIRE(sphere(&m, 64, 32) == 0);
+    free(m.vert_material);
+    m.vert_material = NULL;
+    REQUIRE(lod_build(&m, NULL) == 0);
+    CHECK_EQ_INT(lod_level_count(&m), 1);
+    mesh_free(&m);
+}
+
+TEST(lod_background_build_makes_the_same_levels)
+{
+    struct mesh ms[2], ref;
+    REQUIRE(sphere(&ms[0], 64, 32) == 0 && sphere(&ms[1], 12, 16) == 0);
+    REQUIRE(sphere(&ref, 64, 32) == 0);
+    REQUIRE(lod_build(&ref, NULL) == 0);
+    struct lod_job *j;
+    REQUIRE(lod_start(ms, 2, &j, NULL) == 0);
+    lod_finish(j, false);
+    REQUIRE(lod_level_count(&ms[0]) == lod_level_count(&ref));
+    for (int k = 1; k < lod_level_count(&ref); k++) {
+        const struct mesh *a = lod_level(&ms[0], k), *b = lod_level(&ref, k);
+        CHECK(a->n_tris == b->n_tris && a->n_verts == b->n_verts);
+        CHECK(memcmp(a->tris, b->tris, a->n_tris * sizeof *a->tris) == 0);
+        CHECK(lod_level_error(&ms[0], k) == lod_level_error(&ref, k));
+    }
+    CHECK_EQ_INT(lod_level_count(&ms[1]), 1);
+    /* cancelled at once: whatever was finished is whole; freeing is safe */
+    struct mesh c;
+    REQUIRE(sphere(&c, 64, 32) == 0);
+    REQUIRE(lod_start(&c, 1, &j, NULL) == 0);
+    lod_finish(j, true);
+    for (int k = 1; k < lod_level_count(&c); k++)
+        CHECK(lod_level(&c, k)->n_tris > 0);
+    CHECK(lod_done(NULL));
+    mesh_free(&c);
+    mesh_free(&ms[0]);
+    mesh_free(&ms[1]);
+    mesh_free(&ref);
+}
