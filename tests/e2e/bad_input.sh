@@ -57,6 +57,16 @@ check unknown_subcommand_suggests_the_nearest expect 2 "unknown subcommand 'rend
 check bad_light_value expect 2 "--light: .*camera" "$BIN" render assets/cube.obj --light cam --out $OUT/x.png
 check bad_sky_value expect 2 "--sky: expected procedural" "$BIN" render assets/cube.obj --sky cloudy --out $OUT/x.png
 check zero_size expect 2 "--size" "$BIN" render assets/cube.obj --size 0x0 --out $OUT/x.png
+bad_lod() { # every malformed --lod is one line naming the flag and the value, exit 2
+    for v in 0 1.5 -0.25 fast nan inf auto: auto:0 auto:-1 auto:x auto:1e9; do
+        expect 2 "^rastty: --lod: expected off, auto, auto:PX .*got '$v'$" \
+            "$BIN" render assets/teapot.obj --lod "$v" --out $OUT/x.png || { echo "--lod $v"; return 1; }
+    done
+    expect 2 "^rastty: --lod: expected" "$BIN" dump assets/teapot.obj --lod 2 --out $OUT/x.ans &&
+        expect 2 "^rastty: --lod: expected" "$BIN" --lod half assets/teapot.obj &&
+        expect 2 "--lod does not apply" "$BIN" ansi2ppm x.ans --out $OUT/x.ppm --lod auto
+}
+check bad_lod_values bad_lod
 check huge_size expect 2 "--size" "$BIN" render assets/cube.obj --size 9000x10 --out $OUT/x.png
 check flag_for_other_subcommand expect 2 "does not apply" "$BIN" render assets/cube.obj --diff --out $OUT/x.png
 check missing_out expect 2 "--out" "$BIN" render assets/cube.obj

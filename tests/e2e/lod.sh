@@ -1,0 +1,82 @@
+#!/usr/bin/env bash
+# lod.sh: mesh level of detail from the command line — off is the default of render and dump
+# and draws the same bytes as --lod off; RATIO draws the level it names; auto draws coarser
+# levels farther away and keeps the silhouette; --stats says which level; the viewer starts
+# in auto, says so on its status line, and L toggles it.
+source "$(dirname "$0")/lib/common.sh"
+
+T=assets/teapot.obj # 6320 triangles: levels of about 3160, 1580 and 790
+render() { "$BIN" render "$@" 2>&1 >/dev/null; }
+
+same_bytes() {
+    render $T --eye 1,1.5,3 --out $OUT/a.ppm --depth-out $OUT/a.pfm >/dev/null &&
+        render $T --eye 1,1.5,3 --lod off --out $OUT/b.ppm --depth-out $OUT/b.pfm >/dev/null &&
+        cmp $OUT/a.ppm $OUT/b.ppm && cmp $OUT/a.pfm $OUT/b.pfm || return 1
+    "$BIN" dump assets/demo.rsc --cols 60 --rows 20 --out $OUT/a.ans &&
+        "$BIN" dump assets/demo.rsc --cols 60 --rows 20 --lod off --out $OUT/b.ans &&
+        cmp $OUT/a.ans $OUT/b.ans || return 1
+    # far away, where auto would draw a coarse level: the default still draws every triangle
+    render $T --eye 0,0,40 --stats --out $OUT/c.ppm | grep -q "^lod: level 0, 6320 of 6320 triangles$"
+}
+check lod_off_is_the_default_and_draws_the_same_bytes same_bytes
+
+ratio() {
+    local s
+    s=$(render $T --lod 0.25 --stats --out $OUT/r.ppm) || return 1
+    echo "$s" | grep "^lod:"
+    set -- $(echo "$s" | sed -n 's/^lod: level \([0-9]*\), \([0-9]*\) of 6320 triangles$/\1 \2/p')
+    [ "${1:-}" = 2 ] && [ "$2" -gt 1300 ] && [ "$2" -lt 1900 ]
+}
+check ratio_draws_the_level_it_names ratio
+
+level_at() { # level_at EYE [more flags]: the level auto draws
+    local eye=$1; shift
+    render $T --eye "$eye" --lod auto --stats "$@" --out $OUT/l.ppm | sed -n 's/^lod: level \([0-9]*\),.*/\1/p'
+}
+farther_coarser() {
+    local near far farther
+    near=$(level_at 0,0,2) far=$(level_at 0,0,20) farther=$(level_at 0,0,80)
+    echo "levels at 2, 20, 80 units: $near $far $farther"
+    [ "$near" = 0 ] && [ "$far" -gt "$near" ] && [ "$farther" -ge "$far" ] && [ "$farther" -gt 0 ] || return 1
+    # a looser bound draws a coarser level at the same distance
+    local mid loose
+    mid=$(level_at 0,0,5) loose=$(level_at 0,0,5 --lod auto:2)
+    echo "at 5 units: $mid, with auto:2 $loose"
+    [ "$loose" -gt "$mid" ]
+}
+check auto_draws_coarser_levels_farther_away farther_coarser
+
+silhouette() { # where auto draws a coarser level, it covers the pixels the full mesh covers
+    render $T --eye 0,0,5 --size 320x192 --lod off --out $OUT/off.ppm >/dev/null &&
+        render $T --eye 0,0,5 --size 320x192 --lod auto --stats --out $OUT/auto.ppm |
+        grep "^lod: level [1-9]" || return 1
+    set -- $(ppmstat $OUT/off.ppm 0,0,0); local a0=$3
+    set -- $(ppmstat $OUT/auto.ppm 0,0,0); local a1=$3
+    echo "covered pixels: off $a0, auto $a1"
+    [ "$a0" -gt 1500 ] && [ $(( (a1 - a0) * (a1 - a0) * 2500 )) -le $(( a0 * a0 )) ] # within 2%
+}
+check auto_keeps_the_silhouette silhouette
+
+viewer() {
+    have_tmux || return 0
+    tm new-session -d -s v -x 180 -y 25 \
+        "$(printf '%q ' "$BIN" --colors truecolor --background 0,0,0 $T); sleep 60"
+    hud() { tm capture-pane -t v -p | tail -n 1; }
+    wait_for 15 sh -c "tmux -L $SOCK capture-pane -t v -p | tail -n 1 | grep -q 'lod auto L[0-9] .*k/6.3k'" ||
+        { hud; return 1; }
+    tm send-keys -t v L
+    wait_for 5 sh -c "tmux -L $SOCK capture-pane -t v -p | tail -n 1 | grep -q 'level of detail: off'" ||
+        { hud; return 1; }
+    wait_for 10 sh -c "tmux -L $SOCK capture-pane -t v -p | tail -n 1 | grep -q 'lod off L0 6.3k/6.3k'" ||
+        { hud; return 1; }
+    tm send-keys -t v L
+    wait_for 5 sh -c "tmux -L $SOCK capture-pane -t v -p | tail -n 1 | grep -q 'level of detail: auto'" ||
+        { hud; return 1; }
+    tm send-keys -t v q
+}
+if have_tmux; then
+    check viewer_starts_in_auto_and_L_toggles viewer
+else
+    skip viewer_starts_in_auto_and_L_toggles "tmux not installed"
+fi
+finish
