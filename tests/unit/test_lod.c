@@ -1,5 +1,5 @@
 /* test_lod.c: levels of detail (lod.h) — the chain keeps a closed mesh closed and every
- * triangle's material and uvs, its error estimate is the size of the real one, auto picks
+ * triangle's material, uvs and vertex colours, its error estimate is the size of the real one, auto picks
  * coarser levels farther away by the projected-error rule, RATIO picks the nearest level,
  * off draws the very same bytes, and meshes too small or broken get no levels. */
 #include <math.h>
@@ -90,13 +90,24 @@ static int sphere(struct mesh *m, int slices, int stacks)
 struct keyed {
     struct mesh_vertex v;
     uint16_t material;
+    uint8_t rgb[3];
 };
 
 static int by_key(const void *a, const void *b)
 {
     const struct keyed *x = a, *y = b;
     int c = memcmp(&x->v, &y->v, sizeof x->v);
-    return c ? c : x->material - y->material;
+    c = c ? c : x->material - y->material;
+    return c ? c : memcmp(x->rgb, y->rgb, sizeof x->rgb);
+}
+
+/* per-vertex colours (PLY's), a different one for every vertex */
+static int paint(struct mesh *m)
+{
+    m->colors = malloc((size_t)m->n_verts * sizeof *m->colors);
+    for (uint32_t v = 0; m->colors && v < m->n_verts; v++)
+        m->colors[v][0] = (uint8_t)v, m->colors[v][1] = (uint8_t)(v >> 8), m->colors[v][2] = 7;
+    return m->colors ? 0 : -1;
 }
 
 static const struct mesh *sort_mesh; /* qsort's context */
@@ -193,7 +204,7 @@ TEST(lod_levels_keep_closed_meshes_closed_and_every_material_and_uv)
 {
     struct mesh m, copy;
     /* radius 10: the error is in object units, not the simplifier's relative ones */
-    REQUIRE(sphere_r(&m, 128, 64, 10) == 0);
+    REQUIRE(sphere_r(&m, 128, 64, 10) == 0 && paint(&m) == 0);
     REQUIRE(sphere_r(&copy, 128, 64, 10) == 0);
     CHECK_EQ_INT(open_edges(&m), 0); /* the source is closed */
     REQUIRE(lod_build(&m, NULL) == 0);
@@ -208,6 +219,8 @@ TEST(lod_levels_keep_closed_meshes_closed_and_every_material_and_uv)
     REQUIRE(src);
     for (uint32_t v = 0; v < m.n_verts; v++)
         src[v].v = m.verts[v], src[v].material = m.vert_material[v];
+    for (uint32_t v = 0; v < m.n_verts; v++)
+        memcpy(src[v].rgb, m.colors[v], 3);
     qsort(src, m.n_verts, sizeof *src, by_key);
     for (int k = 1; k < n; k++) {
         const struct mesh *l = lod_level(&m, k), *up = lod_level(&m, k - 1);
@@ -222,7 +235,8 @@ TEST(lod_levels_keep_closed_meshes_closed_and_every_material_and_uv)
             for (int c = 0; c < 3; c++)
                 mixed += l->vert_material[l->tris[i][c]] != l->tri_material[i];
         }
-        /* every vertex is one of the source's, whole (position, uv, normal), and used */
+        /* every vertex is one of the source's, whole (position, uv, normal, material,
+         * colour), and used */
         char *used = calloc(l->n_verts, 1);
         REQUIRE(used);
         for (uint32_t i = 0; i < l->n_tris; i++)
@@ -230,7 +244,9 @@ TEST(lod_levels_keep_closed_meshes_closed_and_every_material_and_uv)
                 used[l->tris[i][c]] = 1;
         for (uint32_t v = 0; v < l->n_verts; v++) {
             unused += !used[v];
-            struct keyed key = {l->verts[v], l->vert_material[v]};
+            REQUIRE(l->colors);
+            struct keyed key = {l->verts[v], l->vert_material[v], {0, 0, 0}};
+            memcpy(key.rgb, l->colors[v], 3);
             foreign += !bsearch(&key, src, m.n_verts, sizeof *src, by_key);
         }
         free(used);
