@@ -215,6 +215,40 @@ static inline void sample_face(const struct skybox_level *l, int f, double u, do
     }
 }
 
+/* face_of and sample_face in float, for the per-pixel loop of skybox_draw_rows */
+static inline int face_of_f(const float d[3], float *sc, float *tc, float *ma)
+{
+    float ax = fabsf(d[0]), ay = fabsf(d[1]), az = fabsf(d[2]);
+    if (ax >= ay && ax >= az) {
+        *ma = ax, *tc = -d[1], *sc = d[0] > 0 ? -d[2] : d[2];
+        return d[0] > 0 ? 0 : 1;
+    }
+    if (ay >= az) {
+        *ma = ay, *sc = d[0], *tc = d[1] > 0 ? d[2] : -d[2];
+        return d[1] > 0 ? 2 : 3;
+    }
+    *ma = az, *tc = -d[1], *sc = d[2] > 0 ? d[0] : -d[0];
+    return d[2] > 0 ? 4 : 5;
+}
+
+static inline void sample_face_f(const struct skybox_level *l, int f, float u, float v,
+                                 float rgb_out[3])
+{
+    float half = 0.5f * l->n, x = (u + 1) * half - 0.5f, y = (v + 1) * half - 0.5f;
+    int i0 = (int)x, j0 = (int)y; /* floor: x, y >= -0.5 here, and finite */
+    i0 -= x < i0, j0 -= y < j0;
+    i0 = i0 < -1 ? -1 : i0 > l->n - 1 ? l->n - 1 : i0;
+    j0 = j0 < -1 ? -1 : j0 > l->n - 1 ? l->n - 1 : j0;
+    float ax = x - i0, ay = y - j0;
+    ax = ax < 0 ? 0 : ax > 1 ? 1 : ax;
+    ay = ay < 0 ? 0 : ay > 1 ? 1 : ay;
+    const uint8_t *p00 = texel(l, f, i0, j0), *p01 = p00 + 3 * (l->n + 2);
+    for (int c = 0; c < 3; c++) {
+        float a = p00[c] + ax * (p00[c + 3] - p00[c]), b = p01[c] + ax * (p01[c + 3] - p01[c]);
+        rgb_out[c] = (a + ay * (b - a)) * (1.0f / 255.0f);
+    }
+}
+
 void skybox_sample(const struct skybox *s, int level, vec3 d, float rgb_out[3])
 {
     double sc, tc, ma;
@@ -248,24 +282,28 @@ void skybox_draw_rows(const struct skybox *s, const struct camera *cam, struct f
     const struct skybox_level *l0 = &s->level[level], *l1 = &s->level[level + (frac > 0)];
     y0 = y0 < 0 ? 0 : y0;
     y1 = y1 > fb->h ? fb->h : y1;
+    /* per pixel in float, as a GPU would: the direction is a row vector plus a step along r,
+     * one reciprocal of the major axis gives both face coordinates */
+    const float rx = (float)(r.x * tx), ry = (float)(r.y * tx), rz = (float)(r.z * tx);
+    const float sx = 2.0f / fb->w;
     for (int y = y0; y < y1; y++) {
         double ny = 1 - 2 * (y + 0.5) / fb->h;
         vec3 row = v3_add(f, v3_scale(u, ny * ty));
+        const float ox = (float)row.x, oy = (float)row.y, oz = (float)row.z;
         for (int x = 0; x < fb->w; x++) {
             size_t i = (size_t)y * fb->w + x;
             if (fb_covered(fb, i))
                 continue;
-            double nx = 2 * (x + 0.5) / fb->w - 1;
-            vec3 d = v3_add(row, v3_scale(r, nx * tx));
-            double sc, tc, ma;
-            int face = face_of(d, &sc, &tc, &ma);
+            float nx = (x + 0.5f) * sx - 1;
+            float d[3] = {ox + nx * rx, oy + nx * ry, oz + nx * rz}, sc, tc, ma;
+            int face = face_of_f(d, &sc, &tc, &ma);
             float c[3] = {0, 0, 0};
             if (ma > 0) {
-                double fu = sc / ma, fv = tc / ma;
-                sample_face(l0, face, fu, fv, c);
+                float im = 1.0f / ma, fu = sc * im, fv = tc * im;
+                sample_face_f(l0, face, fu, fv, c);
                 if (frac > 0) { /* trilinear: blend with the next coarser level */
                     float c2[3];
-                    sample_face(l1, face, fu, fv, c2);
+                    sample_face_f(l1, face, fu, fv, c2);
                     for (int k = 0; k < 3; k++)
                         c[k] += frac * (c2[k] - c[k]);
                 }
