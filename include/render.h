@@ -90,6 +90,10 @@ struct frame_stats {
     uint64_t tris_clipped;  /* needed polygon clipping */
     uint64_t tris_drawn;    /* reached the rasterizer (after clipping, fan pieces counted) */
     uint64_t tris_empty;    /* reached the rasterizer but covered no pixel centre */
+    uint64_t tris_no_centre; /* dropped by setup: zero area or no pixel centre in the box (not
+                              * lit, no shading record); unclipped, in = rejected + culled +
+                              * no_centre + drawn */
+    uint64_t verts_lit;     /* vertices lit (vertex_shade): only those of triangles drawn */
     uint64_t pixels_tested; /* fragments inside a triangle */
     uint64_t pixels_shaded; /* fragments that passed the depth test */
     uint64_t meshes_culled; /* whole meshes outside the frustum (bounding sphere) */

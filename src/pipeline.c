@@ -161,6 +161,49 @@ static void add_setup(struct pipeline *p, struct frame *f, const struct vertex_o
     f->stats->tris_drawn++;
 }
 
+/* world position and varyings, once per vertex a drawn triangle uses */
+static void shade_vertices(const struct mesh *m, const struct frame *f, uint32_t i,
+                           struct vertex_out *v[3])
+{
+    for (int k = 0; k < 3; k++)
+        if (!v[k]->shaded) {
+            vertex_shade(m, &f->u, m->tris[i][k], v[k]);
+            f->stats->verts_lit++;
+        }
+}
+
+/* the shading record of the last material seen: triangles come in runs of one material */
+struct shade_proto {
+    int mat;
+    struct shade_tri st;
+};
+
+/* append triangle i's shading record to the batch; its index */
+static uint32_t add_shade(struct batch *bt, const struct frame *f, const struct draw_item *item,
+                          const struct mesh *m, uint32_t i, struct vertex_out *v[3],
+                          struct shade_proto *proto)
+{
+    uint16_t mi = m->tri_material[i];
+    if (mi != proto->mat) {
+        struct shade_tri *st = &proto->st;
+        proto->mat = mi;
+        st->mat = &m->materials[mi];
+        st->tex = NULL;
+        if (f->o->textures)
+            st->tex = item->texture_override ? item->texture_override
+                      : st->mat->texture >= 0 ? &m->textures[st->mat->texture]
+                                              : NULL;
+        st->vcolor = m->colors != NULL;
+        light_base_color(st->mat, item->kd_override, st->tex || st->vcolor, st->base);
+    }
+    uint32_t shade = bt->n_shades++;
+    struct shade_tri *st = &bt->shades[shade];
+    *st = proto->st;
+    if (f->span.mode == SHADE_FLAT)
+        flat_terms(&f->u, v[0], v[1], v[2], st->mat->ns, st);
+    return shade;
+}
+
 /* The front end for one item's filled triangles (m: the item's mesh at the level of detail
  * drawn); depth_only: the hidden-line pre-pass (every face, whatever the culling; no shading
  * records). */
@@ -171,8 +214,7 @@ static int front_end(struct pipeline *p, struct frame *f, const struct draw_item
     struct frame_stats *stats = f->stats;
     struct batch *bt = &p->batch;
     int n_var = depth_only ? 0 : m->colors ? VARY_COLOR + 3 : vertex_varying_count(o->shade, o->view);
-    struct shade_tri proto = {0}; /* the shading record of the last material seen */
-    int last_mat = -1;
+    struct shade_proto proto = {.mat = -1};
     for (uint32_t i = 0; i < m->n_tris; i++) {
         struct vertex_out *v[3] = {&vo[m->tris[i][0]], &vo[m->tris[i][1]], &vo[m->tris[i][2]]};
         uint32_t all = v[0]->outcode & v[1]->outcode & v[2]->outcode;
@@ -188,35 +230,24 @@ static int front_end(struct pipeline *p, struct frame *f, const struct draw_item
             stats->tris_culled++;
             continue;
         }
-        for (int k = 0; k < 3; k++) /* world position and varyings, once per used vertex */
-            if (!v[k]->shaded)
-                vertex_shade(m, &f->u, m->tris[i][k], v[k]);
         if (!batch_has_room(bt) && flush(p, f, e))
             return -1;
-        uint32_t shade = bt->n_shades;
-        if (!depth_only) {
-            struct shade_tri *st = &bt->shades[bt->n_shades++];
-            uint16_t mi = m->tri_material[i];
-            if (mi != last_mat) { /* triangles come in runs of one material */
-                last_mat = mi;
-                proto.mat = &m->materials[mi];
-                proto.tex = NULL;
-                if (o->textures)
-                    proto.tex = item->texture_override ? item->texture_override
-                                : proto.mat->texture >= 0 ? &m->textures[proto.mat->texture]
-                                                          : NULL;
-                proto.vcolor = m->colors != NULL;
-                light_base_color(proto.mat, item->kd_override, proto.tex || proto.vcolor,
-                                 proto.base);
-            }
-            *st = proto;
-            if (f->span.mode == SHADE_FLAT)
-                flat_terms(&f->u, v[0], v[1], v[2], st->mat->ns, st);
-        }
         if (!(any & VERTEX_NEEDS_CLIP)) {
-            add_setup(p, f, v[0], v[1], v[2], shade);
+            /* set up first: most triangles of a dense mesh hold no pixel centre, and their
+             * vertices need no lighting and the triangle no shading record */
+            struct setup_tri *t = &bt->tris[bt->n_tris];
+            if (setup_triangle(v[0], v[1], v[2], f->fb->w, f->fb->h, t) != SETUP_DRAW) {
+                stats->tris_no_centre++;
+                continue;
+            }
+            shade_vertices(m, f, i, v);
+            t->shade = depth_only ? bt->n_shades : add_shade(bt, f, item, m, i, v, &proto);
+            bt->n_tris++;
+            stats->tris_drawn++;
             continue;
         }
+        shade_vertices(m, f, i, v); /* clipping interpolates the varyings */
+        uint32_t shade = depth_only ? bt->n_shades : add_shade(bt, f, item, m, i, v, &proto);
         stats->tris_clipped++;
         struct vertex_out *poly = &bt->verts[bt->n_verts];
         const struct vertex_out *cv[3] = {v[0], v[1], v[2]};

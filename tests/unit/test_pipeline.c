@@ -201,3 +201,29 @@ TEST(triangles_that_cover_no_pixel_are_counted)
     }
     frame_free(&f);
 }
+
+TEST(triangles_without_a_pixel_centre_are_not_lit)
+{
+    /* the window mapping of the test above: a triangle inside one pixel, away from its centre
+     * (8.1..8.4, 8.1..8.4), and a zero-area one, beside the 4x4 square. Setup drops both
+     * before any lighting: only the square's four vertices are lit, and the counters add up
+     * (in = rejected + culled + no centre + drawn). */
+    const char *obj = "v -7.9 7.9 0\nv -7.6 7.9 0\nv -7.9 7.6 0\n"
+                      "v -10 -10 0\nv -9 -9 0\nv -8 -8 0\n"
+                      "v 0 0 0\nv 4 0 0\nv 4 4 0\nv 0 4 0\nf 1 2 3\nf 4 5 6\nf 7 8 9 10\n";
+    struct frame f;
+    REQUIRE(frame_init(&f, obj, 32, 32) == 0);
+    f.cam.ortho_height = 32;
+    for (int threads = 1; threads <= 2; threads++) {
+        f.ro.threads = threads;
+        REQUIRE(draw(&f) == 0);
+        CHECK_EQ_INT(f.st.tris_in, 4);
+        CHECK_EQ_INT(f.st.tris_no_centre, 2);
+        CHECK_EQ_INT(f.st.tris_drawn, 2);
+        CHECK_EQ_INT(f.st.tris_in, f.st.tris_rejected + f.st.tris_culled +
+                                       f.st.tris_no_centre + f.st.tris_drawn);
+        CHECK_EQ_INT(f.st.verts_lit, 4);
+        CHECK_EQ_INT(covered(&f.fb), 16);
+    }
+    frame_free(&f);
+}
