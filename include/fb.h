@@ -1,7 +1,9 @@
 /* fb.h: the framebuffer, the one thing the renderer writes and the encoder reads.
  *
- * Exactly the pixels shown: for a terminal of C x R cells it is C x 2R (each cell shows a top
- * and a bottom pixel). Row 0 is the top row. Colour is 8-bit RGB, quantised once from the
+ * Exactly the pixels shown: for a terminal of C x R cells it is C*px_w x R*px_h, the glyph
+ * set's pixels per cell (cell.h: C x 2R with half blocks). Such pixels need not be square:
+ * pixel_aspect is one pixel's width / height on the screen (1 unless the caller sets it), and
+ * the projection uses the picture's physical aspect, fb_aspect(). Row 0 is the top row. Colour is 8-bit RGB, quantised once from the
  * shaded float colour c in [0,1] as floor(c*255 + 0.5). Depth: one float per pixel whose
  * meaning the depth method decides (below; the default is window depth, cleared to 1.0,
  * test LESS). The overdraw counter, when present,
@@ -56,7 +58,14 @@ struct fb {
     uint32_t *overdraw; /* w*h, or NULL when not counted */
     enum depth_mode depth_mode;  /* the caller sets it (and proj) before fb_clear */
     struct fb_depth_proj proj;
+    double pixel_aspect; /* a pixel's width / height on the screen; fb_init sets 1 */
 };
+
+/* The picture's width / height on the screen: the aspect the projection uses. */
+static inline double fb_aspect(const struct fb *fb)
+{
+    return fb->w * fb->pixel_aspect / fb->h;
+}
 
 int fb_init(struct fb *fb, int w, int h, bool count_overdraw, struct err *e);
 void fb_free(struct fb *fb);

@@ -13,6 +13,7 @@ int fb_init(struct fb *fb, int w, int h, bool count_overdraw, struct err *e)
     size_t n = (size_t)w * (size_t)h;
     fb->w = w;
     fb->h = h;
+    fb->pixel_aspect = 1;
     fb->rgb = malloc(n * 3);
     fb->depth = malloc(n * sizeof *fb->depth);
     fb->overdraw = count_overdraw ? calloc(n, sizeof *fb->overdraw) : NULL;

@@ -409,8 +409,7 @@ int pipeline_draw(struct pipeline *p, const struct draw_item *items, int n_items
     fb->depth_mode = o->depth;
     fb->proj = (struct fb_depth_proj){cam->ortho_height > 0, cam->near, cam->far};
     fb_clear(fb, o->background);
-    double aspect = (double)fb->w / fb->h;
-    mat4 pv = m4_mul(camera_proj(cam, aspect), camera_view(cam));
+    mat4 pv = m4_mul(camera_proj(cam, fb_aspect(fb)), camera_view(cam));
     struct frame f;
     frame_init(&f, cam, o, fb, stats);
     batch_reset(&p->batch);

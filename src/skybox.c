@@ -269,7 +269,7 @@ void skybox_draw_rows(const struct skybox *s, const struct camera *cam, struct f
     vec3 r = v3_norm(v3_cross(f, cam->up));
     vec3 u = v3_cross(r, f);
     double fov = cam->fov_deg > 0 ? cam->fov_deg : 50;
-    double ty = tan(fov * (M_PI / 360.0)), tx = ty * fb->w / fb->h;
+    double ty = tan(fov * (M_PI / 360.0)), tx = ty * fb_aspect(fb);
     /* level whose texel matches a pixel: a face spans 2 (in tan units) over n texels */
     double texels_per_px = (2 * ty / fb->h) / (2.0 / s->level[0].n);
     double lod = texels_per_px > 1 ? log2(texels_per_px) : 0;

@@ -70,6 +70,7 @@ static int draw_lines(struct ssaa *s, struct pipeline *p, const struct draw_item
 {
     if (ensure(&s->lines, fb->w, fb->h, false, e))
         return -1;
+    s->lines.pixel_aspect = fb->pixel_aspect;
     struct render_opts lo = *o;
     lo.shade = SHADE_WIRE;
     lo.view = VIEW_COLOR;
@@ -100,6 +101,7 @@ int ssaa_draw(struct ssaa *s, struct pipeline *p, const struct draw_item *items,
     if (ssaa_check(o->ssaa, fb->w, fb->h, e) ||
         ensure(&s->big, k * fb->w, k * fb->h, fb->overdraw && o->view == VIEW_OVERDRAW, e))
         return -1;
+    s->big.pixel_aspect = fb->pixel_aspect; /* the same picture, k times the pixels */
     bool wire = o->shade == SHADE_WIRE;
     bool lines_after = o->view == VIEW_WIRE_OVERLAY || (wire && o->view == VIEW_COLOR);
     struct render_opts so = *o;
