@@ -1,7 +1,7 @@
 /* encode.c: framebuffer -> half-block bytes, diffed against the screen model (see encode.h).
  *
- * Two passes per frame: quantise() turns pixels into target cells (colours as the terminal
- * will show them), then the emit pass walks the cells in raster order, skips those the
+ * Two passes per frame: cellfit.c turns pixels into target cells (colours as the terminal
+ * will show them), then the emit pass here walks the cells in raster order, skips those the
  * screen already shows (or shows within the tolerance), moves the cursor the cheapest way and
  * writes SGR + glyph, tracking the current fg/bg/cursor like tmux's tty_colours. */
 #include "encode.h"
@@ -11,6 +11,8 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "cellfit.h"
 
 #define WUR __attribute__((warn_unused_result))
 /* The per-cell path is instantiated once per colour mode (emit_rows below), so the mode's
@@ -61,28 +63,6 @@ static WUR char *put_num(char *p, unsigned v)
     for (int i = n - 1; i >= 0; i--, v /= 10)
         p[i] = (char)('0' + v % 10);
     return p + n;
-}
-
-static inline uint32_t pack(const uint8_t *px)
-{
-    return (uint32_t)px[0] << 16 | (uint32_t)px[1] << 8 | px[2];
-}
-
-/* pack() with one 4-byte load; reads one byte past the pixel, so only where one exists. */
-static inline uint32_t pack_load4(const uint8_t *px)
-{
-    uint32_t v;
-    memcpy(&v, px, 4);
-#if __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
-    return __builtin_bswap32(v) >> 8;
-#else
-    return v >> 8;
-#endif
-}
-
-static inline unsigned chan(uint32_t c, int k) /* k = 0 red, 1 green, 2 blue */
-{
-    return (c >> (16 - 8 * k)) & 255;
 }
 
 /* ---- glyphs ---------------------------------------------------------------------------- */
@@ -142,9 +122,9 @@ HOT WUR char *put_colour(char *p, enum palette_mode mode, uint32_t c, bool bg)
     switch (mode) {
     case PALETTE_TRUECOLOR:
         memcpy(p, bg ? "48;2;" : "38;2;", 5);
-        p = put_chan(p + 5, chan(c, 0));
-        p = put_chan(p, chan(c, 1));
-        return put_chan(p, chan(c, 2));
+        p = put_chan(p + 5, cellfit_chan(c, 0));
+        p = put_chan(p, cellfit_chan(c, 1));
+        return put_chan(p, cellfit_chan(c, 2));
     case PALETTE_256:
         memcpy(p, bg ? "48;5;" : "38;5;", 5);
         return put_chan(p + 5, idx);
@@ -210,8 +190,8 @@ HOT enum glyph free_glyph(const struct emitter *em, enum palette_mode mode,
  * in tolerance mode the outcome is as unpredictable as the image. */
 HOT int chan_diff(uint32_t shown, const uint8_t *px)
 {
-    int d0 = abs((int)chan(shown, 0) - px[0]), d1 = abs((int)chan(shown, 1) - px[1]);
-    int d2 = abs((int)chan(shown, 2) - px[2]);
+    int d0 = abs((int)cellfit_chan(shown, 0) - px[0]), d1 = abs((int)cellfit_chan(shown, 1) - px[1]);
+    int d2 = abs((int)cellfit_chan(shown, 2) - px[2]);
     int m = d0 > d1 ? d0 : d1;
     return m > d2 ? m : d2;
 }
@@ -479,103 +459,13 @@ HOT void goto_cell(struct emitter *em, int r, int c, const struct encode_cell *t
         move_to(em, r, c, tgt, scr);
 }
 
-/* ---- quantisation ---------------------------------------------------------------------- */
-
-/* One pixel as the terminal will show it in a palette mode. The nearest-colour search costs
- * ~30 ns, so results are memoised in the screen's direct-mapped cache (key = RGB | mode << 24;
- * a pure function of the key, so entries never go stale). Dithered pixels bypass it. */
-static inline uint32_t quant(struct encode_screen *s, enum palette_mode mode, const uint8_t *px,
-                             int x, int y, bool dither)
-{
-    uint8_t q[3];
-    uint32_t *slot = NULL, key = 0;
-    if (dither) {
-        int d = palette_dither(x, y);
-        for (int k = 0; k < 3; k++) {
-            int v = px[k] + d;
-            q[k] = (uint8_t)(v < 0 ? 0 : v > 255 ? 255 : v);
-        }
-    } else {
-        key = pack(px) | (uint32_t)mode << 24;
-        slot = s->qcache + 2 * ((key * 2654435761u) >> (32 - ENCODE_QCACHE_BITS));
-        if (slot[0] == key)
-            return slot[1];
-        memcpy(q, px, 3);
-    }
-    int idx = mode == PALETTE_256 ? palette_nearest_256(q) : palette_nearest_16(q);
-    uint8_t shown[3];
-    palette_rgb(idx, shown);
-    uint32_t out = (uint32_t)idx << 24 | pack(shown);
-    if (slot) {
-        slot[0] = key;
-        slot[1] = out;
-    }
-    return out;
-}
-
-static void quantise(struct encode_screen *s, const uint8_t *rgb, int w, int h,
-                     const struct encode_opts *o)
-{
-    bool palette = o->mode == PALETTE_256 || o->mode == PALETTE_16;
-    /* In palette modes a pixel equal to last frame's input at the same place keeps last
-     * frame's target (still in s->target): static regions cost a compare, not a search. */
-    uint32_t tag = palette ? 1u << 27 | (uint32_t)o->dither << 26 | (uint32_t)o->mode << 24 |
-                                 pack(o->pad_rgb)
-                           : 0;
-    bool memo_ok = palette && s->memo_tag == tag;
-    s->memo_tag = tag;
-    for (int r = 0; r < s->rows; r++) {
-        const uint8_t *top = rgb + (size_t)(2 * r) * (size_t)w * 3;
-        const uint8_t *bot = 2 * r + 1 < h ? top + (size_t)w * 3 : NULL;
-        struct encode_cell *t = s->target + (size_t)r * (size_t)s->cols;
-        struct encode_cell *m = s->memo + (size_t)r * (size_t)s->cols;
-        switch (o->mode) {
-        case PALETTE_TRUECOLOR:
-            if (bot && 2 * r + 2 < h) { /* a row follows: 4-byte loads stay in the buffer */
-                for (int c = 0; c < w; c++) {
-                    t[c].top = pack_load4(top + 3 * c);
-                    t[c].bot = pack_load4(bot + 3 * c);
-                }
-                break;
-            }
-            for (int c = 0; c < w; c++) {
-                t[c].top = pack(top + 3 * c);
-                t[c].bot = pack(bot ? bot + 3 * c : o->pad_rgb);
-            }
-            break;
-        case PALETTE_256:
-        case PALETTE_16:
-            for (int c = 0; c < w; c++) {
-                const uint8_t *pb = bot ? bot + 3 * c : o->pad_rgb;
-                uint32_t in_top = pack(top + 3 * c), in_bot = pack(pb);
-                if (!memo_ok || m[c].top != in_top)
-                    t[c].top = quant(s, o->mode, top + 3 * c, c, 2 * r, o->dither);
-                if (!memo_ok || m[c].bot != in_bot)
-                    t[c].bot = quant(s, o->mode, pb, c, 2 * r + 1, o->dither);
-                m[c].top = in_top;
-                m[c].bot = in_bot;
-            }
-            break;
-        case PALETTE_NONE:
-        case PALETTE_MODE_COUNT:
-            for (int c = 0; c < w; c++) {
-                int luma = palette_luma(top + 3 * c) + palette_luma(bot ? bot + 3 * c : o->pad_rgb);
-                int level = palette_ramp_level((luma + 1) / 2);
-                uint32_t grey = palette_ramp_grey(level);
-                t[c].top = t[c].bot = (uint32_t)level << 24 | grey * 0x010101u;
-            }
-            break;
-        }
-    }
-}
-
 /* ---- rate-distortion choice (frames with a byte budget) ------------------------------- */
 
 /* Squared error of a shown colour against a true pixel, summed over the channels. */
 HOT int sq_diff(uint32_t shown, const uint8_t *px)
 {
-    int d0 = (int)chan(shown, 0) - px[0], d1 = (int)chan(shown, 1) - px[1];
-    int d2 = (int)chan(shown, 2) - px[2];
+    int d0 = (int)cellfit_chan(shown, 0) - px[0], d1 = (int)cellfit_chan(shown, 1) - px[1];
+    int d2 = (int)cellfit_chan(shown, 2) - px[2];
     return d0 * d0 + d1 * d1 + d2 * d2;
 }
 
@@ -590,7 +480,7 @@ HOT int colour_len(enum palette_mode mode, uint32_t c, bool bg)
     unsigned idx = c >> 24;
     switch (mode) {
     case PALETTE_TRUECOLOR:
-        return 8 + dec_len(chan(c, 0)) + dec_len(chan(c, 1)) + dec_len(chan(c, 2));
+        return 8 + dec_len(cellfit_chan(c, 0)) + dec_len(cellfit_chan(c, 1)) + dec_len(cellfit_chan(c, 2));
     case PALETTE_256:
         return 6 + dec_len(idx);
     default:
@@ -640,7 +530,7 @@ HOT bool rd_choose(struct encode_screen *s, const struct emitter *em, enum palet
     uint32_t mean;
     uint8_t m[3] = {(uint8_t)((pt[0] + pb[0] + 1) / 2), (uint8_t)((pt[1] + pb[1] + 1) / 2),
                     (uint8_t)((pt[2] + pb[2] + 1) / 2)};
-    mean = mode == PALETTE_TRUECOLOR ? pack(m) : quant(s, mode, m, 0, 0, false);
+    mean = mode == PALETTE_TRUECOLOR ? cellfit_pack(m) : cellfit_quant(s, mode, m, 0, 0, false);
     uint32_t fg = em->fg, bg = em->bg;
     const struct encode_cell cand[] = {
         tgt,           {mean, mean},  {tgt.top, tgt.top}, {tgt.bot, tgt.bot},
@@ -879,7 +769,7 @@ const char *encode_frame(struct encode_screen *s, const uint8_t *rgb, int w, int
     assert(w == s->cols && h >= 1 && (h + 1) / 2 == s->rows);
     assert((unsigned)o->mode < PALETTE_MODE_COUNT);
     struct encode_stats st = {0};
-    quantise(s, rgb, w, h, o);
+    cellfit_frame(s, rgb, w, h, o);
     /* ramp characters are mostly background: from there, only a full frame is known to work */
     if (s->mode == PALETTE_NONE && o->mode != PALETTE_NONE)
         s->valid = false;
