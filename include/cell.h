@@ -41,6 +41,7 @@ enum cell_glyphs { CELL_HALF, CELL_QUADRANT, CELL_SEXTANT, CELL_BRAILLE, CELL_AS
 #define CELL_MAX_PX 8     /* pixels in a cell, at most (braille) */
 #define CELL_MASTER_W 2   /* the decoder's master grid per cell */
 #define CELL_MASTER_H 12
+#define CELL_MASTER_PX (CELL_MASTER_W * CELL_MASTER_H)
 
 struct cell_geom {
     enum cell_glyphs glyphs;

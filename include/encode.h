@@ -62,6 +62,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "cell.h"
 #include "err.h"
 #include "fb.h"
 #include "palette.h"
@@ -77,10 +78,11 @@
 
 /* Worst case per cell: a cursor move (<= CUP "ESC[rrrr;ccccH" = 12 bytes; every cheaper move
  * we choose costs less, rewrites included) + fg and bg in one truecolor SGR
- * ("ESC[38;2;255;255;255;48;2;255;255;255m" = 36) + a 3-byte glyph = 51. Per frame:
+ * ("ESC[38;2;255;255;255;48;2;255;255;255m" = 36) + a glyph of up to 4 bytes (sextants) = 52.
+ * Per frame:
  * ESC[H (3) + ESC[?2026h (8) + ESC[0m (4) + ESC[?2026l (8) = 23. Plus 8 bytes of slack
  * because digits are stored 4 bytes at a time. */
-#define ENCODE_CELL_MAX_BYTES 51
+#define ENCODE_CELL_MAX_BYTES 52
 #define ENCODE_FRAME_MAX_BYTES 23
 #define ENCODE_BOUND(cols, rows)                                                          \
     ((size_t)(cols) * (size_t)(rows) * ENCODE_CELL_MAX_BYTES + ENCODE_FRAME_MAX_BYTES + 8)
@@ -101,13 +103,26 @@ struct encode_opts {
     uint8_t pad_rgb[3];  /* bottom half of the last row when the height is odd */
     size_t budget;       /* bytes the frame may take, 0 = no limit (see "Budget" above) */
     int hold_col, hold_row, hold_cols, hold_rows; /* cells never drawn (an overlay's) */
+    enum cell_glyphs glyphs; /* how cells show pixels (cell.h); 0 = half blocks */
+    const struct fb *cover;  /* none mode: which pixels something covers (fb_covered); the rest
+                              * (sky, background) is dimmed. NULL = all. encode_fb sets it */
 };
 
-/* A cell as the terminal displays it: colours packed 0xIIRRGGBB where RRGGBB is the colour
- * really shown (after quantisation) and II the palette index (256/16), the ramp level (none)
- * or 0 (truecolor). In none mode top == bot (grey of the level). */
+/* A cell as the terminal displays it: pixel i shows `top` where bit i of mask is set, else
+ * `bot` (cell.h numbers the pixels; half blocks: top and bottom pixel, mask 1). Colours are
+ * packed 0xIIRRGGBB where RRGGBB is the colour really shown (after quantisation) and II the
+ * palette index (256/16), the ramp level (none with ascii) or 0 (truecolor); the terminal's
+ * own colours (braille's background, none's ink) have II 0xFD/0xFE (cellfit.h).
+ * Canonical, so that equal pictures are equal cells: one colour is mask 0 and top == bot;
+ * two colours have bit 0 set (braille keeps its background in bot). */
 struct encode_cell {
     uint32_t top, bot;
+    uint32_t mask;
+};
+
+struct encode_glyph {
+    char utf8[4];
+    uint8_t len;
 };
 #define ENCODE_CELL_UNKNOWN 0xFFFFFFFFu /* never a real colour: forces a redraw */
 
@@ -126,6 +141,10 @@ struct encode_screen {
     /* budgeted frames */
     struct encode_cell *saved;  /* cols*rows: the screen model before the frame, for retries */
     double lambda;              /* the last budgeted frame's lambda: the next one's first guess */
+    /* the glyph set the cells were drawn with (a change forces a full frame) */
+    enum cell_glyphs glyphs;
+    struct cell_geom geom;
+    struct encode_glyph glyph[256]; /* UTF-8 of each pattern */
 };
 
 struct encode_stats {
@@ -162,7 +181,9 @@ static inline const char *encode_fb(struct encode_screen *s, const struct fb *fb
                                     const struct encode_opts *o, size_t *len_out,
                                     struct encode_stats *stats_out)
 {
-    return encode_frame(s, fb->rgb, fb->w, fb->h, o, len_out, stats_out);
+    struct encode_opts with_cover = *o;
+    with_cover.cover = fb->depth ? fb : NULL;
+    return encode_frame(s, fb->rgb, fb->w, fb->h, &with_cover, len_out, stats_out);
 }
 
 #endif

@@ -55,7 +55,9 @@ struct options {
     const char *colors;       /* NULL = auto */
     int tolerance;            /* -1 = not given */
     bool dither;              /* ordered dithering in 256/16 colours */
+    bool glyphs_set;          /* --glyphs given (render.glyphs holds it) */
     bool diff;
+    int budget;               /* dump --budget: bytes per frame, 0 = none */
     const char *ppm_dir;
     int frame_index;          /* ansi2ppm --frame K; -1 = the last */
     double fps;

@@ -25,6 +25,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "cell.h"
 #include "fb.h"
 #include "texture.h"
 #include "vecmath.h"
@@ -71,6 +72,9 @@ struct render_opts {
     enum lod_mode lod;          /* --lod: which simplified level of each mesh is drawn */
     float lod_ratio;            /* LOD_RATIO: fraction of the triangles kept, (0, 1] */
     float lod_px;               /* LOD_AUTO: largest error on screen, in pixels (> 0) */
+    enum cell_glyphs glyphs;    /* --glyphs: how terminal cells show pixels (cell.h); it picks
+                                 * the framebuffer's grid and pixel shape and the encoder's
+                                 * glyphs; pipeline_draw ignores the field */
     enum cull_mode cull;
     enum debug_view view;
     bool textures;       /* sample material / override textures (else albedo = kd) */
@@ -127,7 +131,7 @@ struct render_enum {
 };
 extern const struct render_enum render_shade_names, render_cull_names, render_filter_names,
     render_view_names, render_raster_names, render_persp_names, render_depth_names,
-    render_ssaa_names, render_lod_names;
+    render_ssaa_names, render_lod_names, render_glyphs_names;
 
 const char *render_shade_name(enum shade_mode m);
 const char *render_cull_name(enum cull_mode m);

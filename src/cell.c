@@ -134,30 +134,26 @@ int cell_shape(uint32_t cp, uint32_t *shape_out)
     return -1;
 }
 
-/* Is the shape constant over every pixel of a px_w x px_h grid? */
-static bool exact_on(uint32_t shape, int px_w, int px_h)
+/* The two bits of master row y. */
+static inline unsigned master_row(uint32_t shape, int y)
 {
-    for (int y = 0; y < CELL_MASTER_H; y++)
-        for (int x = 0; x < CELL_MASTER_W; x++) {
-            int y0 = y / (CELL_MASTER_H / px_h) * (CELL_MASTER_H / px_h);
-            int x0 = x / (CELL_MASTER_W / px_w) * (CELL_MASTER_W / px_w);
-            if ((shape >> (y * CELL_MASTER_W + x) & 1) != (shape >> (y0 * CELL_MASTER_W + x0) & 1))
-                return false;
-        }
-    return true;
+    return shape >> (y * CELL_MASTER_W) & ((1u << CELL_MASTER_W) - 1);
 }
 
 void cell_shape_grid(uint32_t shape, int *px_w_out, int *px_h_out)
 {
-    /* the rows a shape needs do not depend on its columns; it needs two columns when its
-     * left and right columns differ (the exact grids are closed under gcd, so the smallest
-     * divides every other) */
+    /* two columns when the left and right differ; rows: the fewest bands of equal master
+     * rows (the exact row counts are closed under gcd, so the smallest divides the rest) */
+    *px_w_out = ((shape & 0x555555u) << 1) == (shape & 0xAAAAAAu) ? 1 : 2;
     static const int heights[] = {1, 2, 3, 4, 6, 12};
-    *px_w_out = exact_on(shape, 1, CELL_MASTER_H) ? 1 : 2;
-    *px_h_out = CELL_MASTER_H;
-    for (unsigned k = 0; k < sizeof heights / sizeof heights[0]; k++)
-        if (exact_on(shape, 2, heights[k])) {
+    for (unsigned k = 0; k < sizeof heights / sizeof heights[0]; k++) {
+        int band = CELL_MASTER_H / heights[k], y = 0;
+        while (y < CELL_MASTER_H && master_row(shape, y) == master_row(shape, y - y % band))
+            y++;
+        if (y == CELL_MASTER_H) {
             *px_h_out = heights[k];
             return;
         }
+    }
+    *px_h_out = CELL_MASTER_H;
 }

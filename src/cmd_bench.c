@@ -88,7 +88,8 @@ static int bench_scene(const struct options *o, const char *path, int cols, int 
     }
     struct camera cam;
     struct render_opts ro;
-    cmd_view_setup(o, &scene, (double)cols / (2.0 * rows), !scene.has_camera, &cam, &ro);
+    struct cell_geom geom = cell_geom(o->render.glyphs);
+    cmd_view_setup(o, &scene, cols * CELL_ASPECT / rows, !scene.has_camera, &cam, &ro);
     struct fb fb = {0};
     struct ssaa ss = {0};
     struct pipeline *p = pipeline_new();
@@ -96,17 +97,18 @@ static int bench_scene(const struct options *o, const char *path, int cols, int 
     memset(t, 0, sizeof t);
     double *render_ms = calloc((size_t)frames, sizeof *render_ms);
     int rc = 1;
-    if (!p || !render_ms || fb_init(&fb, cols, 2 * rows, false, e))
+    if (!p || !render_ms || fb_init(&fb, cell_fb_w(&geom, cols), cell_fb_h(&geom, rows), false, e))
         goto done;
+    fb.pixel_aspect = cell_pixel_aspect(&geom);
     for (int c = 0; c < N_CONFIGS; c++) {
         t[c].bytes = calloc((size_t)frames, sizeof(double));
         t[c].enc_ms = calloc((size_t)frames, sizeof(double));
         t[c].worst_psnr = INFINITY;
         if (!t[c].bytes || !t[c].enc_ms || encode_screen_init(&t[c].es, cols, rows, e) ||
-            decode_init(&t[c].dec, cols, rows, e))
+            decode_init(&t[c].dec, cols, rows, geom, e))
             goto done;
     }
-    size_t npx = (size_t)cols * 2 * rows * 3;
+    size_t npx = (size_t)fb.w * (size_t)fb.h * 3;
     uint64_t static_bytes = 0;
     for (int k = 0; k <= frames; k++) {
         struct camera c = cam;
@@ -121,7 +123,8 @@ static int bench_scene(const struct options *o, const char *path, int cols, int 
             struct encode_opts eo = {.mode = configs[i].mode,
                                      .diff = configs[i].diff && k > 0,
                                      .tolerance = configs[i].tolerance,
-                                     .budget = configs[i].budget};
+                                     .budget = configs[i].budget,
+                                     .glyphs = geom.glyphs};
             size_t n;
             double t0 = timing_now_ms();
             const char *bytes = encode_fb(&t[i].es, &fb, &eo, &n, NULL);
@@ -145,9 +148,9 @@ static int bench_scene(const struct options *o, const char *path, int cols, int 
             }
         }
     }
-    printf("\n%s: %d frames, %dx%d cells (%dx%d px), orbit %g deg/frame, render median %.2f "
-           "ms, p95 %.2f ms\n",
-           scene.name, frames, cols, rows, cols, 2 * rows, o->orbit_deg,
+    printf("\n%s: %d frames, %dx%d cells (%dx%d px, %s), orbit %g deg/frame, render median "
+           "%.2f ms, p95 %.2f ms\n",
+           scene.name, frames, cols, rows, fb.w, fb.h, cell_glyphs_name(geom.glyphs), o->orbit_deg,
            timing_median(render_ms, frames), timing_percentile(render_ms, frames, 0.95));
     printf("  %-16s %10s %10s %10s %10s %10s %8s %11s\n", "encoding", "median B", "mean B",
            "p95 B", "enc med ms", "PSNR dB", "min dB", "max |err|");

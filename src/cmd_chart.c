@@ -49,7 +49,8 @@ static int draw_in_terminal(void (*draw)(const void *, struct plot *), const voi
         return err_set(e, "rastty bench: the terminal is too small for the chart (%dx%d, "
                           "need 60x18): use --svg FILE", cols, rows + 2), 1;
     struct fb fb;
-    if (fb_init(&fb, cols, 2 * rows, false, e))
+    struct cell_geom half = cell_geom(CELL_HALF); /* plot.c places its labels on half blocks */
+    if (fb_init(&fb, cell_fb_w(&half, cols), cell_fb_h(&half, rows), false, e))
         return 1;
     struct plot p;
     plot_fb_begin(&p, &fb);

@@ -30,6 +30,7 @@
 #include "pipeline.h"
 #include "ssaa.h"
 #include "termcaps.h"
+#include "timing.h"
 
 /* Camera for frame k: from the path file, or the start camera orbited k * orbit degrees. */
 struct camera_path {
@@ -161,14 +162,17 @@ int cmd_dump(const struct options *o, struct err *e)
 
     struct camera cam;
     struct render_opts ro;
-    cmd_view_setup(o, &scene, (double)cols / (2.0 * rows), o->frame, &cam, &ro);
+    struct cell_geom geom = cell_geom(o->render.glyphs);
+    cmd_view_setup(o, &scene, cols * CELL_ASPECT / rows, o->frame, &cam, &ro);
     bool to_tty = !o->out && isatty(STDOUT_FILENO);
     bool cast = o->out && ends_with(o->out, ".cast");
     struct encode_opts eo = {.mode = color_mode(o, to_tty),
                              .lf_newline = !to_tty && !cast,
                              .tolerance = o->tolerance > 0 ? o->tolerance : 0,
                              .dither = o->dither,
-                             .mark_frames = true};
+                             .mark_frames = true,
+                             .glyphs = geom.glyphs,
+                             .budget = o->budget};
     FILE *out = stdout;
     struct file_out fo = {0}; /* --out: written atomically, renamed at the end */
     int rc = 1;
@@ -189,9 +193,10 @@ int cmd_dump(const struct options *o, struct err *e)
             goto done;
         out = fo.f;
     }
-    if (fb_init(&fb, cols, 2 * rows, ro.view == VIEW_OVERDRAW, e) ||
+    if (fb_init(&fb, cell_fb_w(&geom, cols), cell_fb_h(&geom, rows), ro.view == VIEW_OVERDRAW, e) ||
         encode_screen_init(&es, cols, rows, e))
         goto done;
+    fb.pixel_aspect = cell_pixel_aspect(&geom);
     for (int k = 0; k < frames; k++) {
         struct camera c = cam;
         if (o->camera_path) {
@@ -208,7 +213,9 @@ int cmd_dump(const struct options *o, struct err *e)
         eo.diff = o->diff && k > 0;
         size_t n;
         struct encode_stats es_stats;
+        double t0 = timing_now_ms();
         const char *bytes = encode_fb(&es, &fb, &eo, &n, &es_stats);
+        double encode_ms = timing_now_ms() - t0;
         const char *name = strrchr(o->inputs[0], '/') ? strrchr(o->inputs[0], '/') + 1 : o->inputs[0];
         if (cast && ((k == 0 && (cast_header(out, cols, rows, (long)time(NULL), name) ||
                                  cast_event(out, 0, "\033[?25l", 6))) ||
@@ -230,8 +237,8 @@ int cmd_dump(const struct options *o, struct err *e)
                 goto done;
         }
         if (o->stats)
-            fprintf(stderr, "frame %d: %zu bytes, %d cells, %.3f ms render\n", k, n,
-                    es_stats.cells_drawn, st.render_ms);
+            fprintf(stderr, "frame %d: %zu bytes, %d cells, %.3f ms render, %.3f ms encode\n", k,
+                    n, es_stats.cells_drawn, st.render_ms, encode_ms);
     }
     if (o->out) {
         out = NULL;
@@ -271,14 +278,18 @@ int cmd_ansi2ppm(const struct options *o, struct err *e)
         return err_set(e, "%s: cannot read: %s", q, file_strerror(read_rc)), 2;
     int cols, rows, frames, rc = 2;
     struct decode_state d = {0};
-    if (decode_measure(buf, len, q, &cols, &rows, &frames, e) == 0) {
+    struct cell_geom grid; /* the grid the glyphs need, unless --glyphs names one */
+    if (decode_measure(buf, len, q, &cols, &rows, &frames, &grid, e) == 0) {
+        if (o->glyphs_set)
+            grid = cell_geom(o->render.glyphs);
         int k = o->frame_index >= 0 ? o->frame_index : frames - 1;
         if (k >= frames) {
             err_set(e, "%s: has %d frame%s, no frame %d", q, frames, frames == 1 ? "" : "s", k);
-        } else if (decode_init(&d, cols, rows, e) == 0) {
+        } else if (decode_init(&d, cols, rows, grid, e) == 0) {
             d.name = q;
             if (decode_frame(&d, buf, len, k, e) == 0) {
-                struct fb fb = {.w = cols, .h = 2 * rows, .rgb = d.rgb};
+                struct fb fb = {.w = cell_fb_w(&grid, cols), .h = cell_fb_h(&grid, rows),
+                                .rgb = d.rgb};
                 rc = image_write_color(o->out, &fb, e) ? 1 : 0;
             }
             decode_free(&d);

@@ -166,7 +166,10 @@ int cmd_render(const struct options *o, struct err *e)
     double load_ms = timing_now_ms() - l0;
     struct camera cam;
     struct render_opts ro;
-    cmd_view_setup(o, &scene, (double)o->width / o->height, o->frame, &cam, &ro);
+    /* --glyphs: the pixels are that glyph set's (cell.h), as a terminal would show them */
+    struct cell_geom geom = cell_geom(o->render.glyphs);
+    double pixel_aspect = cell_pixel_aspect(&geom); /* 1: half blocks' pixels are square */
+    cmd_view_setup(o, &scene, (double)o->width * pixel_aspect / o->height, o->frame, &cam, &ro);
     struct fb fb;
     struct ssaa ss = {0};
     struct pipeline *p = pipeline_new();
@@ -181,6 +184,7 @@ int cmd_render(const struct options *o, struct err *e)
         err_set(e, "out of memory");
     else if (cmd_sky(o, &scene, &ro, &tmp, &sky, e) == 0 &&
              fb_init(&fb, o->width, o->height, ro.view == VIEW_OVERDRAW, e) == 0) {
+        fb.pixel_aspect = pixel_aspect;
         if (o->light_camera) /* after the sky: its sun stays toward the world light */
             light_use_camera(&ro, &cam);
         int drawn = 0;

@@ -31,15 +31,34 @@ static int fail_byte(const struct decode_state *d, struct err *e, size_t at, con
     return fail(d, e, at, msg);
 }
 
-int decode_init(struct decode_state *d, int cols, int rows, struct err *e)
+/* The grid: px_w x px_h pixels per cell, and the master-grid cells each one covers. */
+static void set_grid(struct decode_state *d, int px_w, int px_h)
+{
+    d->px_w = px_w;
+    d->px_h = px_h;
+    for (int j = 0; j < px_h; j++)
+        for (int i = 0; i < px_w; i++) {
+            uint32_t m = 0;
+            for (int y = j * CELL_MASTER_H / px_h; y < (j + 1) * CELL_MASTER_H / px_h; y++)
+                for (int x = i * CELL_MASTER_W / px_w; x < (i + 1) * CELL_MASTER_W / px_w; x++)
+                    m |= 1u << (y * CELL_MASTER_W + x);
+            d->region[j * px_w + i] = m;
+        }
+}
+
+int decode_init(struct decode_state *d, int cols, int rows, struct cell_geom g, struct err *e)
 {
     memset(d, 0, sizeof *d);
     if (cols < 1 || cols > DECODE_MAX_COLS || rows < 1 || rows > DECODE_MAX_ROWS)
         return err_set(e, "decoder: %dx%d cells out of range (1..%d x 1..%d)", cols, rows,
                        DECODE_MAX_COLS, DECODE_MAX_ROWS);
+    if (g.px_w < 1 || CELL_MASTER_W % g.px_w || g.px_h < 1 || CELL_MASTER_H % g.px_h)
+        return err_set(e, "decoder: %dx%d pixels per cell is no grid of cell.h's", g.px_w,
+                       g.px_h);
     d->cols = cols;
     d->rows = rows;
-    d->rgb = malloc((size_t)cols * (size_t)rows * 6);
+    set_grid(d, g.px_w, g.px_h);
+    d->rgb = malloc((size_t)cols * (size_t)rows * (size_t)(g.px_w * g.px_h) * 3);
     if (!d->rgb)
         return err_set(e, "decoder: out of memory for %dx%d cells", cols, rows);
     static const uint8_t fg[3] = {229, 229, 229}, bg[3] = {0, 0, 0};
@@ -59,7 +78,7 @@ static void fill(struct decode_state *d, const uint8_t rgb[3])
 {
     if (!d->rgb)
         return;
-    size_t n = (size_t)d->cols * (size_t)d->rows * 2;
+    size_t n = (size_t)d->cols * (size_t)d->rows * (size_t)(d->px_w * d->px_h);
     for (size_t i = 0; i < n; i++)
         memcpy(d->rgb + 3 * i, rgb, 3);
 }
@@ -70,22 +89,40 @@ void decode_reset(struct decode_state *d)
     d->row = d->col = 0;
     d->wrap_pending = false;
     d->fg_default = d->bg_default = true;
+    d->reverse = false;
     d->frames = d->used_cols = d->used_rows = 0;
+    d->need_w = d->need_h = 1;
 }
 
-static const uint8_t *cur_fg(const struct decode_state *d)
+static const uint8_t *set_fg(const struct decode_state *d)
 {
     return d->fg_default ? d->default_fg : d->fg;
 }
 
-static const uint8_t *cur_bg(const struct decode_state *d)
+static const uint8_t *set_bg(const struct decode_state *d)
 {
     return d->bg_default ? d->default_bg : d->bg;
 }
 
-/* Draw one cell at the cursor and advance it. */
-static int put_cell(struct decode_state *d, const uint8_t *top, const uint8_t *bot, size_t at,
-                    struct err *e)
+/* what glyphs are drawn with: SGR 7 swaps the two */
+static const uint8_t *cur_fg(const struct decode_state *d)
+{
+    return d->reverse ? set_bg(d) : set_fg(d);
+}
+
+static const uint8_t *cur_bg(const struct decode_state *d)
+{
+    return d->reverse ? set_fg(d) : set_bg(d);
+}
+
+static int gcd(int a, int b)
+{
+    return b ? gcd(b, a % b) : a;
+}
+
+/* Draw one cell at the cursor, fg where the master-grid shape is set, and advance. */
+static int put_cell(struct decode_state *d, uint32_t shape, const uint8_t *fg, const uint8_t *bg,
+                    size_t at, struct err *e)
 {
     if (d->wrap_pending) {
         d->wrap_pending = false;
@@ -96,9 +133,25 @@ static int put_cell(struct decode_state *d, const uint8_t *top, const uint8_t *b
     if (d->row >= d->rows)
         return fail(d, e, at, "drawing below the last row (the decoder does not scroll)");
     if (d->rgb) {
-        uint8_t *px = d->rgb + ((size_t)(2 * d->row) * (size_t)d->cols + (size_t)d->col) * 3;
-        memcpy(px, top, 3);
-        memcpy(px + (size_t)d->cols * 3, bot, 3);
+        const int pw = d->px_w, ph = d->px_h, n = CELL_MASTER_PX / (pw * ph);
+        const size_t stride = (size_t)d->cols * (size_t)pw * 3;
+        uint8_t *cell = d->rgb + (size_t)d->row * ph * stride + (size_t)d->col * pw * 3;
+        for (int j = 0; j < ph; j++)
+            for (int i = 0; i < pw; i++) {
+                uint8_t *px = cell + (size_t)j * stride + (size_t)i * 3;
+                int k = __builtin_popcount(shape & d->region[j * pw + i]);
+                if (k == 0 || k == n) {
+                    memcpy(px, k ? fg : bg, 3);
+                    continue;
+                }
+                for (int c = 0; c < 3; c++) /* a glyph finer than the grid: its area's mix */
+                    px[c] = (uint8_t)((fg[c] * k + bg[c] * (n - k) + n / 2) / n);
+            }
+    } else if (shape) { /* measuring: the grid it needs */
+        int w, h;
+        cell_shape_grid(shape, &w, &h);
+        d->need_w = w > d->need_w ? w : d->need_w;
+        d->need_h = d->need_h / gcd(d->need_h, h) * h;
     }
     if (d->col + 1 > d->used_cols)
         d->used_cols = d->col + 1;
@@ -121,12 +174,16 @@ static int sgr(struct decode_state *d, const int *p, int n, size_t at, struct er
 {
     if (n == 0) {
         d->fg_default = d->bg_default = true;
+        d->reverse = false;
         return 0;
     }
     for (int i = 0; i < n; i++) {
         int v = p[i];
         if (v == 0) {
             d->fg_default = d->bg_default = true;
+            d->reverse = false;
+        } else if (v == 7 || v == 27) {
+            d->reverse = v == 7;
         } else if (v == 39) {
             d->fg_default = true;
         } else if (v == 49) {
@@ -183,24 +240,28 @@ static int parse(struct decode_state *d, const char *buf, size_t len, int stop_f
     while (i < len) {
         unsigned char b = s[i];
         if (b == ' ') {
-            if (put_cell(d, cur_bg(d), cur_bg(d), i, e))
+            if (put_cell(d, 0, cur_fg(d), cur_bg(d), i, e))
                 return -1;
             i++;
-        } else if (b == 0xe2) {
-            if (i + 2 >= len || s[i + 1] != 0x96 ||
-                (s[i + 2] != 0x80 && s[i + 2] != 0x84 && s[i + 2] != 0x88))
-                return fail(d, e, i, "unsupported character (only U+2580, U+2584, U+2588)");
-            const uint8_t *fg = cur_fg(d), *bg = cur_bg(d);
-            int r;
-            if (s[i + 2] == 0x80)
-                r = put_cell(d, fg, bg, i, e);
-            else if (s[i + 2] == 0x84)
-                r = put_cell(d, bg, fg, i, e);
-            else
-                r = put_cell(d, fg, fg, i, e);
-            if (r)
+        } else if (b >= 0xc2 && b <= 0xf4) {
+            /* UTF-8: 2..4 bytes, then a glyph of cell.h's */
+            int n = b >= 0xf0 ? 4 : b >= 0xe0 ? 3 : 2;
+            uint32_t cp = b & (0x7f >> n);
+            for (int k = 1; k < n; k++) {
+                if (i + (size_t)k >= len || (s[i + k] & 0xc0) != 0x80)
+                    return fail(d, e, i, "malformed UTF-8");
+                cp = cp << 6 | (s[i + k] & 0x3f);
+            }
+            uint32_t shape;
+            if (cell_shape(cp, &shape)) {
+                char msg[120];
+                snprintf(msg, sizeof msg, "unsupported character U+%04X (only block elements, "
+                                          "sextants and braille)", (unsigned)cp);
+                return fail(d, e, i, msg);
+            }
+            if (put_cell(d, shape, cur_fg(d), cur_bg(d), i, e))
                 return -1;
-            i += 3;
+            i += (size_t)n;
         } else if (b == '\r') {
             d->col = 0;
             d->wrap_pending = false;
@@ -280,7 +341,7 @@ static int parse(struct decode_state *d, const char *buf, size_t len, int stop_f
             } else if (final == 'J') {
                 if (n != 1 || p[0] != 2)
                     return fail(d, e, at, "only ESC[2J (clear the screen) is supported");
-                fill(d, cur_bg(d));
+                fill(d, set_bg(d)); /* erasing ignores reverse video */
             } else {
                 return fail_byte(d, e, at, "unsupported control sequence ending in", final);
             }
@@ -291,7 +352,7 @@ static int parse(struct decode_state *d, const char *buf, size_t len, int stop_f
                 return fail_byte(d, e, i, "unexpected byte", b);
             uint8_t g = palette_ramp_grey((int)(ramp - PALETTE_RAMP));
             uint8_t grey[3] = {g, g, g};
-            if (put_cell(d, grey, grey, i, e))
+            if (put_cell(d, 0, grey, grey, i, e))
                 return -1;
             i++;
         }
@@ -321,7 +382,7 @@ int decode_frame(struct decode_state *d, const char *buf, size_t len, int k, str
 }
 
 int decode_measure(const char *buf, size_t len, const char *name, int *cols_out, int *rows_out,
-                   int *frames_out, struct err *e)
+                   int *frames_out, struct cell_geom *grid_out, struct err *e)
 {
     struct decode_state d;
     memset(&d, 0, sizeof d);
@@ -333,5 +394,15 @@ int decode_measure(const char *buf, size_t len, const char *name, int *cols_out,
     *cols_out = d.used_cols;
     *rows_out = d.used_rows;
     *frames_out = d.frames > 0 ? d.frames : 1;
+    struct cell_geom grid = {CELL_GLYPHS_COUNT, d.need_w, d.need_h == 1 ? 2 : d.need_h, false};
+    for (int g = 0; g < CELL_GLYPHS_COUNT; g++) {
+        struct cell_geom k = cell_geom((enum cell_glyphs)g);
+        if (k.px_w == grid.px_w && k.px_h == grid.px_h) {
+            grid = k;
+            break;
+        }
+    }
+    if (grid_out)
+        *grid_out = grid;
     return 0;
 }

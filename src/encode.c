@@ -67,34 +67,25 @@ static WUR char *put_num(char *p, unsigned v)
 
 /* ---- glyphs ---------------------------------------------------------------------------- */
 
-/* No U+2588 full block: a one-colour cell is always a space on that background. xterm and st
- * draw block elements from the font, and with common fonts (Liberation Mono, Noto Sans Mono,
- * DejaVu at 13 or 17 px) U+2588 leaves uncovered strips that show as a grid; the background
- * of a space is painted by the terminal itself, edge to edge, for the same bytes. */
-enum glyph { G_NONE, G_SPACE, G_UPPER, G_LOWER, G_RAMP };
+/* No U+2588 full block in colour: a one-colour cell is always a space on that background.
+ * xterm and st draw block elements from the font, and with common fonts (Liberation Mono,
+ * Noto Sans Mono, DejaVu at 13 or 17 px) U+2588 leaves uncovered strips that show as a grid;
+ * the background of a space is painted by the terminal itself, edge to edge, for the same
+ * bytes. A glyph is named by the pattern it shows in the current fg (cell.h); NO_GLYPH: the
+ * current colours cannot show the cell. */
+#define NO_GLYPH (-1)
 
-static const char GLYPH_UTF8[][4] = {
-    [G_UPPER] = "\xe2\x96\x80", /* U+2580 upper half block */
-    [G_LOWER] = "\xe2\x96\x84", /* U+2584 lower half block */
-};
-
-static inline int glyph_len(enum glyph g)
+/* The glyph set's UTF-8 for every pattern, built when the set changes. */
+static void glyph_table(struct encode_screen *s, enum cell_glyphs g)
 {
-    return g == G_SPACE || g == G_RAMP ? 1 : 3;
-}
-
-HOT WUR char *put_glyph(char *p, enum glyph g, struct encode_cell c)
-{
-    if (g == G_SPACE) {
-        *p = ' ';
-        return p + 1;
+    s->glyphs = g;
+    s->geom = cell_geom(g);
+    for (unsigned m = 0; m < 256; m++) {
+        char u[4];
+        int n = cell_utf8(cell_glyph_cp(g, m), u);
+        memcpy(s->glyph[m].utf8, u, 4);
+        s->glyph[m].len = (uint8_t)n;
     }
-    if (g == G_RAMP) {
-        *p = PALETTE_RAMP[c.top >> 24];
-        return p + 1;
-    }
-    memcpy(p, GLYPH_UTF8[g], 3);
-    return p + 3;
 }
 
 /* ---- the emitter: output pointer plus what the terminal's SGR and cursor are now ---------- */
@@ -113,7 +104,29 @@ struct emitter {
     double lambda2;    /* a second, lower price for cells lambda leaves (0 = none), when the
                         * bytes still owed to lambda's cells (reserve) leave room */
     long reserve;
+    /* the glyph set */
+    const struct encode_glyph *glyph; /* UTF-8 per pattern */
+    int gw, gh, n_px;  /* pixels per cell */
+    unsigned full;     /* the pattern with every pixel set */
+    unsigned split;    /* how a one-colour cell may split in two: top/bottom (half), else none */
+    bool fg_only;      /* one colour per cell on the terminal's background (braille) */
+    bool ramp;         /* none mode with ascii: a ramp character per cell */
 };
+
+HOT WUR char *put_glyph(const struct emitter *em, char *p, int g, struct encode_cell c)
+{
+    if (em->ramp) {
+        *p = PALETTE_RAMP[c.top >> 24];
+        return p + 1;
+    }
+    memcpy(p, em->glyph[g].utf8, 4); /* the buffer keeps slack for the 4-byte copy */
+    return p + em->glyph[g].len;
+}
+
+static inline int glyph_len(const struct emitter *em, int g)
+{
+    return em->ramp ? 1 : em->glyph[g].len;
+}
 
 /* "38;2;R;G;B;" / "48;5;I;" / "9I;" ... for one colour, with a trailing ';'. */
 HOT WUR char *put_colour(char *p, enum palette_mode mode, uint32_t c, bool bg)
@@ -171,19 +184,29 @@ HOT void set_colours(struct emitter *em, enum palette_mode mode, uint32_t fg, ui
     em->st->sgr++;
 }
 
-/* The glyph that shows cell c with the current colours, or G_NONE if an SGR is needed. */
-HOT enum glyph free_glyph(const struct emitter *em, enum palette_mode mode,
-                         struct encode_cell c)
+/* none mode: the pattern of the terminal's fg (the ink) in a cell of CELLFIT_TERM_FG and
+ * CELLFIT_TERM_BG, whatever the cell's canonical order */
+static inline int ink_glyph(const struct emitter *em, struct encode_cell c)
+{
+    if (em->ramp)
+        return 0;
+    if (c.mask == 0)
+        return c.top == CELLFIT_TERM_FG ? (int)em->full : 0;
+    return (int)(c.top == CELLFIT_TERM_FG ? c.mask : c.mask ^ em->full);
+}
+
+/* The glyph that shows cell c with the current colours, or NO_GLYPH if an SGR is needed. */
+HOT int free_glyph(const struct emitter *em, enum palette_mode mode, struct encode_cell c)
 {
     if (mode == PALETTE_NONE)
-        return G_RAMP;
-    if (c.top == c.bot)
-        return em->bg == c.top ? G_SPACE : G_NONE;
-    if (em->fg == c.top && em->bg == c.bot)
-        return G_UPPER;
-    if (em->fg == c.bot && em->bg == c.top)
-        return G_LOWER;
-    return G_NONE;
+        return ink_glyph(em, c);
+    if (c.mask == 0) /* fg_only: the terminal's own background */
+        return em->fg_only || em->bg == c.top ? 0 : NO_GLYPH;
+    if (em->fg == c.top && (em->fg_only || em->bg == c.bot))
+        return (int)c.mask;
+    if (!em->fg_only && em->fg == c.bot && em->bg == c.top)
+        return (int)(c.mask ^ em->full);
+    return NO_GLYPH;
 }
 
 /* Largest channel difference between a shown colour and a true pixel; branch-free because
@@ -196,73 +219,135 @@ HOT int chan_diff(uint32_t shown, const uint8_t *px)
     return m > d2 ? m : d2;
 }
 
+/* The colour pixel i of cell c shows. */
+static inline uint32_t shown_colour(struct encode_cell c, int i)
+{
+    return (c.mask >> i & 1) ? c.top : c.bot;
+}
+
+/* Largest chan_diff of colour x against the pixels of `set` (0 for an empty set). */
+HOT int set_diff(uint32_t x, const uint8_t *const *px, int n, unsigned set)
+{
+    if (n == 2 && (set == 1 || set == 2)) /* half blocks: one pixel */
+        return chan_diff(x, px[set - 1]);
+    int m = 0;
+    for (int i = 0; i < n; i++)
+        if (set >> i & 1) {
+            int d = chan_diff(x, px[i]);
+            m = d > m ? d : m;
+        }
+    return m;
+}
+
+/* Largest channel difference between what cell c shows and its true pixels. */
+HOT int cell_diff(struct encode_cell c, const uint8_t *const *px, int n)
+{
+    if (n == 2) { /* half blocks: top and bottom pixel (a canonical cell's top and bot) */
+        int dt = chan_diff(c.top, px[0]), db = chan_diff(c.bot, px[1]);
+        return dt > db ? dt : db;
+    }
+    int m = 0;
+    for (int i = 0; i < n; i++) {
+        int d = chan_diff(shown_colour(c, i), px[i]);
+        m = d > m ? d : m;
+    }
+    return m;
+}
+
 /* Colour changes (0..2) needed to show cell c, given the current fg/bg. */
 HOT int sgr_changes(const struct emitter *em, struct encode_cell c)
 {
-    if (c.top == c.bot)
-        return em->bg != c.top;
+    if (c.mask == 0)
+        return em->fg_only ? 0 : em->bg != c.top;
+    if (em->fg_only)
+        return em->fg != c.top;
     int upper = (em->fg != c.top) + (em->bg != c.bot);
     int lower = (em->fg != c.bot) + (em->bg != c.top);
     return upper < lower ? upper : lower;
 }
 
-/* With a tolerance, a redrawn cell may show, instead of its exact colours, any colour within
- * tol of its true pixels (pt, pb): the current fg or bg (no SGR needed), or the other half's
- * colour (one colour for both halves). Picks a variant with the fewest colour changes, exact
- * first on ties. What is shown stays within tol of the truth, so nothing drifts. (Choosing
- * the midpoint of a run of similar pixels instead of the exact colour was tried: ~5% fewer
- * bytes at equal PSNR, not worth the code.) */
-HOT struct encode_cell snap_cell(const struct emitter *em, struct encode_cell c,
-                                 const uint8_t *pt, const uint8_t *pb, int tol)
+/* The cell showing `top` on the pixels of pattern m and `bot` on the rest, canonical. */
+static inline struct encode_cell make_cell(const struct emitter *em, uint32_t top, uint32_t bot,
+                                           unsigned m)
 {
+    return cellfit_canon((struct encode_cell){top, bot, m}, em->full, em->fg_only);
+}
+
+/* With a tolerance, a redrawn cell may show, instead of its exact colours, any colour within
+ * tol of its true pixels px: the current fg or bg (no SGR needed), or the other part's
+ * colour (one colour for the whole cell). The two parts are the cell's pattern (a one-colour
+ * half-block cell: its top and bottom pixel). Picks a variant with the fewest colour changes,
+ * exact first on ties. What is shown stays within tol of the truth, so nothing drifts.
+ * (Choosing the midpoint of a run of similar pixels instead of the exact colour was tried:
+ * ~5% fewer bytes at equal PSNR, not worth the code.) */
+HOT struct encode_cell snap_cell(const struct emitter *em, enum palette_mode mode,
+                                 struct encode_cell c, const uint8_t *const *px, int n, int tol)
+{
+    if (mode == PALETTE_NONE)
+        return c;
     int base = sgr_changes(em, c);
     if (base == 0)
         return c;
     bool has_fg = em->fg != NO_COLOUR, has_bg = em->bg != NO_COLOUR;
-    bool tf = has_fg && chan_diff(em->fg, pt) <= tol, tb = has_bg && chan_diff(em->bg, pt) <= tol;
-    bool bf = has_fg && chan_diff(em->fg, pb) <= tol, bb = has_bg && chan_diff(em->bg, pb) <= tol;
-    /* free: both halves take current colours */
+    const bool half = n == 2; /* top and bottom pixel: the parts are known */
+    if (!half && em->fg_only) /* only the dots' colour can change */
+        return c.mask && has_fg && set_diff(em->fg, px, n, c.mask) <= tol
+                   ? (struct encode_cell){em->fg, c.bot, c.mask}
+                   : c;
+    if (!half && c.mask == 0 && !em->split) /* one colour that may not split: the current bg */
+        return has_bg && set_diff(em->bg, px, n, em->full) <= tol
+                   ? (struct encode_cell){em->bg, em->bg, 0}
+                   : c;
+    unsigned a = half ? 1 : c.mask ? c.mask : em->split, b = half ? 2 : a ^ em->full;
+    bool tf = has_fg && set_diff(em->fg, px, n, a) <= tol;
+    bool tb = has_bg && set_diff(em->bg, px, n, a) <= tol;
+    bool bf = has_fg && set_diff(em->fg, px, n, b) <= tol;
+    bool bb = has_bg && set_diff(em->bg, px, n, b) <= tol;
+    /* free: both parts take current colours */
     if (tb && bb)
-        return (struct encode_cell){em->bg, em->bg};
+        return make_cell(em, em->bg, em->bg, a);
     if (tf && bb)
-        return (struct encode_cell){em->fg, em->bg};
+        return make_cell(em, em->fg, em->bg, a);
     if (tb && bf)
-        return (struct encode_cell){em->bg, em->fg};
+        return make_cell(em, em->bg, em->fg, a);
     if (base == 1)
         return c;
-    /* one change: one half takes a current colour, or both halves one new colour */
+    /* one change: one part takes a current colour, or the whole cell one new colour */
     if (tf)
-        return (struct encode_cell){em->fg, c.bot};
+        return make_cell(em, em->fg, c.bot, a);
     if (bb)
-        return (struct encode_cell){c.top, em->bg};
+        return make_cell(em, c.top, em->bg, a);
     if (tb)
-        return (struct encode_cell){em->bg, c.bot};
+        return make_cell(em, em->bg, c.bot, a);
     if (bf)
-        return (struct encode_cell){c.top, em->fg};
-    if (chan_diff(c.top, pb) <= tol)
-        return (struct encode_cell){c.top, c.top};
-    if (chan_diff(c.bot, pt) <= tol)
-        return (struct encode_cell){c.bot, c.bot};
+        return make_cell(em, c.top, em->fg, a);
+    if (set_diff(c.top, px, n, b) <= tol)
+        return make_cell(em, c.top, c.top, a);
+    if (set_diff(c.bot, px, n, a) <= tol)
+        return make_cell(em, c.bot, c.bot, a);
     return c;
 }
 
 /* Draw cell c at the cursor, choosing the glyph that needs the fewest colour changes. */
 HOT void draw_cell(struct emitter *em, enum palette_mode mode, struct encode_cell c)
 {
-    enum glyph g = free_glyph(em, mode, c);
-    if (g == G_NONE) {
-        if (c.top == c.bot) {
+    int g = free_glyph(em, mode, c);
+    if (g == NO_GLYPH) {
+        if (c.mask == 0) {
             set_colours(em, mode, NO_COLOUR, c.top);
-            g = G_SPACE;
+            g = 0;
+        } else if (em->fg_only) {
+            set_colours(em, mode, c.top, NO_COLOUR);
+            g = (int)c.mask;
         } else {
             int upper = (em->fg != c.top) + (em->bg != c.bot);
             int lower = (em->fg != c.bot) + (em->bg != c.top);
             uint32_t fg = lower < upper ? c.bot : c.top, bg = lower < upper ? c.top : c.bot;
             set_colours(em, mode, em->fg == fg ? NO_COLOUR : fg, em->bg == bg ? NO_COLOUR : bg);
-            g = lower < upper ? G_LOWER : G_UPPER;
+            g = (int)(lower < upper ? c.mask ^ em->full : c.mask);
         }
     }
-    em->p = put_glyph(em->p, g, c);
+    em->p = put_glyph(em, em->p, g, c);
     em->col = em->col == em->cols - 1 ? -1 : em->col + 1; /* no auto-wrap assumptions */
 }
 
@@ -289,14 +374,14 @@ enum colmove { CM_STAY, CM_CUF, CM_HPA, CM_REWRITE };
 
 /* The cell to write when rewriting skipped cell k without an SGR: this frame's target if
  * possible (it is at least as true as what is shown), else what is shown. */
-static inline enum glyph rewrite_glyph(const struct emitter *em, const struct encode_cell *tgt,
-                                       const struct encode_cell *scr, int k, bool *use_target)
+static inline int rewrite_glyph(const struct emitter *em, const struct encode_cell *tgt,
+                                const struct encode_cell *scr, int k, bool *use_target)
 {
-    enum glyph g = free_glyph(em, em->mode, tgt[k]);
-    *use_target = g != G_NONE;
-    if (g != G_NONE)
+    int g = free_glyph(em, em->mode, tgt[k]);
+    *use_target = g != NO_GLYPH;
+    if (g != NO_GLYPH)
         return g;
-    return scr[k].top == ENCODE_CELL_UNKNOWN ? G_NONE : free_glyph(em, em->mode, scr[k]);
+    return scr[k].top == ENCODE_CELL_UNKNOWN ? NO_GLYPH : free_glyph(em, em->mode, scr[k]);
 }
 
 /* Bytes to rewrite cells [from, to) of a row, or INT_MAX if one needs an SGR or the cost
@@ -309,10 +394,10 @@ static int rewrite_cost(const struct emitter *em, const struct encode_cell *tgt,
     int cost = 0;
     for (int k = from; k < to; k++) {
         bool use_target;
-        enum glyph g = rewrite_glyph(em, tgt, scr, k, &use_target);
-        if (g == G_NONE)
+        int g = rewrite_glyph(em, tgt, scr, k, &use_target);
+        if (g == NO_GLYPH)
             return INT_MAX;
-        cost += glyph_len(g);
+        cost += glyph_len(em, g);
         if (cost >= limit)
             return INT_MAX;
     }
@@ -368,10 +453,10 @@ static void do_colmove(struct emitter *em, const struct encode_cell *tgt,
     case CM_REWRITE:
         for (int k = em->col; k < to; k++) {
             bool use_target;
-            enum glyph g = rewrite_glyph(em, tgt, scr, k, &use_target);
+            int g = rewrite_glyph(em, tgt, scr, k, &use_target);
             if (use_target)
                 scr[k] = tgt[k];
-            p = put_glyph(p, g, scr[k]);
+            p = put_glyph(em, p, g, scr[k]);
             em->st->cells_rewritten++;
         }
         break;
@@ -469,9 +554,20 @@ HOT int sq_diff(uint32_t shown, const uint8_t *px)
     return d0 * d0 + d1 * d1 + d2 * d2;
 }
 
+/* Squared error of what cell c shows against its true pixels. */
+HOT int cell_sq_diff(struct encode_cell c, const uint8_t *const *px, int n)
+{
+    if (n == 2) /* half blocks, as in cell_diff */
+        return sq_diff(c.top, px[0]) + sq_diff(c.bot, px[1]);
+    int d = 0;
+    for (int i = 0; i < n; i++)
+        d += sq_diff(shown_colour(c, i), px[i]);
+    return d;
+}
+
 /* What a cell the terminal may not show at all "costs" if left alone: four times the worst
  * real error, so such cells go first (they are what a cleared or resized screen shows). */
-#define UNKNOWN_SQ (4 * 6 * 255 * 255)
+#define UNKNOWN_SQ(n_px) (4 * 3 * (n_px) * 255 * 255)
 #define RD_SLACK 32 /* bytes kept free for the owed cells' cursor moves and colour changes */
 
 /* Bytes of one colour's SGR parameters, trailing ';' included (put_colour's length). */
@@ -488,17 +584,22 @@ HOT int colour_len(enum palette_mode mode, uint32_t c, bool bg)
     }
 }
 
-/* Bytes to draw a cell showing (t, b) at the cursor with the current colours: SGR (if any)
- * plus glyph, as draw_cell emits it. */
-HOT int draw_len(const struct emitter *em, enum palette_mode mode, uint32_t t, uint32_t b)
+/* Bytes to draw cell c at the cursor with the current colours: SGR (if any) plus glyph, as
+ * draw_cell emits it. */
+HOT int draw_len(const struct emitter *em, enum palette_mode mode, struct encode_cell c,
+                 bool half)
 {
-    if (t == b)
-        return 1 + (em->bg == t ? 0 : 2 + colour_len(mode, t, true));
+    if (c.mask == 0)
+        return 1 + ((!half && em->fg_only) || em->bg == c.top ? 0 : 2 + colour_len(mode, c.top, true));
+    if (!half && em->fg_only)
+        return em->glyph[c.mask].len + (em->fg == c.top ? 0 : 2 + colour_len(mode, c.top, false));
+    uint32_t t = c.top, b = c.bot;
     int upper = (em->fg != t) + (em->bg != b), lower = (em->fg != b) + (em->bg != t);
     uint32_t fg = lower < upper ? b : t, bg = lower < upper ? t : b;
     int n = (em->fg != fg ? colour_len(mode, fg, false) : 0) +
             (em->bg != bg ? colour_len(mode, bg, true) : 0);
-    return 3 + (n ? 2 + n : 0);
+    int glyph = half ? 3 : em->glyph[lower < upper ? c.mask ^ em->full : c.mask].len;
+    return glyph + (n ? 2 + n : 0);
 }
 
 /* Estimated bytes to move the cursor to (r, c): 0 when it is there, else the cheaper of
@@ -517,35 +618,58 @@ HOT int move_len(const struct emitter *em, int r, int c)
 }
 
 /* The Lagrangian choice for one changed cell: leave it as it is (error d_skip, no bytes) or
- * draw one of a few variants — its exact target, one colour for both halves (the mean: a
- * space), the current fg/bg for one or both halves — minimising error + lambda * bytes with
- * the bytes counted exactly for the current colours. Returns false to leave the cell. */
+ * draw one of a few variants — its exact target, one colour for the whole cell (the mean: a
+ * space), the current fg/bg for one or both parts (as in snap_cell) — minimising
+ * error + lambda * bytes with the bytes counted exactly for the current colours. Braille
+ * (fg_only): the target, its dots in the current fg, all dots in the mean, or no dots.
+ * Returns false to leave the cell. */
 HOT bool rd_choose(struct encode_screen *s, const struct emitter *em, enum palette_mode mode,
-                   int r, int c, struct encode_cell tgt, int d_skip, const uint8_t *pt,
-                   const uint8_t *pb, double lambda, struct encode_cell *out)
+                   int r, int c, struct encode_cell tgt, int d_skip, const uint8_t *const *px,
+                   int n_px, double lambda, struct encode_cell *out)
 {
     double move = move_len(em, r, c);
     if (d_skip <= lambda * (move + 1)) /* no variant costs less than one byte */
         return false;
-    uint32_t mean;
-    uint8_t m[3] = {(uint8_t)((pt[0] + pb[0] + 1) / 2), (uint8_t)((pt[1] + pb[1] + 1) / 2),
-                    (uint8_t)((pt[2] + pb[2] + 1) / 2)};
-    mean = mode == PALETTE_TRUECOLOR ? cellfit_pack(m) : cellfit_quant(s, mode, m, 0, 0, false);
+    unsigned sum[3] = {0, 0, 0};
+    for (int i = 0; i < n_px; i++)
+        for (int k = 0; k < 3; k++)
+            sum[k] += px[i][k];
+    uint8_t m[3];
+    for (int k = 0; k < 3; k++)
+        m[k] = (uint8_t)((sum[k] + (unsigned)n_px / 2) / (unsigned)n_px);
+    uint32_t mean = mode == PALETTE_TRUECOLOR ? cellfit_pack(m)
+                                              : cellfit_quant(s, mode, m, 0, 0, false);
     uint32_t fg = em->fg, bg = em->bg;
-    const struct encode_cell cand[] = {
-        tgt,           {mean, mean},  {tgt.top, tgt.top}, {tgt.bot, tgt.bot},
-        {fg, bg},      {bg, fg},      {bg, bg},
-        {tgt.top, bg}, {fg, tgt.bot}, {bg, tgt.bot},      {tgt.top, fg},
-    };
+    struct encode_cell cand[11];
+    int n = 0;
+    const bool half = n_px == 2;
+    if (!half && em->fg_only) {
+        const uint32_t none = CELLFIT_TERM_BG;
+        cand[n++] = tgt;
+        cand[n++] = make_cell(em, mean, none, em->full);
+        cand[n++] = make_cell(em, none, none, 0);
+        if (tgt.mask && fg != NO_COLOUR)
+            cand[n++] = make_cell(em, fg, none, tgt.mask);
+    } else {
+        unsigned a = half ? 1 : tgt.mask ? tgt.mask : em->split ? em->split : em->full;
+        const uint32_t pairs[][2] = {
+            {tgt.top, tgt.bot}, {mean, mean},  {tgt.top, tgt.top}, {tgt.bot, tgt.bot},
+            {fg, bg},           {bg, fg},      {bg, bg},           {tgt.top, bg},
+            {fg, tgt.bot},      {bg, tgt.bot}, {tgt.top, fg},
+        };
+        for (unsigned i = 0; i < sizeof pairs / sizeof pairs[0]; i++)
+            if (pairs[i][0] != NO_COLOUR && pairs[i][1] != NO_COLOUR)
+                cand[n++] = half ? (struct encode_cell){pairs[i][0], pairs[i][1],
+                                                        pairs[i][0] != pairs[i][1]}
+                                 : make_cell(em, pairs[i][0], pairs[i][1], a);
+    }
     double best = d_skip;
     bool draw = false;
-    for (unsigned i = 0; i < sizeof cand / sizeof cand[0]; i++) {
-        if (cand[i].top == NO_COLOUR || cand[i].bot == NO_COLOUR)
-            continue;
-        int d = sq_diff(cand[i].top, pt) + sq_diff(cand[i].bot, pb);
+    for (int i = 0; i < n; i++) {
+        int d = cell_sq_diff(cand[i], px, n_px);
         if (d >= best) /* bytes only add */
             continue;
-        double j = d + lambda * (move + draw_len(em, mode, cand[i].top, cand[i].bot));
+        double j = d + lambda * (move + draw_len(em, mode, cand[i], half));
         if (j < best) {
             best = j;
             *out = cand[i];
@@ -559,37 +683,43 @@ HOT bool rd_choose(struct encode_screen *s, const struct emitter *em, enum palet
 
 /* Walk the cells in raster order; draw those that changed (all of them when full). With
  * lambda > 0, each changed cell is left, approximated or drawn by rd_choose. Cells in the
- * held rectangle are never touched. */
+ * held rectangle are never touched. Instantiated per colour mode, and for half blocks
+ * (half: their 1x2 pixels are constants) apart from the other glyph sets. */
 HOT void emit_rows(struct encode_screen *s, struct emitter *em, const uint8_t *rgb, int h,
                    const struct encode_opts *o, int tol, bool full, double lambda,
-                   enum palette_mode mode)
+                   enum palette_mode mode, bool half)
 {
-    int w = s->cols;
+    const int w = s->cols, gw = half ? 1 : em->gw, gh = half ? 2 : em->gh;
+    const int n_px = half ? 2 : em->n_px;
+    const bool judge = tol > 0 || lambda > 0; /* a changed cell's pixels matter */
+    const size_t stride = (size_t)w * (size_t)gw * 3;
     for (int r = 0; r < s->rows; r++) {
         const struct encode_cell *tgt = s->target + (size_t)r * (size_t)w;
         struct encode_cell *scr = s->cells + (size_t)r * (size_t)w;
-        const uint8_t *top = rgb + (size_t)(2 * r) * (size_t)w * 3;
-        const uint8_t *bot = 2 * r + 1 < h ? top + (size_t)w * 3 : NULL;
+        const uint8_t *row[CELL_MAX_PX]; /* the cell row's pixel rows; NULL below the frame */
+        for (int j = 0; j < gh; j++)
+            row[j] = r * gh + j < h ? rgb + (size_t)(r * gh + j) * stride : NULL;
         bool held = r >= o->hold_row && r < o->hold_row + o->hold_rows;
         em->hold0 = held ? o->hold_col : 0;
         em->hold1 = held ? o->hold_col + o->hold_cols : 0;
         for (int c = 0; c < w; c++) {
             if (c >= em->hold0 && c < em->hold1)
                 continue;
-            const uint8_t *pt = top + 3 * c, *pb = bot ? bot + 3 * c : o->pad_rgb;
             struct encode_cell shown = tgt[c];
+            if (!full && tgt[c].top == scr[c].top && tgt[c].bot == scr[c].bot &&
+                tgt[c].mask == scr[c].mask)
+                continue;
+            const uint8_t *px[CELL_MAX_PX]; /* the cell's true pixels (pad_rgb below the frame) */
+            for (int j = 0; j < gh; j++)
+                for (int i = 0; i < gw; i++)
+                    px[j * gw + i] = row[j] ? row[j] + 3 * (c * gw + i) : o->pad_rgb;
             if (!full) {
-                if (tgt[c].top == scr[c].top && tgt[c].bot == scr[c].bot)
-                    continue;
                 bool unknown = scr[c].top == ENCODE_CELL_UNKNOWN;
-                int dt = unknown ? 255 : chan_diff(scr[c].top, pt);
-                int db = unknown ? 255 : chan_diff(scr[c].bot, pb);
-                int dmax = dt > db ? dt : db;
+                int dmax = unknown || !judge ? 255 : cell_diff(scr[c], px, n_px);
                 if (tol > 0 && dmax <= tol && !unknown)
                     continue;
                 if (lambda > 0) {
-                    int d_skip = unknown ? UNKNOWN_SQ
-                                         : sq_diff(scr[c].top, pt) + sq_diff(scr[c].bot, pb);
+                    int d_skip = unknown ? UNKNOWN_SQ(n_px) : cell_sq_diff(scr[c], px, n_px);
                     bool draw;
                     if (em->lambda2 > 0) {
                         /* lambda's cells, judged as if alone on the screen (cursor unknown,
@@ -598,21 +728,20 @@ HOT void emit_rows(struct encode_screen *s, struct emitter *em, const uint8_t *r
                         alone.fg = alone.bg = NO_COLOUR;
                         alone.row = alone.col = -1;
                         struct encode_cell unused;
-                        draw = rd_choose(s, &alone, mode, r, c, tgt[c], d_skip, pt, pb, lambda,
+                        draw = rd_choose(s, &alone, mode, r, c, tgt[c], d_skip, px, n_px, lambda,
                                          &unused) &&
-                               rd_choose(s, em, mode, r, c, tgt[c], d_skip, pt, pb, lambda, &shown);
+                               rd_choose(s, em, mode, r, c, tgt[c], d_skip, px, n_px, lambda, &shown);
                     } else {
-                        draw = rd_choose(s, em, mode, r, c, tgt[c], d_skip, pt, pb, lambda, &shown);
+                        draw = rd_choose(s, em, mode, r, c, tgt[c], d_skip, px, n_px, lambda, &shown);
                     }
                     bool owed = draw;
                     if (!draw && em->lambda2 > 0 &&
-                        rd_choose(s, em, mode, r, c, tgt[c], d_skip, pt, pb, em->lambda2, &shown)) {
-                        long cost = move_len(em, r, c) + draw_len(em, mode, shown.top, shown.bot);
+                        rd_choose(s, em, mode, r, c, tgt[c], d_skip, px, n_px, em->lambda2, &shown)) {
+                        long cost = move_len(em, r, c) + draw_len(em, mode, shown, half);
                         long owing = em->reserve > 0 ? em->reserve : 0;
                         draw = em->p + cost + owing + RD_SLACK <= em->limit;
                     }
-                    if (draw && em->p + move_len(em, r, c) +
-                                        draw_len(em, mode, shown.top, shown.bot) > em->limit) {
+                    if (draw && em->p + move_len(em, r, c) + draw_len(em, mode, shown, half) > em->limit) {
                         draw = false; /* the budget is spent: a later frame draws it */
                         em->capped = true;
                     }
@@ -627,9 +756,9 @@ HOT void emit_rows(struct encode_screen *s, struct emitter *em, const uint8_t *r
                     em->reserve -= owed ? (long)(em->p - before) : 0;
                     scr[c] = shown;
                     em->st->cells_drawn++;
-                    if (shown.top != tgt[c].top || shown.bot != tgt[c].bot) {
-                        int e = chan_diff(shown.top, pt), eb = chan_diff(shown.bot, pb);
-                        e = eb > e ? eb : e;
+                    if (shown.top != tgt[c].top || shown.bot != tgt[c].bot ||
+                        shown.mask != tgt[c].mask) {
+                        int e = cell_diff(shown, px, n_px);
                         em->st->cells_pending += e > tol;
                         em->st->max_err = e > em->st->max_err ? e : em->st->max_err;
                     }
@@ -638,7 +767,7 @@ HOT void emit_rows(struct encode_screen *s, struct emitter *em, const uint8_t *r
             }
             goto_cell(em, r, c, tgt, scr);
             if (tol > 0)
-                shown = snap_cell(em, shown, pt, pb, tol);
+                shown = snap_cell(em, mode, shown, px, n_px, tol);
             draw_cell(em, mode, shown);
             scr[c] = shown;
             em->st->cells_drawn++;
@@ -656,22 +785,38 @@ static size_t encode_pass(struct encode_screen *s, const uint8_t *rgb, int h,
     char *body = s->out + PREFIX_BYTES;
     /* the budget, less what may follow the body (reset, synchronized output) or precede it */
     size_t room = o->budget > ENCODE_FRAME_MAX_BYTES ? o->budget - ENCODE_FRAME_MAX_BYTES : 0;
-    struct emitter em = {body, NO_COLOUR, NO_COLOUR, home ? 0 : -1, home ? 0 : -1,
-                         s->cols, o->mode, st, 0, 0, lambda > 0 ? body + room : NULL,
-                         o->lf_newline ? 1 : 2, false, lambda2, reserve};
-    switch (o->mode) { /* one instantiation of the cell loop per mode */
+    const struct cell_geom *g = &s->geom;
+    struct emitter em = {.p = body, .fg = NO_COLOUR, .bg = NO_COLOUR, .row = home ? 0 : -1,
+                         .col = home ? 0 : -1, .cols = s->cols, .mode = o->mode, .st = st,
+                         .limit = lambda > 0 ? body + room : NULL,
+                         .newline = o->lf_newline ? 1 : 2, .lambda2 = lambda2,
+                         .reserve = reserve, .glyph = s->glyph, .gw = g->px_w, .gh = g->px_h,
+                         .n_px = cell_px(g), .full = (1u << cell_px(g)) - 1,
+                         .split = g->glyphs == CELL_HALF ? 1 : 0, .fg_only = g->fg_only,
+                         .ramp = o->mode == PALETTE_NONE && g->glyphs == CELL_ASCII};
+    bool half = g->glyphs == CELL_HALF;
+    switch (o->mode) { /* one instantiation of the cell loop per mode, and for half blocks */
     case PALETTE_TRUECOLOR:
-        emit_rows(s, &em, rgb, h, o, tol, full, lambda, PALETTE_TRUECOLOR);
+        if (half)
+            emit_rows(s, &em, rgb, h, o, tol, full, lambda, PALETTE_TRUECOLOR, true);
+        else
+            emit_rows(s, &em, rgb, h, o, tol, full, lambda, PALETTE_TRUECOLOR, false);
         break;
     case PALETTE_256:
-        emit_rows(s, &em, rgb, h, o, tol, full, lambda, PALETTE_256);
+        if (half)
+            emit_rows(s, &em, rgb, h, o, tol, full, lambda, PALETTE_256, true);
+        else
+            emit_rows(s, &em, rgb, h, o, tol, full, lambda, PALETTE_256, false);
         break;
     case PALETTE_16:
-        emit_rows(s, &em, rgb, h, o, tol, full, lambda, PALETTE_16);
+        if (half)
+            emit_rows(s, &em, rgb, h, o, tol, full, lambda, PALETTE_16, true);
+        else
+            emit_rows(s, &em, rgb, h, o, tol, full, lambda, PALETTE_16, false);
         break;
     case PALETTE_NONE:
     case PALETTE_MODE_COUNT:
-        emit_rows(s, &em, rgb, h, o, tol, full, 0, PALETTE_NONE);
+        emit_rows(s, &em, rgb, h, o, tol, full, 0, PALETTE_NONE, false);
         break;
     }
     if (em.fg != NO_COLOUR || em.bg != NO_COLOUR) {
@@ -766,8 +911,13 @@ const char *encode_frame(struct encode_screen *s, const uint8_t *rgb, int w, int
                          const struct encode_opts *o, size_t *len_out,
                          struct encode_stats *stats_out)
 {
-    assert(w == s->cols && h >= 1 && (h + 1) / 2 == s->rows);
-    assert((unsigned)o->mode < PALETTE_MODE_COUNT);
+    assert((unsigned)o->mode < PALETTE_MODE_COUNT && (unsigned)o->glyphs < CELL_GLYPHS_COUNT);
+    /* another glyph set: the screen model's cells mean something else, so a full frame */
+    if (o->glyphs != s->glyphs) {
+        glyph_table(s, o->glyphs);
+        s->valid = false;
+    }
+    assert(w == cell_fb_w(&s->geom, s->cols) && h >= 1 && cell_rows(&s->geom, h) == s->rows);
     struct encode_stats st = {0};
     cellfit_frame(s, rgb, w, h, o);
     /* ramp characters are mostly background: from there, only a full frame is known to work */
@@ -815,6 +965,7 @@ int encode_screen_init(struct encode_screen *s, int cols, int rows, struct err *
         return err_set(e, "encoder: out of memory for %dx%d cells", cols, rows);
     }
     memset(s->qcache, 0xff, sizeof(uint32_t) * 2 << ENCODE_QCACHE_BITS); /* no valid key */
+    glyph_table(s, CELL_HALF);
     encode_screen_invalidate(s);
     return 0;
 }
@@ -844,5 +995,5 @@ void encode_screen_damage(struct encode_screen *s, int col, int row, int ncols, 
     for (int r = r0; r < r1; r++)
         for (int c = c0; c < c1; c++)
             s->cells[(size_t)r * (size_t)s->cols + c] =
-                (struct encode_cell){ENCODE_CELL_UNKNOWN, ENCODE_CELL_UNKNOWN};
+                (struct encode_cell){ENCODE_CELL_UNKNOWN, ENCODE_CELL_UNKNOWN, 0};
 }

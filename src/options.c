@@ -30,6 +30,7 @@ enum flag_id {
     F_COLORS, F_TOLERANCE, F_DITHER, F_DIFF, F_PPM_DIR, F_FRAME_INDEX, F_FPS, F_NO_HUD, F_CHART,
     F_SWEEP, F_CSV, F_SVG, F_MODELS, F_HELP, F_VERSION, F_SPIN, F_NO_SPIN, F_BANDWIDTH, F_SKY,
     F_LOD,
+    F_GLYPHS, F_BUDGET,
 };
 
 struct flag {
@@ -86,7 +87,9 @@ static const struct flag flags[] = {
     {"--colors", F_COLORS, ARG_VALUE, C_VIEW | C_DUMP, "MODE", "truecolor|256|16|none (default: detect)", NULL, 0},
     {"--tolerance", F_TOLERANCE, ARG_VALUE, C_VIEW | C_DUMP, "N", "treat colour changes <= N per channel as unchanged", NULL, 0},
     {"--dither", F_DITHER, ARG_NONE, C_VIEW | C_DUMP, NULL, "256/16 colours: 4x4 ordered dithering (default off)", NULL, 0},
+    {"--glyphs", F_GLYPHS, ARG_VALUE, C_VIEW | C_RENDER | C_DUMP | C_A2P | C_BENCH, "G", "how cells show pixels: half|quadrant|sextant|braille|ascii (default half; render: that grid's pixel shape; ansi2ppm: the grid the file's glyphs need)", NULL, 0},
     {"--diff", F_DIFF, ARG_NONE, C_DUMP, NULL, "frames after the first are diffs", NULL, 0},
+    {"--budget", F_BUDGET, ARG_VALUE, C_DUMP, "BYTES", "at most BYTES a frame (colour modes): the cells whose error drops most per byte first", NULL, 0},
     {"--ppm-dir", F_PPM_DIR, ARG_VALUE, C_DUMP, "DIR", "also write each framebuffer as DIR/frame-NNNN.ppm", NULL, 0},
     {"--frame", F_FRAME_INDEX, ARG_VALUE, C_A2P, "K", "which frame to decode, 0-based (default: the last)", NULL, 0},
     {"--fps", F_FPS, ARG_VALUE, C_VIEW | C_DUMP, "N", "frame rate cap (view, default 60); dump: .cast timing (default 30)", NULL, 0},
@@ -359,7 +362,17 @@ static int apply(struct options *o, const struct flag *f, const char *v, struct 
             return bad(e, f->name, "expected 0..255", v);
         return 0;
     case F_DITHER: o->dither = true; return 0;
+    case F_GLYPHS:
+        if ((k = cell_glyphs_parse(v)) < 0)
+            return bad(e, f->name, "expected half, quadrant, sextant, braille or ascii", v);
+        o->render.glyphs = (enum cell_glyphs)k;
+        o->glyphs_set = true;
+        return 0;
     case F_DIFF: o->diff = true; return 0;
+    case F_BUDGET:
+        if (parse_int(v, 64, 1000000000, &o->budget))
+            return bad(e, f->name, "expected bytes per frame, 64..1000000000", v);
+        return 0;
     case F_PPM_DIR: o->ppm_dir = v; return 0;
     case F_FRAME_INDEX:
         if (parse_int(v, 0, 100000000, &o->frame_index))
@@ -418,8 +431,11 @@ static int validate(struct options *o, struct err *e)
     case CMD_DUMP:
         if (o->n_inputs != 1)
             return err_set(e, "rastty dump: expected one MODEL or SCENE.rsc (see rastty --help)");
-        if (o->cols && o->rows && ssaa_check(o->render.ssaa, o->cols, 2 * o->rows, e))
-            return -1;
+        if (o->cols && o->rows) {
+            struct cell_geom g = cell_geom(o->render.glyphs);
+            if (ssaa_check(o->render.ssaa, cell_fb_w(&g, o->cols), cell_fb_h(&g, o->rows), e))
+                return -1;
+        }
         break;
     case CMD_ANSI2PPM:
         if (o->n_inputs != 1 || !o->out)

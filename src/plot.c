@@ -174,7 +174,8 @@ void plot_text(struct plot *p, double x, double y, const char *text, uint32_t rg
 
 int plot_emit_terminal(struct plot *p, FILE *out, enum palette_mode mode, struct err *e)
 {
-    int rows = (p->h + 1) / 2;
+    struct cell_geom half = cell_geom(CELL_HALF);
+    int rows = cell_rows(&half, p->h);
     struct encode_screen es;
     if (encode_screen_init(&es, p->w, rows, e))
         return -1;

@@ -32,6 +32,7 @@ const struct render_enum render_persp_names = {persp_names, PERSP_COUNT};
 const struct render_enum render_depth_names = {depth_names, DEPTH_COUNT};
 const struct render_enum render_ssaa_names = {ssaa_names, SSAA_COUNT};
 const struct render_enum render_lod_names = {lod_names, LOD_NAMED};
+const struct render_enum render_glyphs_names = {cell_glyphs_names, CELL_GLYPHS_COUNT};
 
 void render_opts_default(struct render_opts *o)
 {
@@ -45,6 +46,7 @@ void render_opts_default(struct render_opts *o)
     o->lod = LOD_OFF;
     o->lod_ratio = 1;
     o->lod_px = LOD_DEFAULT_PX;
+    o->glyphs = CELL_HALF;
     o->cull = CULL_NONE;
     o->view = VIEW_COLOR;
     o->textures = true;

@@ -2,13 +2,14 @@
  *
  * 1. Arbitrary bytes through decode_apply / decode_frame / decode_measure: no crash, no
  *    sanitizer report, errors are one line starting with the name.
- * 2. The input also seeds a tiny frame pair (size, mode, tolerance from the first bytes,
- *    pixels from the rest): the encoder's output for a full frame then a diff must decode,
- *    exactly in truecolor without tolerance, else within the documented bounds.
+ * 2. The input also seeds a tiny frame pair (size, mode, tolerance, glyph set from the first
+ *    bytes, pixels from the rest): the encoder's output for a full frame then a diff must
+ *    decode on the glyph set's grid; with half blocks in truecolor within the tolerance.
  *
  * Build and run (clang):
  *   clang -g -O1 -fsanitize=fuzzer,address,undefined -Iinclude tests/fuzz/fuzz_decode.c \
- *         src/decode.c src/encode.c src/palette.c src/err.c -o build/fuzz_decode
+ *         src/decode.c src/encode.c src/cellfit.c src/cell.c src/palette.c src/err.c \
+ *         -o build/fuzz_decode
  *   build/fuzz_decode -max_total_time=60
  * Without libFuzzer (gcc): add -DFUZZ_STANDALONE; the binary runs each file argument once,
  * or a fixed number of pseudo-random inputs when given none. */
@@ -26,7 +27,7 @@ static void decode_anything(const uint8_t *data, size_t size)
 {
     struct decode_state d;
     struct err e;
-    if (decode_init(&d, 16, 8, NULL) != 0)
+    if (decode_init(&d, 16, 8, cell_geom((enum cell_glyphs)(size % CELL_GLYPHS_COUNT)), NULL) != 0)
         abort();
     d.name = "fuzz";
     e.msg[0] = 0;
@@ -37,7 +38,8 @@ static void decode_anything(const uint8_t *data, size_t size)
         abort();
     decode_frame(&d, (const char *)data, size, size ? data[0] % 4 : 0, &e);
     int cols, rows, frames;
-    decode_measure((const char *)data, size, "fuzz", &cols, &rows, &frames, &e);
+    struct cell_geom grid;
+    decode_measure((const char *)data, size, "fuzz", &cols, &rows, &frames, &grid, &e);
     decode_free(&d);
 }
 
@@ -45,11 +47,13 @@ static void roundtrip(const uint8_t *data, size_t size)
 {
     if (size < 5)
         return;
-    int cols = 1 + data[0] % 12, rows = 1 + data[1] % 6, h = 2 * rows - (data[2] & 1);
+    struct cell_geom g = cell_geom((enum cell_glyphs)(data[3] / 6 % CELL_GLYPHS_COUNT));
+    int cols = 1 + data[0] % 12, rows = 1 + data[1] % 6;
+    int w = cols * g.px_w, h = rows * g.px_h - (data[2] & 1) * (g.px_h > 1);
     enum palette_mode mode = (enum palette_mode)(data[2] >> 1 & 3);
     int tol = data[3] % 6;
     const uint8_t *src = data + 4;
-    size_t nsrc = size - 4, npx = (size_t)cols * (size_t)h * 3;
+    size_t nsrc = size - 4, npx = (size_t)w * (size_t)h * 3;
     uint8_t *a = malloc(npx), *b = malloc(npx);
     for (size_t i = 0; i < npx; i++) {
         a[i] = src[i % nsrc];
@@ -58,21 +62,21 @@ static void roundtrip(const uint8_t *data, size_t size)
     struct encode_screen s;
     struct decode_state d;
     struct err e;
-    if (encode_screen_init(&s, cols, rows, &e) || decode_init(&d, cols, rows, &e))
+    if (encode_screen_init(&s, cols, rows, &e) || decode_init(&d, cols, rows, g, &e))
         abort();
     struct encode_opts o = {.mode = mode, .diff = true, .tolerance = tol,
                             .mark_frames = data[4] & 1, .dither = data[4] & 2,
-                            .pad_rgb = {data[4], 0, 255}};
+                            .pad_rgb = {data[4], 0, 255}, .glyphs = g.glyphs};
     for (int f = 0; f < 2; f++) {
         const uint8_t *px = f ? b : a;
         size_t n;
-        const char *out = encode_frame(&s, px, cols, h, &o, &n, NULL);
+        const char *out = encode_frame(&s, px, w, h, &o, &n, NULL);
         if (n > ENCODE_BOUND(cols, rows) || decode_apply(&d, out, n, &e) != 0)
             abort();
-        if (mode == PALETTE_TRUECOLOR) {
+        if (mode == PALETTE_TRUECOLOR && g.glyphs == CELL_HALF) {
             for (int y = 0; y < h; y++)
-                for (int i = 0; i < cols * 3; i++) {
-                    int diff = abs((int)d.rgb[(size_t)y * cols * 3 + i] - px[(size_t)y * cols * 3 + i]);
+                for (int i = 0; i < w * 3; i++) {
+                    int diff = abs((int)d.rgb[(size_t)y * w * 3 + i] - px[(size_t)y * w * 3 + i]);
                     if (diff > tol)
                         abort();
                 }

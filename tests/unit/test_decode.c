@@ -7,6 +7,8 @@
 #include "palette.h"
 #include "test.h"
 
+#define HALF cell_geom(CELL_HALF)
+
 #define UP "\xe2\x96\x80"
 #define LO "\xe2\x96\x84"
 #define FULL "\xe2\x96\x88"
@@ -30,7 +32,7 @@ TEST(each_glyph_maps_fg_and_bg_to_the_right_halves)
 {
     struct decode_state d;
     struct err e;
-    REQUIRE(decode_init(&d, 4, 1, NULL) == 0);
+    REQUIRE(decode_init(&d, 4, 1, HALF, NULL) == 0);
     REQUIRE(dec(&d, "\x1b[38;2;1;2;3;48;2;4;5;6m" UP LO FULL " ", &e) == 0);
     CHECK(is_rgb(px(&d, 0, 0), 1, 2, 3) && is_rgb(px(&d, 0, 1), 4, 5, 6)); /* upper */
     CHECK(is_rgb(px(&d, 1, 0), 4, 5, 6) && is_rgb(px(&d, 1, 1), 1, 2, 3)); /* lower */
@@ -44,7 +46,7 @@ TEST(sgr_forms_256_16_defaults_and_reset)
 {
     struct decode_state d;
     struct err e;
-    REQUIRE(decode_init(&d, 8, 1, NULL) == 0);
+    REQUIRE(decode_init(&d, 8, 1, HALF, NULL) == 0);
     /* 38;5 / 48;5, 16 colours (normal and bright), 39/49 defaults, 0 and empty reset */
     REQUIRE(dec(&d, "\x1b[38;5;196;48;5;232m" UP "\x1b[31;104m" UP "\x1b[97;40m" UP
                     "\x1b[39m" UP "\x1b[49m" UP "\x1b[38;5;21m\x1b[0m" UP "\x1b[38;5;21m\x1b[m" UP
@@ -62,7 +64,7 @@ TEST(cursor_moves_cup_cuf_hpa_cr_lf_and_clamping)
 {
     struct decode_state d;
     struct err e;
-    REQUIRE(decode_init(&d, 10, 3, NULL) == 0);
+    REQUIRE(decode_init(&d, 10, 3, HALF, NULL) == 0);
     REQUIRE(dec(&d, "\x1b[48;2;9;9;9m\x1b[2;4H \x1b[3C \x1b[2G \r \n \x1b[3H \x1b[;10H "
                     "\x1b[99;99H\x1b[C\x1b[G", &e) == 0);
     /* row 1: cols 3, 7 (3 + 1 + 3), 1 (HPA 2), 0 (CR); row 2: col 0 (LF = CR LF) and the
@@ -82,7 +84,7 @@ TEST(last_column_wraps_pending_and_no_scrolling)
 {
     struct decode_state d;
     struct err e;
-    REQUIRE(decode_init(&d, 2, 2, NULL) == 0);
+    REQUIRE(decode_init(&d, 2, 2, HALF, NULL) == 0);
     REQUIRE(dec(&d, "\x1b[48;2;5;5;5m   ", &e) == 0); /* third cell wraps to row 1 */
     CHECK(px(&d, 0, 2)[0] == 5 && px(&d, 1, 2)[0] == 0);
     REQUIRE(dec(&d, "\x1b[1;2H \r\n", &e) == 0); /* LF clears the pending wrap */
@@ -98,7 +100,7 @@ TEST(clears_and_private_modes)
 {
     struct decode_state d;
     struct err e;
-    REQUIRE(decode_init(&d, 3, 1, NULL) == 0);
+    REQUIRE(decode_init(&d, 3, 1, HALF, NULL) == 0);
     REQUIRE(dec(&d, "\x1b[?25l\x1b[?2026h\x1b[48;2;1;1;1m\x1b[2J\x1b[?2026l\x1b[?25h", &e) == 0);
     for (int i = 0; i < 6; i++)
         CHECK(is_rgb(d.rgb + 3 * i, 1, 1, 1)); /* ED 2 clears with the current bg */
@@ -112,7 +114,7 @@ TEST(ramp_characters_decode_to_their_grey)
 {
     struct decode_state d;
     struct err e;
-    REQUIRE(decode_init(&d, PALETTE_RAMP_LEVELS, 1, NULL) == 0);
+    REQUIRE(decode_init(&d, PALETTE_RAMP_LEVELS, 1, HALF, NULL) == 0);
     REQUIRE(dec(&d, PALETTE_RAMP, &e) == 0);
     for (int i = 0; i < PALETTE_RAMP_LEVELS; i++) {
         int g = palette_ramp_grey(i);
@@ -145,13 +147,15 @@ TEST(rejects_garbage_naming_the_byte_offset)
         {"\x1b[99999999C", "byte 0: control sequence parameter too large"},
         {"  \x1b[3", "byte 2: control sequence cut short"},
         {"\x1b", "byte 0: escape sequence cut short"},
-        {"\xe2\x96", "byte 0: unsupported character"},
-        {"\xe2\x96\x81", "byte 0: unsupported character"},
-        {"\xc3\xa9", "byte 0: unexpected byte 0xc3"},
+        {"\xe2\x96", "byte 0: malformed UTF-8"},
+        {"\xe2\x96\x81", "byte 0: unsupported character U+2581"},
+        {"\xc3\xa9", "byte 0: unsupported character U+00E9"},
+        {"\xe2(\x80", "byte 0: malformed UTF-8"},
+        {"\xff", "byte 0: unexpected byte 0xff"},
         {" \0", "byte 1: unexpected byte 0x00"},
     };
     struct decode_state d;
-    REQUIRE(decode_init(&d, 4, 2, NULL) == 0);
+    REQUIRE(decode_init(&d, 4, 2, HALF, NULL) == 0);
     d.name = "f.ans";
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         struct err e = {{0}};
@@ -173,7 +177,7 @@ TEST(frames_split_at_bare_cursor_home)
                             "\x1b[H\x1b[1;1H\x1b[C\x1b[48;2;2;2;2m \x1b[0m";
     struct decode_state d;
     struct err e;
-    REQUIRE(decode_init(&d, 2, 1, NULL) == 0);
+    REQUIRE(decode_init(&d, 2, 1, HALF, NULL) == 0);
     for (int k = 0; k < 3; k++) {
         REQUIRE(decode_frame(&d, s, sizeof s - 1, k, &e) == 0);
         CHECK_EQ_INT(px(&d, 0, 0)[0], 1);
@@ -183,7 +187,7 @@ TEST(frames_split_at_bare_cursor_home)
     CHECK_STR_CONTAINS(e.msg, "frame 3 does not exist (3 frames)");
     CHECK(decode_frame(&d, s, sizeof s - 1, -1, &e) == -1);
     int cols, rows, frames;
-    REQUIRE(decode_measure(s, sizeof s - 1, "x", &cols, &rows, &frames, &e) == 0);
+    REQUIRE(decode_measure(s, sizeof s - 1, "x", &cols, &rows, &frames, NULL, &e) == 0);
     CHECK_EQ_INT(cols, 2);
     CHECK_EQ_INT(rows, 1);
     CHECK_EQ_INT(frames, 3);
@@ -212,8 +216,8 @@ TEST(tmux_capture_decodes_like_the_original)
 {
     struct decode_state a, b;
     struct err e;
-    REQUIRE(decode_init(&a, 8, 4, NULL) == 0);
-    REQUIRE(decode_init(&b, 8, 4, NULL) == 0);
+    REQUIRE(decode_init(&a, 8, 4, HALF, NULL) == 0);
+    REQUIRE(decode_init(&b, 8, 4, HALF, NULL) == 0);
     REQUIRE(decode_frame(&a, ORIGINAL, sizeof ORIGINAL - 1, 0, &e) == 0);
     REQUIRE(decode_frame(&b, TMUX_CAPTURE, sizeof TMUX_CAPTURE - 1, 0, &e) == 0);
     CHECK(memcmp(a.rgb, b.rgb, 8 * 8 * 3) == 0);

@@ -8,6 +8,8 @@
 #include "encode.h"
 #include "test.h"
 
+#define HALF cell_geom(CELL_HALF)
+
 #define UP "\xe2\x96\x80"
 #define LO "\xe2\x96\x84"
 #define FULL "\xe2\x96\x88"
@@ -18,6 +20,37 @@ static bool contains(const char *hay, size_t n, const char *needle)
     for (size_t i = 0; i + m <= n; i++)
         if (memcmp(hay + i, needle, m) == 0)
             return true;
+    return false;
+}
+
+/* Does any SGR in the output set a background (48;..., 40-47, 100-107, 49)? Parameters are
+ * walked in order, so a colour channel that happens to be 48 is not taken for one. */
+static bool sets_background(const char *out, size_t n)
+{
+    for (size_t i = 0; i + 1 < n; i++) {
+        if (out[i] != '\x1b' || out[i + 1] != '[')
+            continue;
+        size_t j = i + 2;
+        int params[64], np = 0;
+        while (j < n && np < 64) {
+            int v = 0;
+            while (j < n && out[j] >= '0' && out[j] <= '9')
+                v = v * 10 + (out[j++] - '0');
+            params[np++] = v;
+            if (j >= n || out[j] != ';')
+                break;
+            j++;
+        }
+        if (j >= n || out[j] != 'm')
+            continue;
+        for (int k = 0; k < np; k++) {
+            int v = params[k];
+            if (v == 48 || v == 49 || (v >= 40 && v <= 47) || (v >= 100 && v <= 107))
+                return true;
+            if (v == 38 && k + 1 < np) /* skip the colour's own parameters */
+                k += params[k + 1] == 2 ? 4 : 2;
+        }
+    }
     return false;
 }
 
@@ -160,9 +193,16 @@ TEST(golden_256_16_and_none_modes)
     o.mode = PALETTE_16;
     out = encode_frame(&s, rgb, 2, 2, &o, &n, NULL);
     CHECK_BYTES(out, n, "\x1b[H\x1b[91;40m" UP "\x1b[107m \x1b[0m");
-    /* none: mean luma of red (54) and dark blue (7) is 30 -> level 1 '.'; white -> '@'. */
+    /* none, half blocks: ink where the luma beats the 8x8 ordered-dither threshold, (2 rank
+     * + 1) 255/128: red's 54 beats rank 0's 2 at (0,0), dark blue's 7 not rank 48's 97 at
+     * (0,1), white everywhere: U+2580 and U+2588 (ink is the terminal's fg: no SGR) */
     o.mode = PALETTE_NONE;
     out = encode_frame(&s, rgb, 2, 2, &o, &n, NULL);
+    CHECK_BYTES(out, n, "\x1b[H" UP FULL);
+    /* none, ascii (one pixel a cell): a ramp level, luma 9/255 + rank/64 floored: red at
+     * (0,0) 1.9 -> '.', white at (1,0) (rank 32) 9.5 -> '@' */
+    o.glyphs = CELL_ASCII;
+    out = encode_frame(&s, rgb, 2, 1, &o, &n, NULL);
     CHECK_BYTES(out, n, "\x1b[H.@");
     encode_screen_free(&s);
 }
@@ -305,7 +345,7 @@ TEST(truecolor_full_frames_decode_exactly)
     struct encode_screen s;
     struct decode_state d;
     REQUIRE(encode_screen_init(&s, C, R, NULL) == 0);
-    REQUIRE(decode_init(&d, C, R, NULL) == 0);
+    REQUIRE(decode_init(&d, C, R, HALF, NULL) == 0);
     uint32_t seed = 12345;
     for (int it = 0; it < 20; it++) {
         if (it % 2)
@@ -335,8 +375,8 @@ TEST(truecolor_diff_chain_of_50_decodes_exactly)
     struct encode_screen s;
     struct decode_state inc, byk;
     REQUIRE(encode_screen_init(&s, C, R, NULL) == 0);
-    REQUIRE(decode_init(&inc, C, R, NULL) == 0);
-    REQUIRE(decode_init(&byk, C, R, NULL) == 0);
+    REQUIRE(decode_init(&inc, C, R, HALF, NULL) == 0);
+    REQUIRE(decode_init(&byk, C, R, HALF, NULL) == 0);
     size_t cap = 0, len = 0;
     char *stream = NULL;
     struct encode_opts o = TRUE_DIFF;
@@ -392,7 +432,7 @@ TEST(palette_modes_decode_to_the_quantised_frame_within_the_bound)
     struct encode_screen s;
     struct decode_state d;
     REQUIRE(encode_screen_init(&s, C, R, NULL) == 0);
-    REQUIRE(decode_init(&d, C, R, NULL) == 0);
+    REQUIRE(decode_init(&d, C, R, HALF, NULL) == 0);
     static const enum palette_mode modes[] = {PALETTE_256, PALETTE_16};
     static const int bound[] = {PALETTE_256_MAX_ERR, PALETTE_16_MAX_ERR};
     for (int m = 0; m < 2; m++) {
@@ -442,36 +482,60 @@ TEST(palette_modes_decode_to_the_quantised_frame_within_the_bound)
     decode_free(&d);
 }
 
-TEST(none_mode_decodes_to_the_ramp_grey_of_the_mean_luma)
+/* The 8x8 ordered-dither rank of pixel (x, y), built the textbook way: M(2n) from M(n) as
+ * [4M 4M+2; 4M+3 4M+1] (the encoder computes it from bits). */
+static int bayer_ref(int x, int y)
+{
+    int m[8][8] = {{0}};
+    for (int n = 1; n < 8; n *= 2)
+        for (int j = n - 1; j >= 0; j--)
+            for (int i = n - 1; i >= 0; i--) {
+                int v = 4 * m[j][i];
+                m[j][i] = v, m[j][i + n] = v + 2, m[j + n][i] = v + 3, m[j + n][i + n] = v + 1;
+            }
+    return m[y & 7][x & 7];
+}
+
+TEST(none_mode_dithers_ink_onto_glyphs_and_the_ramp_for_ascii)
 {
     enum { C = 30, R = 7 };
-    static uint8_t rgb[C * 2 * R * 3], want[C * 2 * R * 3];
-    uint32_t seed = 4242;
-    random_frame(rgb, C, 2 * R, &seed, 256);
-    for (int r = 0; r < R; r++)
-        for (int c = 0; c < C; c++) {
-            int l = palette_luma(rgb + 3 * ((2 * r) * C + c)) +
-                    palette_luma(rgb + 3 * ((2 * r + 1) * C + c));
-            uint8_t g = palette_ramp_grey(palette_ramp_level((l + 1) / 2));
-            for (int k = 0; k < 3; k++)
-                want[3 * ((2 * r) * C + c) + k] = want[3 * ((2 * r + 1) * C + c) + k] = g;
-        }
-    struct encode_screen s;
-    struct decode_state d;
-    REQUIRE(encode_screen_init(&s, C, R, NULL) == 0);
-    REQUIRE(decode_init(&d, C, R, NULL) == 0);
-    struct encode_opts o = {.mode = PALETTE_NONE};
-    size_t n;
-    const char *out = encode_frame(&s, rgb, C, 2 * R, &o, &n, NULL);
-    for (size_t i = 0; i < n; i++) /* only cursor positioning may be escaped */
-        if (out[i] == 0x1b)
-            CHECK(out[i + 1] == '[' && (out[i + 2] == 'H' || (out[i + 2] >= '0' && out[i + 2] <= '9')));
-    CHECK(!contains(out, n, "m"));
-    struct err e;
-    REQUIRE(decode_frame(&d, out, n, 0, &e) == 0);
-    compare_grid(t, &d, want, C, 2 * R, 0, "none mode");
-    encode_screen_free(&s);
-    decode_free(&d);
+    static uint8_t rgb[C * 2 * R * 4 * 3], want[C * 2 * R * 4 * 3];
+    static const enum cell_glyphs sets[] = {CELL_HALF, CELL_QUADRANT, CELL_SEXTANT, CELL_BRAILLE,
+                                            CELL_ASCII};
+    for (unsigned k = 0; k < sizeof sets / sizeof sets[0]; k++) {
+        struct cell_geom g = cell_geom(sets[k]);
+        int w = C * g.px_w, h = R * g.px_h;
+        uint32_t seed = 4242 + k;
+        random_frame(rgb, w, h, &seed, 256);
+        for (int y = 0; y < h; y++)
+            for (int x = 0; x < w; x++) {
+                int l = palette_luma(rgb + 3 * (y * w + x)), rank = bayer_ref(x, y);
+                uint8_t v;
+                if (sets[k] == CELL_ASCII) { /* the ramp level: l 9/255 + (rank + 1/2)/64, floored */
+                    int level = (int)(l * 9.0 / 255 + (rank + 0.5) / 64);
+                    v = palette_ramp_grey(level > 9 ? 9 : level);
+                } else { /* ink (the decoder's default fg) where l/255 > (rank + 1/2)/64 */
+                    v = l / 255.0 > (rank + 0.5) / 64 ? 229 : 0;
+                }
+                memset(want + 3 * (y * w + x), v, 3);
+            }
+        struct encode_screen s;
+        struct decode_state d;
+        REQUIRE(encode_screen_init(&s, C, R, NULL) == 0);
+        REQUIRE(decode_init(&d, C, R, g, NULL) == 0);
+        struct encode_opts o = {.mode = PALETTE_NONE, .glyphs = sets[k]};
+        size_t n;
+        const char *out = encode_frame(&s, rgb, w, h, &o, &n, NULL);
+        for (size_t i = 0; i < n; i++) /* only cursor positioning may be escaped */
+            if (out[i] == 0x1b)
+                CHECK(out[i + 1] == '[' && (out[i + 2] == 'H' || (out[i + 2] >= '0' && out[i + 2] <= '9')));
+        CHECK(!contains(out, n, "m"));
+        struct err e;
+        REQUIRE(decode_frame(&d, out, n, 0, &e) == 0);
+        compare_grid(t, &d, want, w, h, 0, cell_glyphs_name(sets[k]));
+        encode_screen_free(&s);
+        decode_free(&d);
+    }
 }
 
 /* ---- tolerance -------------------------------------------------------------------------- */
@@ -491,7 +555,7 @@ TEST(tolerance_never_lets_the_screen_drift_beyond_n)
         struct encode_screen s;
         struct decode_state d;
         REQUIRE(encode_screen_init(&s, C, R, NULL) == 0);
-        REQUIRE(decode_init(&d, C, R, NULL) == 0);
+        REQUIRE(decode_init(&d, C, R, HALF, NULL) == 0);
         struct encode_opts o = {.mode = PALETTE_TRUECOLOR, .diff = true, .tolerance = tol};
         size_t total = 0, total_exact = 0;
         struct encode_screen exact;
@@ -556,7 +620,7 @@ TEST(tolerance_in_256_mode_is_bounded_by_the_palette_or_n)
     struct encode_screen s;
     struct decode_state d;
     REQUIRE(encode_screen_init(&s, C, R, NULL) == 0);
-    REQUIRE(decode_init(&d, C, R, NULL) == 0);
+    REQUIRE(decode_init(&d, C, R, HALF, NULL) == 0);
     struct encode_opts o = {.mode = PALETTE_256, .diff = true, .tolerance = TOL};
     for (int f = 0; f < N; f++) {
         for (int i = 0; i < C * 2 * R * 3; i++)
@@ -623,7 +687,7 @@ TEST(odd_height_pads_the_last_bottom_half)
     struct encode_screen s;
     struct decode_state d;
     REQUIRE(encode_screen_init(&s, 3, 2, NULL) == 0);
-    REQUIRE(decode_init(&d, 3, 2, NULL) == 0);
+    REQUIRE(decode_init(&d, 3, 2, HALF, NULL) == 0);
     struct encode_opts o = {.mode = PALETTE_TRUECOLOR, .pad_rgb = {7, 8, 9}};
     size_t n;
     const char *out = encode_frame(&s, rgb, 3, 3, &o, &n, NULL);
@@ -720,7 +784,7 @@ TEST(budgeted_frames_fit_and_a_still_picture_converges_to_exact)
         struct encode_screen s;
         struct decode_state d;
         REQUIRE(encode_screen_init(&s, C, R, NULL) == 0);
-        REQUIRE(decode_init(&d, C, R, NULL) == 0);
+        REQUIRE(decode_init(&d, C, R, HALF, NULL) == 0);
         struct encode_opts o = {.mode = modes[m], .diff = true, .budget = B};
         double prev = 1e300;
         int still_frames = 0, limited = 0;
@@ -798,8 +862,8 @@ TEST(rate_distortion_beats_a_fixed_tolerance_at_equal_bytes)
     struct decode_state tol_d, rd_d;
     REQUIRE(encode_screen_init(&tol_s, C, R, NULL) == 0);
     REQUIRE(encode_screen_init(&rd_s, C, R, NULL) == 0);
-    REQUIRE(decode_init(&tol_d, C, R, NULL) == 0);
-    REQUIRE(decode_init(&rd_d, C, R, NULL) == 0);
+    REQUIRE(decode_init(&tol_d, C, R, HALF, NULL) == 0);
+    REQUIRE(decode_init(&rd_d, C, R, HALF, NULL) == 0);
     double e_tol = 0, e_rd = 0;
     size_t b_tol = 0, b_rd = 0;
     for (int f = 0; f < N; f++) {
@@ -848,7 +912,7 @@ TEST(held_cells_are_never_written)
         struct encode_screen s;
         struct decode_state d;
         REQUIRE(encode_screen_init(&s, C, R, NULL) == 0);
-        REQUIRE(decode_init(&d, C, R, NULL) == 0);
+        REQUIRE(decode_init(&d, C, R, HALF, NULL) == 0);
         memset(rgb, 0, sizeof rgb);
         size_t n;
         struct err e;
@@ -896,7 +960,7 @@ TEST(lf_newline_frames_use_bare_lf_and_decode_the_same)
     CHECK_EQ_INT(na - nb, R - 1);
     struct decode_state d;
     struct err e;
-    REQUIRE(decode_init(&d, C, R, NULL) == 0);
+    REQUIRE(decode_init(&d, C, R, HALF, NULL) == 0);
     REQUIRE(decode_apply(&d, pb, nb, &e) == 0);
     compare_grid(t, &d, rgb, C, 2 * R, 0, "lf frame");
     decode_free(&d);
@@ -932,4 +996,196 @@ TEST(a_budget_spends_bytes_on_the_worst_cells_first_wherever_they_are)
     CHECK_EQ_INT(last.top, 0xffffff);
     CHECK_EQ_INT(last.bot, 0xffffff);
     encode_screen_free(&s);
+}
+
+/* ---- glyph sets (cell.h) ---------------------------------------------------------------- */
+
+#define SEXTANT_1 "\xf0\x9f\xac\x80" /* U+1FB00: the top left sixth */
+
+TEST(golden_sextant_and_braille_bytes)
+{
+    /* a 2x3 cell whose top left pixel is red and the rest blue: sextant-1, red on blue; then
+     * the same in braille (2x4; the bottom row blue too): the mean of the best set of dots,
+     * alone on the terminal's background (never an SGR 48): all but the top left, blue */
+    uint8_t rgb[2 * 4 * 3];
+    for (int i = 0; i < 8; i++)
+        set_px(rgb, 2, i % 2, i / 2, i == 0 ? 0xff0000 : 0x0000ff);
+    struct encode_screen s;
+    REQUIRE(encode_screen_init(&s, 1, 1, NULL) == 0);
+    struct encode_opts o = {.mode = PALETTE_TRUECOLOR, .glyphs = CELL_SEXTANT};
+    size_t n;
+    const char *out = encode_frame(&s, rgb, 2, 3, &o, &n, NULL);
+    CHECK_BYTES(out, n, "\x1b[H\x1b[38;2;255;0;0;48;2;0;0;255m" SEXTANT_1 "\x1b[0m");
+    o.glyphs = CELL_BRAILLE; /* dots 2-8: U+28FE */
+    out = encode_frame(&s, rgb, 2, 4, &o, &n, NULL);
+    CHECK_BYTES(out, n, "\x1b[H\x1b[38;2;0;0;255m\xe2\xa3\xbe\x1b[0m");
+    encode_screen_free(&s);
+}
+
+/* The least squared error any cell of glyph set g can have over the n pixels px: every
+ * pattern with the means of its parts (braille: one part's mean, the rest black), by brute
+ * force (the encoder uses subset sums and integer comparisons). */
+static double best_cell_error(const uint8_t *const *px, int n, bool fg_only)
+{
+    double best = 1e300;
+    for (unsigned m = 0; m < 1u << n; m++) {
+        double mean[2][3] = {{0}}, count[2] = {0, 0}, e = 0;
+        for (int i = 0; i < n; i++)
+            for (int k = 0; k < 3; k++)
+                mean[m >> i & 1][k] += px[i][k] / 1.0, count[m >> i & 1] += k == 0;
+        for (int part = 0; part < 2; part++)
+            for (int k = 0; k < 3; k++)
+                mean[part][k] = fg_only && part == 0 ? 0 : count[part] ? mean[part][k] / count[part] : 0;
+        for (int i = 0; i < n; i++)
+            for (int k = 0; k < 3; k++) {
+                double d = px[i][k] - mean[m >> i & 1][k];
+                e += d * d;
+            }
+        best = e < best ? e : best;
+    }
+    return best;
+}
+
+/* Truecolor frames of noise, flat areas and edges in every glyph set: each decoded cell shows
+ * at most two colours (braille one, on black), and its squared error is the least any
+ * pattern and colours could have, up to the rounding of the means to integers. */
+TEST(every_cell_is_fitted_with_the_least_error)
+{
+    enum { C = 16, R = 6 };
+    static uint8_t rgb[C * 2 * R * 4 * 3];
+    static const enum cell_glyphs sets[] = {CELL_QUADRANT, CELL_SEXTANT, CELL_BRAILLE,
+                                            CELL_ASCII};
+    for (unsigned k = 0; k < sizeof sets / sizeof sets[0]; k++) {
+        struct cell_geom g = cell_geom(sets[k]);
+        int w = C * g.px_w, h = R * g.px_h, n = cell_px(&g);
+        struct encode_screen s;
+        struct decode_state d;
+        REQUIRE(encode_screen_init(&s, C, R, NULL) == 0);
+        REQUIRE(decode_init(&d, C, R, g, NULL) == 0);
+        struct encode_opts o = {.mode = PALETTE_TRUECOLOR, .glyphs = sets[k]};
+        uint32_t seed = 99 + k;
+        for (int it = 0; it < 6; it++) {
+            if (it % 2)
+                random_frame(rgb, w, h, &seed, it == 1 ? 2 : 256);
+            else
+                rect_frame(rgb, w, h, it, seed);
+            size_t len;
+            const char *out = encode_frame(&s, rgb, w, h, &o, &len, NULL);
+            struct err e;
+            REQUIRE(decode_frame(&d, out, len, 0, &e) == 0);
+            if (sets[k] == CELL_BRAILLE) /* braille never sets a background */
+                CHECK(!sets_background(out, len));
+            for (int r = 0; r < R; r++)
+                for (int c = 0; c < C; c++) {
+                    const uint8_t *px[CELL_MAX_PX];
+                    uint32_t shown[CELL_MAX_PX];
+                    double err = 0;
+                    int colours = 0;
+                    for (int i = 0; i < n; i++) {
+                        size_t at = 3 * ((size_t)(r * g.px_h + i / g.px_w) * w + c * g.px_w + i % g.px_w);
+                        px[i] = rgb + at;
+                        shown[i] = (uint32_t)d.rgb[at] << 16 | (uint32_t)d.rgb[at + 1] << 8 | d.rgb[at + 2];
+                        for (int q = 0; q < 3; q++)
+                            err += (d.rgb[at + q] - rgb[at + q]) * (d.rgb[at + q] - rgb[at + q]);
+                        bool seen = false;
+                        for (int j = 0; j < i; j++)
+                            seen |= shown[j] == shown[i];
+                        colours += !seen && !(g.fg_only && shown[i] == 0);
+                    }
+                    CHECK(colours <= (g.fg_only || n == 1 ? 1 : 2));
+                    double best = best_cell_error(px, n, g.fg_only);
+                    if (err > best + 0.75 * n * 3) /* rounding: each channel off by <= 1/2 */
+                        fprintf(stderr, "    %s cell %d,%d: error %.0f, best %.1f\n",
+                                cell_glyphs_name(sets[k]), c, r, err, best);
+                    CHECK(err <= best + 0.75 * n * 3);
+                }
+        }
+        encode_screen_free(&s);
+        decode_free(&d);
+    }
+}
+
+/* Diff frames, tolerance, palettes and a byte budget work in every glyph set as with half
+ * blocks: a diff chain decodes like each frame drawn alone; an unchanged frame costs nothing;
+ * with tolerance N no pixel is further from the truth than N or its cell's fit; a budgeted
+ * still picture converges to the fit. */
+TEST(glyph_sets_diff_tolerance_palettes_and_budget)
+{
+    enum { C = 24, R = 8, B = 1200 };
+    static uint8_t rgb[C * 2 * R * 4 * 3];
+    static const enum cell_glyphs sets[] = {CELL_QUADRANT, CELL_SEXTANT, CELL_BRAILLE,
+                                            CELL_ASCII};
+    static const enum palette_mode modes[] = {PALETTE_TRUECOLOR, PALETTE_256, PALETTE_16};
+    int binding = 0; /* budgeted cases where the budget really binds */
+    for (unsigned k = 0; k < sizeof sets / sizeof sets[0]; k++)
+        for (unsigned m = 0; m < 3; m++) {
+            struct cell_geom g = cell_geom(sets[k]);
+            int w = C * g.px_w, h = R * g.px_h;
+            size_t npx = (size_t)w * h * 3;
+            struct encode_screen s, alone;
+            struct decode_state d, da;
+            REQUIRE(encode_screen_init(&s, C, R, NULL) == 0);
+            REQUIRE(encode_screen_init(&alone, C, R, NULL) == 0);
+            REQUIRE(decode_init(&d, C, R, g, NULL) == 0);
+            REQUIRE(decode_init(&da, C, R, g, NULL) == 0);
+            int tol = m == 0 ? 6 : 0;
+            struct encode_opts o = {.mode = modes[m], .diff = true, .tolerance = tol,
+                                    .glyphs = sets[k]};
+            struct encode_opts full = {.mode = modes[m], .glyphs = sets[k]};
+            for (int f = 0; f < 12; f++) {
+                rect_frame(rgb, w, h, f, 7 + k);
+                size_t n, na;
+                struct err e;
+                const char *out = encode_frame(&s, rgb, w, h, &o, &n, NULL);
+                REQUIRE(decode_apply(&d, out, n, &e) == 0);
+                out = encode_frame(&alone, rgb, w, h, &full, &na, NULL);
+                REQUIRE(decode_frame(&da, out, na, 0, &e) == 0);
+                int worst = 0;
+                for (size_t i = 0; i < npx; i++) {
+                    int off = abs((int)d.rgb[i] - rgb[i]), fit = abs((int)da.rgb[i] - rgb[i]);
+                    if (off > (tol > fit ? tol : fit))
+                        worst = off;
+                }
+                if (worst)
+                    fprintf(stderr, "    %s %s frame %d: a pixel %d off\n",
+                            cell_glyphs_name(sets[k]), palette_mode_name(modes[m]), f, worst);
+                CHECK_EQ_INT(worst, 0);
+                if (tol == 0)
+                    CHECK(memcmp(d.rgb, da.rgb, npx) == 0);
+            }
+            size_t n;
+            encode_frame(&s, rgb, w, h, &o, &n, NULL);
+            CHECK_EQ_INT(n, 0);
+            if (modes[m] != PALETTE_16) { /* a budget: a still picture converges to the fit */
+                struct encode_opts b = {.mode = modes[m], .diff = true, .budget = B,
+                                        .glyphs = sets[k]};
+                /* the frame drawn whole, unbudgeted: when it is over the budget, the
+                 * budgeted frames must take more than one to converge */
+                size_t whole;
+                encode_screen_invalidate(&alone);
+                encode_frame(&alone, rgb, w, h, &full, &whole, NULL);
+                binding += whole > B;
+                encode_screen_invalidate(&s);
+                decode_reset(&d);
+                int f = 0;
+                for (; f < 40; f++) {
+                    struct encode_stats st;
+                    struct err e;
+                    const char *out = encode_frame(&s, rgb, w, h, &b, &n, &st);
+                    CHECK(n <= B);
+                    REQUIRE(decode_apply(&d, out, n, &e) == 0);
+                    if (st.cells_pending == 0)
+                        break;
+                }
+                CHECK(f < 40);
+                CHECK(whole <= B || f > 0);
+                CHECK(memcmp(d.rgb, da.rgb, npx) == 0);
+            }
+            encode_screen_free(&s);
+            encode_screen_free(&alone);
+            decode_free(&d);
+            decode_free(&da);
+        }
+    fprintf(stderr, "      the budget binds in %d of 8 budgeted cases\n", binding);
+    CHECK(binding >= 6);
 }
