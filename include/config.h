@@ -11,8 +11,7 @@
  *   spin = on | off                                 (auto-rotation at start)
  *   spin-timeout = SECONDS                          (an untouched spin pauses; 0 = never)
  *   bandwidth = RATE                                (as --bandwidth)
- *   glyphs = half                                   (how cells are drawn: half blocks, the
- *                                                    only way so far) */
+ *   glyphs = half | quadrant | sextant | braille | ascii   (how cells show pixels, cell.h) */
 #ifndef RASTTY_CONFIG_H
 #define RASTTY_CONFIG_H
 
@@ -31,6 +30,7 @@ struct config {
     int spin;                 /* -1 not set, 0 off, 1 on */
     double spin_timeout;      /* -1 not set */
     double bandwidth;         /* 0 not set */
+    int glyphs;               /* -1 not set, else an enum cell_glyphs */
 };
 
 /* Read the file ($XDG_CONFIG_HOME/rastty/config, else $HOME/.config/rastty/config; NULL or

@@ -81,8 +81,11 @@ static int setting(struct config *c, const char *path, int line, const char *key
         if (options_parse_rate(v, &c->bandwidth))
             return line_err(e, path, line, "bandwidth: expected bytes/s like 128k or 1Mbit", v);
     } else if (strcmp(key, "glyphs") == 0) {
-        if (strcmp(v, "half") != 0)
-            return line_err(e, path, line, "glyphs: expected half (half blocks, the only way so far)", v);
+        int g = cell_glyphs_parse(v);
+        if (g < 0)
+            return line_err(e, path, line,
+                            "glyphs: expected half, quadrant, sextant, braille or ascii", v);
+        c->glyphs = g;
     } else {
         return line_err(e, path, line,
                         "unknown key (expected colors, light, spin, spin-timeout, bandwidth, glyphs)", key);
@@ -124,7 +127,7 @@ int config_parse(const char *path, const char *text, struct config *c, struct er
 int config_load(const char *xdg, const char *home, const char *env, struct config *c,
                 struct err *e)
 {
-    *c = (struct config){.spin = -1, .spin_timeout = -1};
+    *c = (struct config){.spin = -1, .spin_timeout = -1, .glyphs = -1};
     char path[4200];
     if (xdg && *xdg)
         snprintf(path, sizeof path, "%s/rastty/config", xdg);
@@ -177,4 +180,8 @@ void config_apply(const struct config *c, struct options *o)
         o->spin_timeout = c->spin_timeout;
     if (o->bandwidth == 0)
         o->bandwidth = c->bandwidth;
+    if (!o->glyphs_set && c->glyphs >= 0) {
+        o->render.glyphs = (enum cell_glyphs)c->glyphs;
+        o->glyphs_set = true;
+    }
 }

@@ -14,6 +14,7 @@ static const struct input_binding bindings[] = {
     {KEY_BTAB, IN_PREV_SCENE}, {'m', IN_SHADE},  {'f', IN_FILTER},      {'c', IN_CULL},
     {'l', IN_LIGHT},       {'v', IN_VIEW},       {'p', IN_PERSPECTIVE}, {' ', IN_PAUSE},
     {'R', IN_RASTER},      {'i', IN_INFO},       {'S', IN_SCREENSHOT},  {'L', IN_LOD},
+    {'g', IN_GLYPHS},
     {'h', IN_HELP},        {'?', IN_HELP},       {'q', IN_QUIT},        {27, IN_QUIT},
 };
 
@@ -37,6 +38,7 @@ static const char *const help[] = {
     "p          interpolation: correct affine span8 span16 span32",
     "Z          depth buffer: z w z16 rz",
     "L          mesh level of detail: auto / off",
+    "g          glyphs: half quadrant sextant braille ascii",
     "Space      pause / resume the auto-rotation",
     "i          camera position in the status line",
     "S          screenshot: PNG + ANSI, and the render command",

@@ -55,6 +55,7 @@ struct view {
     struct ssaa ssaa;       /* --ssaa's big framebuffer */
     struct skybox default_sky;
     int fb_cols, fb_rows;   /* cells used by the picture */
+    enum cell_glyphs glyphs; /* the glyph set fb was sized for */
     bool help_drawn;        /* the help overlay is on the screen */
     bool drawn;             /* fb holds a frame (for screenshots) */
     bool lod_pending;       /* the scene's levels of detail are still being built */
@@ -134,7 +135,7 @@ static const struct skybox *scene_sky(struct view *v)
 static void enter_scene(struct view *v)
 {
     const struct scene *s = v->scenes[v->cur];
-    double aspect = v->fb.w > 0 ? (double)v->fb.w / v->fb.h : 2.0;
+    double aspect = v->fb.w > 0 ? fb_aspect(&v->fb) : 2.0;
     struct camera cam;
     struct render_opts ro;
     /* a model alone is framed, unless the command line placed the camera */
@@ -157,16 +158,22 @@ static int resize(struct view *v, struct err *e)
     rows = rows > ENCODE_MAX_ROWS ? ENCODE_MAX_ROWS : rows;
     if (cols < 1 || rows < 1) {
         v->fb_cols = v->fb_rows = 0;
+        v->glyphs = v->s.ro.glyphs;
         return 0;
     }
-    if (cols != v->fb_cols || rows != v->fb_rows) {
+    struct cell_geom g = cell_geom(v->s.ro.glyphs);
+    if (cols != v->fb_cols || rows != v->fb_rows || g.glyphs != v->glyphs) {
         fb_free(&v->fb);
         encode_screen_free(&v->es);
         v->drawn = false;
-        if (fb_init(&v->fb, cols, 2 * rows, true, e) || encode_screen_init(&v->es, cols, rows, e))
+        if (fb_init(&v->fb, cell_fb_w(&g, cols), cell_fb_h(&g, rows), true, e) ||
+            encode_screen_init(&v->es, cols, rows, e))
             return -1;
+        v->fb.pixel_aspect = cell_pixel_aspect(&g);
         v->fb_cols = cols;
         v->fb_rows = rows;
+        v->glyphs = g.glyphs;
+        v->eo.glyphs = g.glyphs;
     }
     encode_screen_invalidate(&v->es);
     out_add(v, "\033[0m\033[2J", 8);
@@ -305,7 +312,8 @@ static void screenshot(struct view *v, double t)
     struct encode_screen es;
     int rc = image_write_png(png, &v->fb, &e);
     if (rc == 0 && (rc = encode_screen_init(&es, v->fb_cols, v->fb_rows, &e)) == 0) {
-        struct encode_opts eo = {.mode = v->eo.mode, .mark_frames = true, .lf_newline = true};
+        struct encode_opts eo = {.mode = v->eo.mode, .mark_frames = true, .lf_newline = true,
+                                 .glyphs = v->eo.glyphs};
         size_t n;
         const char *bytes = encode_fb(&es, &v->fb, &eo, &n, NULL);
         FILE *f = fopen(ans, "wb");
@@ -435,6 +443,8 @@ static int loop(struct view *v, struct err *e)
         last = t;
         if (quit)
             break;
+        if (v->s.ro.glyphs != v->glyphs && resize(v, e)) /* g: a new grid, a new screen */
+            return -1;
         if (v->s.dirty && pace_ready(&v->pace, t, NULL)) {
             if (draw_frame(v, t, e))
                 return tty_signalled() ? 0 : -1; /* a quit signal cut the write short */

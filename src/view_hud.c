@@ -47,7 +47,10 @@ void view_hud_compose(const struct view_state *s, const struct view_hud_info *in
     const struct frame_stats *st = in->st;
     add(&f, 0, "%s [%d/%d]", in->scene, in->scene_i + 1, in->n_scenes);
     add(&f, 0, "%s %s", view_shade_name(s), render_filter_name(s->ro.filter));
-    add(&f, 0, "%s", palette_mode_name(in->mode));
+    if (s->ro.glyphs != CELL_HALF)
+        add(&f, 0, "%s %s", palette_mode_name(in->mode), cell_glyphs_name(s->ro.glyphs));
+    else
+        add(&f, 0, "%s", palette_mode_name(in->mode));
     add(&f, 0, "%.0f fps", in->fps);
     if (in->pacing && in->pacing[0])
         add(&f, 1, "%s", in->pacing);

@@ -84,6 +84,8 @@ void view_shot_command(const struct view_state *s, const struct view_shot_info *
         put(&b, " --lod auto");
     else if (s->ro.lod == LOD_AUTO)
         put(&b, " --lod auto:%.9g", s->ro.lod_px);
+    if (s->ro.glyphs != CELL_HALF) /* the framebuffer's pixels are that glyph set's shape */
+        put(&b, " --glyphs %s", cell_glyphs_name(s->ro.glyphs));
     if (s->ro.view != VIEW_COLOR)
         put(&b, " --view %s", render_view_name(s->ro.view));
     if (s->ro.hidden_lines)

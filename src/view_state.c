@@ -61,6 +61,7 @@ void view_state_scene(struct view_state *s, const struct camera *cam,
     s->ro.lod = keep.lod;
     s->ro.lod_ratio = keep.lod_ratio;
     s->ro.lod_px = keep.lod_px;
+    s->ro.glyphs = keep.glyphs;
     s->extent = extent > 0 ? extent : 1;
     s->dirty = s->hud_dirty = true;
 }
@@ -160,6 +161,10 @@ enum view_action view_key(struct view_state *s, enum input_cmd c, double t)
         s->ro.lod = s->ro.lod == LOD_AUTO ? LOD_OFF : LOD_AUTO;
         view_message(s, s->ro.lod == LOD_AUTO ? "level of detail: auto  (L: off)"
                                               : "level of detail: off  (L: auto)", t);
+        break;
+    case IN_GLYPHS:
+        s->ro.glyphs = (enum cell_glyphs)cycle_method(s, "glyphs", &render_glyphs_names,
+                                                      (int)s->ro.glyphs, t);
         break;
     case IN_LIGHT:
         s->headlight = !s->headlight;

@@ -24,12 +24,13 @@ TEST(config_file_settings_parse)
                        "  spin = off\n"
                        "spin-timeout = 30\n"
                        "bandwidth = 1Mbit\n"
-                       "glyphs = half\n";
+                       "glyphs = sextant\n";
     REQUIRE(config_parse("cfg", text, &c, &e) == 0);
     CHECK(strcmp(c.colors, "256") == 0);
     CHECK_EQ_INT(c.light, CONFIG_LIGHT_WORLD);
     CHECK_EQ_INT(c.spin, 0);
     CHECK(c.spin_timeout == 30 && c.bandwidth == 125000);
+    CHECK_EQ_INT(c.glyphs, CELL_SEXTANT);
     REQUIRE(config_parse("cfg", "light = 1,2,-3\ncolors = auto\n", &c, &e) == 0);
     CHECK(c.light == CONFIG_LIGHT_DIR && c.light_dir.z == -3 && c.colors[0] == '\0');
     /* applied under what the command line said */
@@ -37,9 +38,15 @@ TEST(config_file_settings_parse)
     char *argv[] = {"rastty", "--no-spin", "--colors", "16"};
     REQUIRE(options_parse(4, argv, &o, &e) == 0);
     struct config d = fresh();
-    REQUIRE(config_parse("cfg", "colors = none\nspin = on\nspin-timeout = 5\nlight = camera\n", &d, &e) == 0);
+    REQUIRE(config_parse("cfg", "colors = none\nspin = on\nspin-timeout = 5\nlight = camera\n"
+                                "glyphs = braille\n", &d, &e) == 0);
     config_apply(&d, &o);
     CHECK(strcmp(o.colors, "16") == 0 && o.spin == 0 && o.spin_timeout == 5 && o.light_camera);
+    CHECK_EQ_INT(o.render.glyphs, CELL_BRAILLE);
+    char *argv2[] = {"rastty", "--glyphs", "quadrant"}; /* the command line wins */
+    REQUIRE(options_parse(3, argv2, &o, &e) == 0);
+    config_apply(&d, &o);
+    CHECK_EQ_INT(o.render.glyphs, CELL_QUADRANT);
 }
 
 TEST(config_file_errors_name_the_line)
@@ -53,7 +60,7 @@ TEST(config_file_errors_name_the_line)
         {"spin = maybe\n", "cfg:1: spin: expected on or off"},
         {"spin-timeout = -1\n", "cfg:1: spin-timeout"},
         {"bandwidth = fast\n", "cfg:1: bandwidth"},
-        {"glyphs = braille\n", "cfg:1: glyphs: expected half"},
+        {"glyphs = hexagon\n", "cfg:1: glyphs: expected half, quadrant, sextant, braille or ascii"},
         {"colour = 256\n", "cfg:1: unknown key"},
         {"colors 256\n", "cfg:1: expected key = value"},
         {"colors = \033[31m\n", "got '?[31m'"},
