@@ -31,7 +31,16 @@
  * render_opts field), so a new axis is one entry there. The CSV starts with
  *   scene,size,raster,persp,depth,filter,ssaa,ms,psnr_db,frac_gt8,bytes
  * and axes after the first CHART_CSV_AXES follow `bytes` (part 3: lod), then `shimmer` (empty
- * where not measured), so the header only grows. */
+ * where not measured), then `glyphs` and `encode_ms`, so the header only grows.
+ *
+ * Glyph rows (CHART_GLYPHS): on the head (else the first scene), at the first size only, one
+ * row per glyph set (cell.h): the terminal has w x h/2 cells (as half blocks show w x h
+ * pixels) and the framebuffer the set's sub-cell grid (quadrant 2w x h, braille 2w x 2h, ascii
+ * w x h/2). Per row: ms = render at that grid, psnr_db and frac_gt8 = the frame as the
+ * terminal shows it (encoded whole in truecolor, decoded) against the ideal image at that
+ * grid, bytes = that frame, encode_ms = its encode time. Half blocks in truecolor are lossless,
+ * so every other row is its `glyphs = half` row. Glyph rows take no part in the fastest and
+ * most accurate combinations or the picture. */
 #ifndef RASTTY_CHART_H
 #define RASTTY_CHART_H
 
@@ -56,7 +65,7 @@ struct chart_axis {
 #define CHART_SHIMMER_DEG 0.5
 extern const struct chart_axis chart_axes[CHART_AXES];
 
-enum chart_kind { CHART_DEFAULT, CHART_VARIED, CHART_FASTEST, CHART_ACCURATE };
+enum chart_kind { CHART_DEFAULT, CHART_VARIED, CHART_FASTEST, CHART_ACCURATE, CHART_GLYPHS };
 
 struct chart_row {
     char scene[16];
@@ -75,6 +84,9 @@ struct chart_row {
                             * the mean absolute difference, per channel in 8-bit levels,
                             * between this method's frame-to-frame change and the ideal
                             * image's (0 = it changes exactly as the ideal does) */
+    int glyphs;            /* enum cell_glyphs: how the terminal shows the frame (half blocks
+                            * for every row but CHART_GLYPHS's) */
+    double encode_ms;      /* CHART_GLYPHS only (else NaN): median ms to encode the frame */
 };
 
 struct chart_config {

@@ -6,6 +6,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cell.h"
+#include "decode.h"
 #include "encode.h"
 #include "pipeline.h"
 #include "scene.h"
@@ -173,26 +175,36 @@ static void group_setup(struct group *g, struct loaded *l, int w, int h)
     }
 }
 
-static int add_row(struct run *x, struct group *g, const struct chart_row *r, struct err *e)
+/* a new row of the chart for g's scene and size (not yet one of g's rows), or NULL */
+static struct chart_row *push_row(struct run *x, struct group *g, const struct chart_row *r,
+                                  struct err *e)
 {
-    if (g->n_rows == CHART_MAX_ROWS)
-        return err_set(e, "chart: too many rows for one scene");
     struct chart *out = x->out;
     if (out->n_rows == x->cap_rows) {
         int cap = x->cap_rows ? 2 * x->cap_rows : 64;
         struct chart_row *nr = realloc(out->rows, (size_t)cap * sizeof *nr);
         if (!nr)
-            return err_set(e, "out of memory");
+            return err_set(e, "out of memory"), NULL;
         out->rows = nr;
         x->cap_rows = cap;
     }
-    struct chart_row *d = &out->rows[out->n_rows];
+    struct chart_row *d = &out->rows[out->n_rows++];
     *d = *r;
     snprintf(d->scene, sizeof d->scene, "%s", g->sc->def->name);
     d->w = g->w, d->h = g->h;
     d->psnr_db = NAN;
     d->shimmer = NAN;
-    g->rows[g->n_rows++] = out->n_rows++;
+    d->encode_ms = NAN;
+    return d;
+}
+
+static int add_row(struct run *x, struct group *g, const struct chart_row *r, struct err *e)
+{
+    if (g->n_rows == CHART_MAX_ROWS)
+        return err_set(e, "chart: too many rows for one scene");
+    if (!push_row(x, g, r, e))
+        return -1;
+    g->rows[g->n_rows++] = x->out->n_rows - 1;
     return 0;
 }
 
@@ -374,6 +386,82 @@ done:
     return rc;
 }
 
+/* The glyph rows (chart.h): g's scene with the default methods on a terminal of g->w x
+ * g->h / 2 cells in each glyph set — the framebuffer at the set's sub-cell grid, the ideal
+ * image at that grid, the frame encoded whole in truecolor and decoded back. */
+static int measure_glyphs(struct run *x, struct group *g, struct err *e)
+{
+    const int cols = g->w, rows = g->h / 2, reps = x->c->repeat;
+    const struct scene *s = g->sc->s;
+    const struct skybox *sky = s->has_sky ? &s->sky : NULL;
+    double *enc = calloc((size_t)reps, sizeof *enc), *ren = calloc((size_t)reps, sizeof *ren);
+    int rc = enc && ren ? 0 : err_set(e, "out of memory");
+    for (int gl = 0; gl < CELL_GLYPHS_COUNT && rc == 0; gl++) {
+        const struct cell_geom geom = cell_geom((enum cell_glyphs)gl);
+        struct fb fb = {0};
+        struct ssaa ss[SSAA_COUNT];
+        memset(ss, 0, sizeof ss);
+        struct encode_screen es = {0};
+        struct decode_state d = {0};
+        uint8_t *ideal = NULL;
+        struct chart_row r = {.kind = CHART_GLYPHS, .glyphs = gl};
+        struct render_opts o = g->base;
+        for (int a = 0; a < CHART_AXES; a++)
+            r.value[a] = axis_get(&o, a);
+        struct err too_big;
+        if (ssaa_check(SSAA_8, cell_fb_w(&geom, cols), cell_fb_h(&geom, rows), &too_big))
+            continue; /* no ideal image at that grid: no row (a huge --size) */
+        rc = -1;
+        if (fb_init(&fb, cell_fb_w(&geom, cols), cell_fb_h(&geom, rows), false, e) ||
+            encode_screen_init(&es, cols, rows, e) || decode_init(&d, cols, rows, geom, e))
+            goto next;
+        fb.pixel_aspect = cell_pixel_aspect(&geom);
+        const size_t n = (size_t)fb.w * fb.h * 3;
+        if (!(ideal = malloc(n))) {
+            err_set(e, "out of memory");
+            goto next;
+        }
+        struct render_opts io = o;
+        render_opts_ideal(&io);
+        struct frame_stats st;
+        if (ssaa_draw(&ss[io.ssaa], x->p, s->items, s->n_items, sky, &g->cam, &io, &fb, &st, e))
+            goto next;
+        memcpy(ideal, fb.rgb, n);
+        struct encode_opts eo = {.mode = PALETTE_TRUECOLOR, .glyphs = geom.glyphs};
+        size_t len = 0;
+        const char *bytes = NULL;
+        for (int k = 0; k < reps; k++) {
+            double t0 = timing_now_ms();
+            if (ssaa_draw(&ss[o.ssaa], x->p, s->items, s->n_items, sky, &g->cam, &o, &fb, &st, e))
+                goto next;
+            double t1 = timing_now_ms();
+            encode_screen_invalidate(&es);
+            bytes = encode_fb(&es, &fb, &eo, &len, NULL);
+            ren[k] = t1 - t0, enc[k] = timing_now_ms() - t1;
+        }
+        if (decode_frame(&d, bytes, len, 0, e))
+            goto next;
+        struct chart_row *out = push_row(x, g, &r, e);
+        if (!out)
+            goto next;
+        compare(d.rgb, ideal, (size_t)fb.w * fb.h, &out->psnr_db, &out->frac_gt8);
+        out->bytes = len;
+        out->ms = out->pilot_ms = timing_median(ren, reps);
+        out->encode_ms = timing_median(enc, reps);
+        rc = 0;
+next:
+        for (int k = 0; k < SSAA_COUNT; k++)
+            ssaa_free(&ss[k]);
+        encode_screen_free(&es);
+        decode_free(&d);
+        fb_free(&fb);
+        free(ideal);
+    }
+    free(enc);
+    free(ren);
+    return rc;
+}
+
 /* geometric mean over the scenes of `size`'s groups of rows with these methods */
 struct agg {
     double ms, mse, frac;
@@ -392,7 +480,7 @@ static struct agg aggregate(const struct chart *c, int w, int h, const int value
     double log_ms = 0;
     for (int i = 0; i < c->n_rows; i++) {
         const struct chart_row *r = &c->rows[i];
-        if (r->w != w || r->h != h || !same_values(r->value, values))
+        if (r->w != w || r->h != h || r->kind == CHART_GLYPHS || !same_values(r->value, values))
             continue;
         double ms = pilot ? r->pilot_ms : r->ms;
         log_ms += log(ms > 1e-6 ? ms : 1e-6);
@@ -484,6 +572,10 @@ int chart_run(const struct chart_config *c, struct chart *out, struct err *e)
     }
     if (load_scenes(c, ls, &n_sc, out, e))
         goto done;
+    int glyph_scene = 0; /* the head, else the first scene */
+    for (int i = 0; i < n_sc; i++)
+        if (strcmp(ls[i].def->name, "head") == 0)
+            glyph_scene = i;
     for (int si = 0; si < c->n_sizes; si++) {
         int w = c->sizes[si][0], h = c->sizes[si][1];
         if (ssaa_check(SSAA_8, w, h, e)) /* the ideal image needs --ssaa 8 */
@@ -513,6 +605,11 @@ int chart_run(const struct chart_config *c, struct chart *out, struct err *e)
                     timing_median(gs[i].times + (size_t)k * c->repeat, c->repeat);
             if (measure_shimmer(&x, &gs[i], e))
                 goto done;
+            if (si == 0 && i == glyph_scene) {
+                progress(c, "glyphs", &gs[i]);
+                if (measure_glyphs(&x, &gs[i], e))
+                    goto done;
+            }
             free(gs[i].ideal);
             free(gs[i].times);
             gs[i].ideal = NULL;
@@ -557,7 +654,9 @@ void chart_row_label(const struct chart_row *r, char *out, size_t n)
                                                                              : "");
         return;
     }
-    if (r->kind == CHART_DEFAULT) {
+    if (r->kind == CHART_GLYPHS) {
+        snprintf(out, n, "glyphs %s", cell_glyphs_name((enum cell_glyphs)r->glyphs));
+    } else if (r->kind == CHART_DEFAULT) {
         snprintf(out, n, "default");
     } else if (r->kind == CHART_FASTEST) {
         snprintf(out, n, "fastest");
@@ -588,7 +687,7 @@ int chart_write_csv(const struct chart *c, FILE *f)
     fputs(",ms,psnr_db,frac_gt8,bytes", f);
     for (int a = CHART_CSV_AXES; a < CHART_AXES; a++)
         fprintf(f, ",%s", chart_axes[a].name);
-    fputs(",shimmer\n", f);
+    fputs(",shimmer,glyphs,encode_ms\n", f);
     for (int i = 0; i < c->n_rows; i++) {
         const struct chart_row *r = &c->rows[i];
         fprintf(f, "%s,%dx%d", r->scene, r->w, r->h);
@@ -600,9 +699,14 @@ int chart_write_csv(const struct chart *c, FILE *f)
         for (int a = CHART_CSV_AXES; a < CHART_AXES; a++)
             fprintf(f, ",%s", chart_axes[a].values->names[r->value[a]]);
         if (isnan(r->shimmer))
+            fputs(",", f);
+        else
+            fprintf(f, ",%.3f", r->shimmer);
+        fprintf(f, ",%s", cell_glyphs_name((enum cell_glyphs)r->glyphs));
+        if (isnan(r->encode_ms))
             fputs(",\n", f);
         else
-            fprintf(f, ",%.3f\n", r->shimmer);
+            fprintf(f, ",%.4f\n", r->encode_ms);
     }
     return ferror(f) ? -1 : 0;
 }
@@ -612,8 +716,8 @@ void chart_write_table(const struct chart *c, FILE *f)
     fprintf(f, "%-7s %-8s", "scene", "size");
     for (int a = 0; a < CHART_AXES; a++)
         fprintf(f, " %-8s", chart_axes[a].name);
-    fprintf(f, " %9s %8s %8s %8s %8s  %s\n", "ms/frame", "PSNR dB", ">8 px %", "KB", "shimmer",
-            "method");
+    fprintf(f, " %9s %8s %8s %8s %8s %8s  %s\n", "ms/frame", "PSNR dB", ">8 px %", "KB",
+            "shimmer", "enc ms", "method");
     for (int i = 0; i < c->n_rows; i++) {
         const struct chart_row *r = &c->rows[i];
         char size[16], label[48];
@@ -629,9 +733,13 @@ void chart_write_table(const struct chart *c, FILE *f)
             fprintf(f, " %8.2f", r->psnr_db);
         fprintf(f, " %8.3f %8.1f", 100 * r->frac_gt8, r->bytes / 1024.0);
         if (isnan(r->shimmer))
+            fprintf(f, " %8s", "-");
+        else
+            fprintf(f, " %8.3f", r->shimmer);
+        if (isnan(r->encode_ms))
             fprintf(f, " %8s  %s\n", "-", label);
         else
-            fprintf(f, " %8.3f  %s\n", r->shimmer, label);
+            fprintf(f, " %8.3f  %s\n", r->encode_ms, label);
     }
 }
 
@@ -673,7 +781,7 @@ static void draw_panel(const struct chart *c, struct plot *p, int w, int h, doub
     char scenes[128] = "";
     for (int i = 0; i < c->n_rows && n < CHART_MAX_ROWS; i++) {
         const struct chart_row *r = &c->rows[i];
-        if (r->w != w || r->h != h)
+        if (r->w != w || r->h != h || r->kind == CHART_GLYPHS) /* not a rendering method */
             continue;
         if (!strstr(scenes, r->scene)) {
             size_t len = strlen(scenes);

@@ -17,7 +17,7 @@ check chart_says_which_scenes_it_skipped grep -q "no shared models: head, car, e
 csv_header() { # the issue's columns first; part 3's follow (lod, then shimmer last)
     local h; h=$(head -n 1 $CSV)
     [ "${h%%,bytes*},bytes" = "scene,size,raster,persp,depth,filter,ssaa,ms,psnr_db,frac_gt8,bytes" ] &&
-        [ "${h##*,bytes,}" = lod,shimmer ]
+        [ "${h##*,bytes,}" = lod,shimmer,glyphs,encode_ms ]
 }
 check chart_csv_header_is_exact csv_header
 # per scene: the default, every other value of every axis alone (2+4+3+2+3+1 = 15), and the
@@ -25,33 +25,46 @@ check chart_csv_header_is_exact csv_header
 # with trilinear, not among the single-axis rows)
 rows() {
     for s in demo ground sphere; do
-        local n; n=$(grep -c "^$s,48x32," $CSV)
+        local n; n=$(grep "^$s,48x32," $CSV | grep -c ",half,$")
         [ "$n" -ge 16 ] && [ "$n" -le 17 ] || { echo "$s: $n rows"; return 1; }
     done
 }
 check chart_has_every_method_of_every_scene rows
+# glyph rows (no head here: the demo): one per glyph set with its encode time, and the half
+# block row is the default row (truecolor half blocks are lossless: same error, same bytes)
+glyph_rows() {
+    local sets; sets=$(awk -F, '$15 != "" && NR > 1 { print $1 "/" $14 }' $CSV | tr '\n' ' ')
+    echo "glyph rows: $sets"
+    [ "$sets" = "demo/half demo/quadrant demo/sextant demo/braille demo/ascii " ] || return 1
+    local def half
+    def=$(awk -F, '$1 == "demo" && $3 == "edge" && $4 == "correct" && $5 == "z" && $6 == "trilinear" && $7 == 1 && $12 == "off" && $15 == "" { print $9, $11 }' $CSV)
+    half=$(awk -F, '$1 == "demo" && $14 == "half" && $15 != "" { print $9, $11 }' $CSV)
+    echo "default: $def, glyphs half: $half"
+    [ -n "$def" ] && [ "$def" = "$half" ]
+}
+check chart_glyph_rows glyph_rows
 same_as_default() { # methods that draw the same pixels as the default score the same
-    awk -F, 'NR > 1 && $3 == "edge" && $4 == "correct" && $5 == "z" && $6 == "trilinear" && $7 == 1 && $12 == "off" { d[$1] = $9 "," $10 "," $11 }
-             NR > 1 && $4 == "correct" && $6 == "trilinear" && $7 == 1 && $12 == "off" && ($3 != "edge" || $5 == "w" || $5 == "rz") { s[$1 "/" $3 "/" $5] = $1 }
+    awk -F, 'NR > 1 && $3 == "edge" && $4 == "correct" && $5 == "z" && $6 == "trilinear" && $7 == 1 && $12 == "off" && $15 == "" { d[$1] = $9 "," $10 "," $11 }
+             NR > 1 && $4 == "correct" && $6 == "trilinear" && $7 == 1 && $12 == "off" && $15 == "" && ($3 != "edge" || $5 == "w" || $5 == "rz") { s[$1 "/" $3 "/" $5] = $1 }
              END { for (k in s) { split(k, p, "/"); print k, p[1] } }' $CSV > $OUT/same.txt
     [ -s $OUT/same.txt ] || return 1
     while read -r key scene; do
         IFS=/ read -r sc r dm <<< "$key"
         local want got
-        want=$(awk -F, -v s=$sc 'NR > 1 && $1 == s && $3 == "edge" && $4 == "correct" && $5 == "z" && $6 == "trilinear" && $7 == 1 && $12 == "off" { print $9 "," $10 "," $11 }' $CSV)
-        got=$(awk -F, -v s=$sc -v r=$r -v d=$dm 'NR > 1 && $1 == s && $3 == r && $4 == "correct" && $5 == d && $6 == "trilinear" && $7 == 1 && $12 == "off" { print $9 "," $10 "," $11 }' $CSV)
+        want=$(awk -F, -v s=$sc 'NR > 1 && $1 == s && $3 == "edge" && $4 == "correct" && $5 == "z" && $6 == "trilinear" && $7 == 1 && $12 == "off" && $15 == "" { print $9 "," $10 "," $11 }' $CSV)
+        got=$(awk -F, -v s=$sc -v r=$r -v d=$dm 'NR > 1 && $1 == s && $3 == r && $4 == "correct" && $5 == d && $6 == "trilinear" && $7 == 1 && $12 == "off" && $15 == "" { print $9 "," $10 "," $11 }' $CSV)
         [ "$want" = "$got" ] || { echo "$key: $got, default $want"; return 1; }
     done < $OUT/same.txt
 }
 check rasterizers_and_w_rz_score_as_the_default same_as_default
 ideal_is_exact() { # correct, trilinear, ssaa 8 with the default raster and depth: the ideal
-    local n; n=$(awk -F, '$3 == "edge" && $4 == "correct" && $5 == "z" && $6 == "trilinear" && $7 == 8 && $12 == "off" && $9 == "inf" && $10 == 0' $CSV | wc -l)
+    local n; n=$(awk -F, '$3 == "edge" && $4 == "correct" && $5 == "z" && $6 == "trilinear" && $7 == 8 && $12 == "off" && $15 == "" && $9 == "inf" && $10 == 0' $CSV | wc -l)
     [ "$n" -eq 3 ]
 }
 check ideal_methods_score_infinity ideal_is_exact
 more_samples_more_accurate() { # on every scene, PSNR rises with --ssaa
     for s in demo ground sphere; do
-        awk -F, -v s=$s '$1 == s && $3 == "edge" && $4 == "correct" && $5 == "z" && $6 == "trilinear" && $12 == "off" { p[$7] = $9 }
+        awk -F, -v s=$s '$1 == s && $3 == "edge" && $4 == "correct" && $5 == "z" && $6 == "trilinear" && $12 == "off" && $15 == "" { p[$7] = $9 }
                          END { if (!(p[1] < p[2] && p[2] < p[4] && p[4] < p[8])) { print s, p[1], p[2], p[4], p[8]; exit 1 } }' $CSV || return 1
     done
 }
