@@ -20,10 +20,11 @@ MAINOBJ := $(BUILD)/obj/main.o
 UNITSRC := $(wildcard tests/unit/*.c)
 UNITOBJ := $(patsubst tests/unit/%.c,$(BUILD)/tests/%.o,$(UNITSRC))
 
-# build: the first eight; tests: OSMesa (the oracle), tmux and procps (pkill) for the
+# build: the first eight; tests: OSMesa (the oracle), chafa (the glyph fitting's reference),
+# tmux and procps (pkill) for the
 # end-to-end tests, ncurses-term (xterm-direct terminfo), python3 (asset checks)
 DEBIAN_PKGS := build-essential pkg-config libncurses-dev libstb-dev libpng-dev \
-               libjpeg62-turbo-dev libassimp-dev libmeshoptimizer-dev libosmesa6-dev tmux \
+               libjpeg62-turbo-dev libassimp-dev libmeshoptimizer-dev libosmesa6-dev chafa tmux \
                ncurses-term procps python3
 
 .PHONY: all test unit check-asan asan-build bench chart deps install uninstall clean help fuzz

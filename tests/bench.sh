@@ -7,7 +7,8 @@
 #   4. every rendering method: ms/frame and error against Mesa (tests/bench_methods.sh);
 #   5. mesh level of detail: --lod auto's bound against error and speed (tests/bench_lod.sh);
 #   6. rastty against Mesa llvmpipe on the speed workloads, side by side (tests/bench_speed.sh);
-#   7. where each method fails: the six stress sweeps (rastty bench --sweep NAME).
+#   7. the glyph sets: error, bytes and encode time, rastty against chafa (tests/bench_glyphs.sh);
+#   8. where each method fails: the six stress sweeps (rastty bench --sweep NAME).
 # The full methods chart takes minutes: `make chart`.
 # Needs ../shared (or $RASTTY_SHARED) for the shared models; skips those parts without it.
 set -eu
@@ -65,6 +66,8 @@ echo
 tests/bench_lod.sh
 echo
 tests/bench_speed.sh
+echo
+tests/bench_glyphs.sh
 echo
 echo "-- where methods fail: rastty bench --sweep NAME at 160x96 (deterministic: no timing)"
 for s in grazing depthrange magnitude sliver nearplane minification; do
