@@ -3,7 +3,8 @@
 # ms/frame (rastty render --repeat --stats, one thread) and error against Mesa llvmpipe
 # (build/oracle/glref, compared by build/oracle/compare: PSNR and pixels off by more than
 # 8) — on the textured african_head at 160x96 and 640x480, a textured ground seen at a
-# grazing angle (level and rolled), and a sphere. Numbers, never verdicts: `make bench` prints them.
+# grazing angle (level and rolled), and a sphere. Textures are sampled nearest in both
+# renderers (the filter is named: rastty's default is trilinear, glref's nearest). Numbers, never verdicts: `make bench` prints them.
 #   tests/bench_methods.sh [--repeat N] [--csv FILE]
 set -u
 cd "$(dirname "$0")/.."
@@ -28,15 +29,15 @@ fi
 /usr/bin/python3 tests/oracle/gen_models.py "$G" || exit 1
 scenes=()
 if [ -d "$S/african_head" ]; then
-    h="$S/african_head/african_head.obj --texture $S/african_head/african_head_diffuse.tga"
+    h="$S/african_head/african_head.obj --texture $S/african_head/african_head_diffuse.tga --filter nearest"
     scenes+=("head 160x96|$h --size 160x96")
     scenes+=("head 640x480|$h --size 640x480")
-    scenes+=("ground 160x96|$G/ground.obj --texture $S/floor_diffuse.tga --size 160x96 --eye 0,0.5,0 --target 0,0.2,-10 --shade unlit")
-    scenes+=("ground 640x480|$G/ground.obj --texture $S/floor_diffuse.tga --size 640x480 --eye 0,0.5,0 --target 0,0.2,-10 --shade unlit")
+    scenes+=("ground 160x96|$G/ground.obj --texture $S/floor_diffuse.tga --filter nearest --size 160x96 --eye 0,0.5,0 --target 0,0.2,-10 --shade unlit")
+    scenes+=("ground 640x480|$G/ground.obj --texture $S/floor_diffuse.tga --filter nearest --size 640x480 --eye 0,0.5,0 --target 0,0.2,-10 --shade unlit")
     # rolled 20 degrees: rows are no longer lines of equal depth (on a level floor spans are
     # exact along rows, which is why floors of old games looked right)
-    scenes+=("rolled 160x96|$G/ground.obj --texture $S/floor_diffuse.tga --size 160x96 --eye 0,0.5,0 --target 0,0.2,-10 --up 0.34,0.94,0 --shade unlit")
-    scenes+=("rolled 640x480|$G/ground.obj --texture $S/floor_diffuse.tga --size 640x480 --eye 0,0.5,0 --target 0,0.2,-10 --up 0.34,0.94,0 --shade unlit")
+    scenes+=("rolled 160x96|$G/ground.obj --texture $S/floor_diffuse.tga --filter nearest --size 160x96 --eye 0,0.5,0 --target 0,0.2,-10 --up 0.34,0.94,0 --shade unlit")
+    scenes+=("rolled 640x480|$G/ground.obj --texture $S/floor_diffuse.tga --filter nearest --size 640x480 --eye 0,0.5,0 --target 0,0.2,-10 --up 0.34,0.94,0 --shade unlit")
 else
     echo "-- methods: no shared models at $S: head and ground skipped"
 fi
@@ -59,7 +60,7 @@ for sc in "${scenes[@]}"; do
         mname=${m%%|*} margs=${m#*|}
         out=$D/${name// /_}.${mname// /_}
         read -r -a mv <<<"$margs"
-        ms=$("$BIN" render "${argv[@]}" "${mv[@]}" --repeat "$repeat" --stats --out "$out.ppm" \
+        ms=$("$BIN" render "${argv[@]}" "${mv[@]}" --threads 1 --repeat "$repeat" --stats --out "$out.ppm" \
              --depth-out "$out.pfm" 2>&1 | sed -n 's/.*median_ms=\([0-9.]*\).*/\1/p')
         cmp=$(build/oracle/compare "$out.ppm" "$out.pfm" "$ref.ppm" "$ref.pfm" 2>/dev/null)
         psnr=$(sed -n 's/.*psnr=\([0-9.inf]*\).*/\1/p' <<<"$cmp")
