@@ -17,6 +17,11 @@ Q       := $(if $(V),,@)
 SRCS    := $(wildcard src/*.c)
 LIBOBJS := $(patsubst src/%.c,$(BUILD)/obj/%.o,$(filter-out src/main.c,$(SRCS)))
 MAINOBJ := $(BUILD)/obj/main.o
+# x86-64: the span stage a second time, for AVX2, chosen at run time (include/span.h)
+ifneq ($(findstring x86_64,$(shell $(CC) -dumpmachine)),)
+LIBOBJS += $(BUILD)/obj/span_avx2.o
+CFLAGS  += -DRASTTY_SPAN_AVX2
+endif
 UNITSRC := $(wildcard tests/unit/*.c)
 UNITOBJ := $(patsubst tests/unit/%.c,$(BUILD)/tests/%.o,$(UNITSRC))
 
@@ -55,6 +60,10 @@ $(BUILD)/librastty.a: $(LIBOBJS)
 $(BUILD)/obj/%.o: src/%.c | $(BUILD)/obj
 	@echo "  CC      $<"
 	$(Q)$(CC) $(CFLAGS) -MMD -MP -c -o $@ $<
+
+$(BUILD)/obj/span_avx2.o: src/span.c | $(BUILD)/obj
+	@echo "  CC      $< (AVX2)"
+	$(Q)$(CC) $(CFLAGS) -mavx2 -mno-fma -DSPAN_AVX2_COPY -MMD -MP -c -o $@ $<
 
 $(BUILD)/tests/%.o: tests/unit/%.c | $(BUILD)/tests
 	@echo "  CC      $<"

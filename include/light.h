@@ -182,8 +182,8 @@ static inline void light_terms4(const struct light_env *env, const f4 n[3], cons
         f4 ih = f4_select(pos, f4_set(1.0f) / f4_select(pos, hl, f4_set(1)), f4_set(0));
         f4 ndl = n[0] * f4_set(l[0]) + n[1] * f4_set(l[1]) + n[2] * f4_set(l[2]);
         f4 ndh = (n[0] * h[0] + n[1] * h[1] + n[2] * h[2]) * ih;
-        f4 dd = f4_select(ndl > f4_set(0), ndl, f4_set(0));
-        f4 ss = light_pow4(f4_select(ndh > f4_set(0), ndh, f4_set(0)), ns);
+        f4 dd = f4_max(ndl, f4_set(0));
+        f4 ss = light_pow4(f4_max(ndh, f4_set(0)), ns);
         for (int k = 0; k < 3; k++) {
             d[k] += dd * f4_set(col[k]);
             s[k] += ss * f4_set(col[k]);

@@ -103,15 +103,16 @@ static inline void shade_fragment(const struct shade_ctx *c, enum shade_mode mod
 
 /* Four pixels at once (the normals view goes pixel by pixel through shade_fragment): in every
  * lane exactly what shade_fragment gives. var[k] holds varying k of the four pixels; lambda
- * their texture level of detail (texture_lod4; trilinear only). */
-static inline void shade_fragment4(const struct shade_ctx *c, enum shade_mode mode,
-                                   const struct shade_tri *t, const f4 *var, f4 lambda,
-                                   f4 rgb_out[3])
+ * their texture level of detail (texture_lod4; trilinear only); filter is c->filter (an
+ * argument so that a caller can make it a constant). */
+static inline __attribute__((always_inline)) void
+shade_fragment4(const struct shade_ctx *c, enum shade_mode mode, enum tex_filter filter,
+                const struct shade_tri *t, const f4 *var, f4 lambda, f4 rgb_out[3])
 {
     f4 albedo[3];
     if (t->tex) {
         f4 tx[3];
-        texture_sample4(t->tex, c->filter, var[0], var[1], lambda, tx);
+        texture_sample4(t->tex, filter, var[0], var[1], lambda, tx);
         for (int k = 0; k < 3; k++)
             albedo[k] = f4_set(t->base[k]) * tx[k];
     } else {

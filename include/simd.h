@@ -26,15 +26,43 @@ static inline i4 i4_set(int32_t a)
     return (i4){a, a, a, a};
 }
 
-/* m ? a : b, lane by lane (m from a comparison) */
+/* m ? a : b, lane by lane (m from a comparison: every lane 0 or -1) */
 static inline f4 f4_select(i4 m, f4 a, f4 b)
 {
+#if defined(__SSE4_1__)
+    return __builtin_ia32_blendvps(b, a, (f4)m);
+#else
     return (f4)((m & (i4)a) | (~m & (i4)b));
+#endif
 }
 
 static inline i4 i4_select(i4 m, i4 a, i4 b)
 {
+#if defined(__SSE4_1__)
+    return (i4)__builtin_ia32_blendvps((f4)b, (f4)a, (f4)m);
+#else
     return (m & a) | (~m & b);
+#endif
+}
+
+/* a > b ? a : b and a < b ? a : b, lane by lane: exactly that expression (b when either is
+ * NaN or both are zeros), which is what SSE's maxps / minps compute */
+static inline f4 f4_max(f4 a, f4 b)
+{
+#if defined(__SSE__)
+    return __builtin_ia32_maxps(a, b);
+#else
+    return f4_select(a > b, a, b);
+#endif
+}
+
+static inline f4 f4_min(f4 a, f4 b)
+{
+#if defined(__SSE__)
+    return __builtin_ia32_minps(a, b);
+#else
+    return f4_select(a < b, a, b);
+#endif
 }
 
 static inline f4 f4_from_i4(i4 a)
@@ -46,6 +74,17 @@ static inline f4 f4_from_i4(i4 a)
 static inline i4 i4_trunc(f4 a)
 {
     return __builtin_convertvector(a, i4);
+}
+
+/* floor of each lane, as an integer; |a| must be below 2^31 (callers clamp first) */
+static inline i4 i4_floor(f4 a)
+{
+#if defined(__SSE4_1__)
+    return i4_trunc(__builtin_ia32_roundps(a, 0x9)); /* toward -inf, no exception */
+#else
+    i4 i = i4_trunc(a);
+    return i + (f4_from_i4(i) > a); /* -1 where truncation rounded a negative a up */
+#endif
 }
 
 /* square root of each lane: the same IEEE result as sqrtf */
@@ -71,10 +110,24 @@ static inline f4 f4_log2(f4 x)
     return e + p;
 }
 
-/* any lane set? */
+/* any lane set? (m from a comparison) */
 static inline int i4_any(i4 m)
 {
+#if defined(__SSE__)
+    return __builtin_ia32_movmskps((f4)m) != 0;
+#else
     return (m[0] | m[1] | m[2] | m[3]) != 0;
+#endif
+}
+
+/* every lane set? (m from a comparison) */
+static inline int i4_all(i4 m)
+{
+#if defined(__SSE__)
+    return __builtin_ia32_movmskps((f4)m) == 15;
+#else
+    return (m[0] & m[1] & m[2] & m[3]) != 0;
+#endif
 }
 
 #endif

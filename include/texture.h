@@ -205,9 +205,7 @@ static inline i4 texture_wrap4(f4 x, int n)
 {
     i4 ok = (x > f4_set(-1e9f)) & (x < f4_set(1e9f));
     x = f4_select(ok, x, f4_set(0));
-    i4 i = i4_trunc(x);
-    i += (f4_from_i4(i) > x); /* -1 where truncation rounded a negative x up: floor */
-    i &= ok;
+    i4 i = i4_floor(x) & ok;
     if ((n & (n - 1)) == 0)
         return i & i4_set(n - 1);
     i4 inside = (i >= i4_set(0)) & (i < i4_set(n));
@@ -246,8 +244,7 @@ static inline void texture_bilinear4(const struct texture_level *lv, f4 u, f4 v,
     i4 ok = (x > f4_set(-1e9f)) & (x < f4_set(1e9f)) & (y > f4_set(-1e9f)) & (y < f4_set(1e9f));
     x = f4_select(ok, x, f4_set(0));
     y = f4_select(ok, y, f4_set(0));
-    i4 xi = i4_trunc(x), yi = i4_trunc(y);
-    xi += (f4_from_i4(xi) > x), yi += (f4_from_i4(yi) > y); /* floor */
+    i4 xi = i4_floor(x), yi = i4_floor(y);
     f4 ax = x - f4_from_i4(xi), ay = y - f4_from_i4(yi);
     i4 i0 = texture_wrap4(f4_from_i4(xi), lv->w), j0 = texture_wrap4(f4_from_i4(yi), lv->h);
     i4 i1 = i4_select(i0 + 1 == i4_set(lv->w), i4_set(0), i0 + 1);

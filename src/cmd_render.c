@@ -11,6 +11,7 @@
 #include "light.h"
 #include "pipeline.h"
 #include "scene.h"
+#include "span.h"
 #include "ssaa.h"
 #include "texfind.h"
 #include "timing.h"
@@ -203,8 +204,8 @@ int cmd_render(const struct options *o, struct err *e)
                     cam.eye.x, cam.eye.y, cam.eye.z, cam.target.x, cam.target.y, cam.target.z,
                     cam.up.x, cam.up.y, cam.up.z, cam.fov_deg, cam.near, cam.far);
             double med = timing_median(ms, drawn); /* sorts ms: ms[0] is the fastest */
-            fprintf(stderr, "frames=%d median_ms=%.4f min_ms=%.4f load_ms=%.2f\n", drawn, med,
-                    ms[0], load_ms);
+            fprintf(stderr, "frames=%d median_ms=%.4f min_ms=%.4f load_ms=%.2f simd=%s\n", drawn,
+                    med, ms[0], load_ms, span_isa_name());
         }
         fb_free(&fb);
     }

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "fb.h"
+#include "span.h"
 #include "ssaa.h"
 #include "sweep.h"
 
@@ -532,6 +533,12 @@ int options_parse(int argc, char **argv, struct options *o, struct err *e)
     const char *env = getenv("RASTTY_THREADS"); /* --threads overrides it */
     if (env && *env && parse_int(env, 1, 64, &o->render.threads))
         return bad(e, "RASTTY_THREADS", "expected a thread count 1..64", env);
+    env = getenv("RASTTY_SIMD"); /* the span stage's instruction set (span.h) */
+    if (env && *env && span_isa_set(env))
+        return bad(e, "RASTTY_SIMD",
+                   strcmp(env, "avx2") ? "expected auto, sse2 or avx2"
+                                       : "avx2 is not available on this CPU or build",
+                   env);
     int i = 1;
     if (argc > 1 && argv[1][0] != '-') {
         for (int c = 0; c < CMD_COUNT; c++)

@@ -2,8 +2,22 @@
 #include "span.h"
 
 #include <math.h>
+#include <stdatomic.h>
+#include <stdlib.h>
+#include <string.h>
 
 #include "simd.h"
+
+/* This file is compiled twice on x86-64 (Makefile): once for the baseline (SSE2), once with
+ * -mavx2 -DSPAN_AVX2_COPY, which makes only span_draw_avx2 — the same C, so the same IEEE
+ * operations in the same order (no fused multiply-add: -mno-fma, -ffp-contract=off) and the
+ * same bytes, in VEX encoding with blends, rounding and 32-bit multiplies (simd.h). */
+void span_draw_avx2(struct span_ctx *s, int y, int x0, int x1);
+#ifdef SPAN_AVX2_COPY
+#define SPAN_DRAW span_draw_avx2
+#else
+#define SPAN_DRAW span_draw_base
+static void span_draw_base(struct span_ctx *s, int y, int x0, int x1);
 
 void span_begin(struct span_ctx *s, const struct setup_tri *t, const struct shade_tri *st,
                 uint32_t tri_index)
@@ -13,6 +27,61 @@ void span_begin(struct span_ctx *s, const struct setup_tri *t, const struct shad
     s->tri_index = tri_index;
     s->in_ready = false;
 }
+
+#ifdef RASTTY_SPAN_AVX2
+static bool cpu_has_avx2(void)
+{
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx2");
+}
+#else
+static bool cpu_has_avx2(void)
+{
+    return false;
+}
+#endif
+
+static atomic_int isa_now = -1; /* enum span_isa, -1 until first asked */
+
+int span_isa_set(const char *name)
+{
+    int isa;
+    if (!strcmp(name, "auto"))
+        isa = cpu_has_avx2() ? SPAN_ISA_AVX2 : SPAN_ISA_SSE2;
+    else if (!strcmp(name, "sse2"))
+        isa = SPAN_ISA_SSE2;
+    else if (!strcmp(name, "avx2") && cpu_has_avx2())
+        isa = SPAN_ISA_AVX2;
+    else
+        return -1;
+    atomic_store_explicit(&isa_now, isa, memory_order_relaxed);
+    return 0;
+}
+
+static int isa_get(void)
+{
+    int isa = atomic_load_explicit(&isa_now, memory_order_relaxed);
+    if (isa >= 0)
+        return isa;
+    const char *env = getenv("RASTTY_SIMD");
+    if (!env || span_isa_set(env))
+        span_isa_set("auto");
+    return atomic_load_explicit(&isa_now, memory_order_relaxed);
+}
+
+const char *span_isa_name(void)
+{
+    return isa_get() == SPAN_ISA_AVX2 ? "avx2" : "sse2";
+}
+
+void span_draw(struct span_ctx *s, int y, int x0, int x1)
+{
+    if (isa_get() == SPAN_ISA_AVX2)
+        span_draw_avx2(s, y, x0, x1);
+    else
+        span_draw_base(s, y, x0, x1);
+}
+#endif
 
 /* floor(a / b), b > 0 */
 static inline int64_t floor_div(int64_t a, int64_t b)
@@ -62,15 +131,17 @@ static inline void exact_at(float qr, float qdx, const float *ar, const float *a
  * A lane's arithmetic is the scalar formula, so a pixel's bytes never depend on where its
  * group of four started. Every plane coefficient is copied into a local first: the
  * framebuffer's byte stores may alias anything and would otherwise force reloads. */
-static inline void run(struct span_ctx *s, int y, int xa, int xb, const enum shade_mode mode)
+static inline __attribute__((always_inline)) void run(struct span_ctx *s, int y, int xa, int xb,
+                                                      const enum shade_mode mode,
+                                                      const enum depth_mode depth,
+                                                      const enum persp_method persp,
+                                                      const enum tex_filter filter)
 {
     const struct setup_interp *in = &s->in;
     const struct setup_tri *t = s->tri;
     /* (the depth-only pass has no shading record: never look at s->st there) */
     const int n_var = mode != SHADE_WIRE && s->st->vcolor ? VARY_COLOR + 3
                       : mode == SHADE_GOURAUD || mode == SHADE_PHONG ? 8 : 2;
-    const enum persp_method persp = s->persp;
-    const enum depth_mode depth = s->depth;
     const int span_n = persp == PERSP_SPAN8 ? 8 : persp == PERSP_SPAN16 ? 16 : 32;
     const float Y = (float)(y - t->y0);
     /* depth: the plane's value as c + (small part), rounded once (setup.h) */
@@ -79,12 +150,14 @@ static inline void run(struct span_ctx *s, int y, int xa, int xb, const enum sha
     const f4 zdx = f4_set(in->z.dx), zqdx = f4_set(in->zq.dx), qdx = f4_set(in->q.dx);
     const f4 z_lo = f4_set(in->z_lo), z_hi = f4_set(in->z_hi);
     float ar[VARY_MAX], adx[VARY_MAX];
+    f4 ar4[VARY_MAX], adx4[VARY_MAX]; /* the same, in every lane */
     for (int k = 0; k < n_var; k++) {
         ar[k] = row_of(&in->a[k], Y);
         adx[k] = in->a[k].dx;
+        ar4[k] = f4_set(ar[k]), adx4[k] = f4_set(adx[k]);
     }
     /* trilinear: u and v's derivatives need the planes' y steps too */
-    const bool lod = mode != SHADE_WIRE && s->shade->filter == TEX_TRILINEAR && s->st->tex;
+    const bool lod = mode != SHADE_WIRE && filter == TEX_TRILINEAR && s->st->tex;
     const f4 udy = f4_set(in->a[0].dy), vdy = f4_set(in->a[1].dy), qdy = f4_set(in->q.dy);
     const int x_org = t->x0, fb_w = s->fb->w;
     const size_t row = (size_t)y * (size_t)fb_w;
@@ -105,8 +178,8 @@ static inline void run(struct span_ctx *s, int y, int xa, int xb, const enum sha
         f4 z = zc + (f4_set(zr) + zdx * X);
         if (depth == DEPTH_W)
             z = z / (f4_set(zqr) + zqdx * X);
-        z = f4_select(z < z_lo, z_lo, z); /* never past the corners */
-        z = f4_select(z > z_hi, z_hi, z);
+        z = f4_max(z_lo, z); /* never past the corners: z < z_lo ? z_lo : z */
+        z = f4_min(z_hi, z); /* z > z_hi ? z_hi : z */
         if (depth == DEPTH_Z16) { /* floor(z * 65535 + 0.5); z is in [0, 1] */
             f4 q = z * f4_set(65535.0f) + f4_set(0.5f);
             i4 qi = i4_trunc(q);
@@ -124,18 +197,24 @@ static inline void run(struct span_ctx *s, int y, int xa, int xb, const enum sha
                 overdraw[x + l]++;
         if (!i4_any(pass))
             continue;
-        for (int l = 0; l < n; l++)
-            if (pass[l]) {
-                depth_buf[x + l] = z[l];
-                shaded++;
-            }
+        if (n == SIMD_LANES) { /* a whole group inside the run: one store */
+            f4 kept = f4_select(pass, z, old);
+            __builtin_memcpy(depth_buf + x, &kept, sizeof kept);
+            shaded += (uint64_t)-(pass[0] + pass[1] + pass[2] + pass[3]); /* lanes are -1 */
+        } else {
+            for (int l = 0; l < n; l++)
+                if (pass[l]) {
+                    depth_buf[x + l] = z[l];
+                    shaded++;
+                }
+        }
         if (mode == SHADE_WIRE)
             continue;
         f4 var[VARY_MAX];
         if (persp == PERSP_CORRECT || persp == PERSP_AFFINE) {
             f4 rq = f4_set(1.0f) / (f4_set(qr) + qdx * X);
             for (int k = 0; k < n_var; k++)
-                var[k] = (f4_set(ar[k]) + f4_set(adx[k]) * X) * rq;
+                var[k] = (ar4[k] + adx4[k] * X) * rq;
         } else {
             for (int k = 0; k < n_var; k++)
                 var[k] = f4_set(0);
@@ -180,8 +259,22 @@ static inline void run(struct span_ctx *s, int y, int xa, int xb, const enum sha
                                   (udy - var[0] * qdy) * rq, (vdy - var[1] * qdy) * rq);
         }
         f4 rgb[3];
-        shade_fragment4(sc, mode, st, var, lambda, rgb);
+        shade_fragment4(sc, mode, filter, st, var, lambda, rgb);
         i4 r8 = fb_quantize4(rgb[0]), g8 = fb_quantize4(rgb[1]), b8 = fb_quantize4(rgb[2]);
+        if (n == SIMD_LANES && i4_all(pass)) {
+            /* four pixels, twelve bytes: each lane's rgb0 as one 32-bit store, in order, so
+             * each overwrites the byte the one before wrote past its pixel; the last one
+             * stops at its own three bytes */
+            i4 px = r8 | (g8 << 8) | (b8 << 16);
+            uint8_t *p = rgb_buf + 3 * x;
+            for (int l = 0; l < SIMD_LANES - 1; l++) {
+                uint32_t w = (uint32_t)px[l];
+                uint8_t le[4] = {(uint8_t)w, (uint8_t)(w >> 8), (uint8_t)(w >> 16), 0};
+                __builtin_memcpy(p + 3 * l, le, 4);
+            }
+            p[9] = (uint8_t)r8[3], p[10] = (uint8_t)g8[3], p[11] = (uint8_t)b8[3];
+            continue;
+        }
         for (int l = 0; l < n; l++)
             if (pass[l]) {
                 uint8_t *p = rgb_buf + 3 * (x + l);
@@ -192,7 +285,11 @@ static inline void run(struct span_ctx *s, int y, int xa, int xb, const enum sha
     s->shaded += shaded;
 }
 
-void span_draw(struct span_ctx *s, int y, int x0, int x1)
+#ifdef SPAN_AVX2_COPY
+void SPAN_DRAW(struct span_ctx *s, int y, int x0, int x1)
+#else
+static void SPAN_DRAW(struct span_ctx *s, int y, int x0, int x1)
+#endif
 {
     if (!s->in_ready) {
         int n_var = s->mode == SHADE_WIRE ? 0
@@ -204,11 +301,29 @@ void span_draw(struct span_ctx *s, int y, int x0, int x1)
         if (s->hit)
             s->hit[s->tri_index] = 1;
     }
+    /* the default methods get copies of their own per filter (every test folds away); any
+     * other combination shares one copy per shading mode */
+    const enum tex_filter f = s->shade ? s->shade->filter : TEX_NEAREST;
+    if (s->depth == DEPTH_Z && s->persp == PERSP_CORRECT) {
+#define RUN_FILTERS(MODE)                                                                      \
+    f == TEX_NEAREST    ? run(s, y, x0, x1, MODE, DEPTH_Z, PERSP_CORRECT, TEX_NEAREST)          \
+    : f == TEX_BILINEAR ? run(s, y, x0, x1, MODE, DEPTH_Z, PERSP_CORRECT, TEX_BILINEAR)         \
+                        : run(s, y, x0, x1, MODE, DEPTH_Z, PERSP_CORRECT, TEX_TRILINEAR)
+        switch (s->mode) {
+        case SHADE_UNLIT: RUN_FILTERS(SHADE_UNLIT); break;
+        case SHADE_FLAT: RUN_FILTERS(SHADE_FLAT); break;
+        case SHADE_GOURAUD: RUN_FILTERS(SHADE_GOURAUD); break;
+        case SHADE_PHONG: RUN_FILTERS(SHADE_PHONG); break;
+        default: run(s, y, x0, x1, SHADE_WIRE, DEPTH_Z, PERSP_CORRECT, TEX_NEAREST); break;
+        }
+#undef RUN_FILTERS
+        return;
+    }
     switch (s->mode) {
-    case SHADE_UNLIT: run(s, y, x0, x1, SHADE_UNLIT); break;
-    case SHADE_FLAT: run(s, y, x0, x1, SHADE_FLAT); break;
-    case SHADE_GOURAUD: run(s, y, x0, x1, SHADE_GOURAUD); break;
-    case SHADE_PHONG: run(s, y, x0, x1, SHADE_PHONG); break;
-    default: run(s, y, x0, x1, SHADE_WIRE); break;
+    case SHADE_UNLIT: run(s, y, x0, x1, SHADE_UNLIT, s->depth, s->persp, f); break;
+    case SHADE_FLAT: run(s, y, x0, x1, SHADE_FLAT, s->depth, s->persp, f); break;
+    case SHADE_GOURAUD: run(s, y, x0, x1, SHADE_GOURAUD, s->depth, s->persp, f); break;
+    case SHADE_PHONG: run(s, y, x0, x1, SHADE_PHONG, s->depth, s->persp, f); break;
+    default: run(s, y, x0, x1, SHADE_WIRE, s->depth, s->persp, f); break;
     }
 }

@@ -9,6 +9,7 @@
 #include "obj.h"
 #include "pipeline.h"
 #include "skybox.h"
+#include "span.h"
 #include "test.h"
 
 /* an n x n grid over [-s,s]^2 in the plane y = 0 (two triangles a cell), uv = (x, z) / 2 */
@@ -352,5 +353,64 @@ TEST(thread_count_never_changes_the_picture)
     free(depth);
     free(od);
     skybox_free(&sky);
+    scene1_free(&s);
+}
+
+TEST(simd_copy_never_changes_the_picture)
+{
+    /* the span stage's AVX2 copy (span.h) against the baseline one: a textured grid through
+     * the near plane with a 6x5 texture (no power of two: the modulo wrap) and its mips, in
+     * every shading mode, filter, depth and interpolation method: the same bytes and depths */
+    if (span_isa_set("avx2") != 0) {
+        test_skip(t, "no AVX2 copy in this build or on this CPU");
+        return;
+    }
+    char *obj = grid_obj(20, 6);
+    struct scene1 s;
+    REQUIRE(scene1_init(&s, obj, 203, 117, 0) == 0);
+    free(obj);
+    texture_free(&s.tex);
+    uint8_t px[6 * 5 * 4];
+    for (int i = 0; i < 6 * 5 * 4; i++)
+        px[i] = (uint8_t)(i * 37 + (i / 4) * 11);
+    REQUIRE(texture_from_rgba(6, 5, px, &s.tex, NULL) == 0);
+    REQUIRE(texture_build_mips(&s.tex, NULL) >= 0);
+    struct camera cam;
+    camera_default(&cam);
+    cam.eye = v3(0.3, 0.4, 2);
+    cam.target = v3(0, 0, -2);
+    cam.fov_deg = 100;
+    size_t n = 203 * 117;
+    uint8_t *rgb = malloc(n * 3);
+    float *depth = malloc(n * sizeof *depth);
+    REQUIRE(rgb && depth);
+    const enum depth_mode depths[] = {DEPTH_Z, DEPTH_W, DEPTH_Z16, DEPTH_RZ};
+    const enum persp_method persps[] = {PERSP_CORRECT, PERSP_AFFINE, PERSP_SPAN8};
+    int compared = 0, differ = 0;
+    for (enum shade_mode m = SHADE_UNLIT; m <= SHADE_PHONG; m++)
+        for (enum tex_filter f = 0; f < TEX_FILTER_COUNT; f++)
+            for (int di = 0; di < 4; di++)
+                for (int pi = 0; pi < 3; pi++) {
+                    struct render_opts o;
+                    render_opts_default(&o);
+                    o.shade = m, o.filter = f, o.depth = depths[di], o.persp = persps[pi];
+                    o.threads = 1;
+                    struct frame_stats st;
+                    REQUIRE(span_isa_set("sse2") == 0);
+                    REQUIRE(pipeline_draw(s.p, &s.item, 1, NULL, &cam, &o, &s.fb, &st, NULL) == 0);
+                    CHECK(st.pixels_shaded > 1000);
+                    memcpy(rgb, s.fb.rgb, n * 3);
+                    memcpy(depth, s.fb.depth, n * sizeof *depth);
+                    REQUIRE(span_isa_set("avx2") == 0);
+                    REQUIRE(pipeline_draw(s.p, &s.item, 1, NULL, &cam, &o, &s.fb, &st, NULL) == 0);
+                    compared++;
+                    differ += memcmp(rgb, s.fb.rgb, n * 3) != 0 ||
+                              memcmp(depth, s.fb.depth, n * sizeof *depth) != 0;
+                }
+    CHECK_EQ_INT(compared, 4 * 3 * 4 * 3);
+    CHECK_EQ_INT(differ, 0);
+    span_isa_set("auto");
+    free(rgb);
+    free(depth);
     scene1_free(&s);
 }
