@@ -42,6 +42,7 @@
 #include "render.h"
 #include "setup.h"
 #include "shade.h"
+#include "simd.h"
 
 /* One back-end worker's state: the frame's constants and the current triangle. */
 struct span_ctx {
@@ -56,6 +57,7 @@ struct span_ctx {
     const struct shade_tri *st;
     uint32_t tri_index;        /* its place in the batch */
     struct setup_interp in;
+    f4 a_c[VARY_MAX], a_dy[VARY_MAX], a_dx[VARY_MAX]; /* in.a's planes, in every lane */
     bool in_ready;             /* setup_interp done for tri */
     /* results, added to the frame's stats by the caller */
     uint8_t *hit;              /* hit[tri_index] = 1 once a triangle has a run (or NULL) */

@@ -135,7 +135,8 @@ static inline __attribute__((always_inline)) void run(struct span_ctx *s, int y,
                                                       const enum shade_mode mode,
                                                       const enum depth_mode depth,
                                                       const enum persp_method persp,
-                                                      const enum tex_filter filter)
+                                                      const enum tex_filter filter,
+                                                      const bool plain)
 {
     const struct setup_interp *in = &s->in;
     const struct setup_tri *t = s->tri;
@@ -150,11 +151,12 @@ static inline __attribute__((always_inline)) void run(struct span_ctx *s, int y,
     const f4 zdx = f4_set(in->z.dx), zqdx = f4_set(in->zq.dx), qdx = f4_set(in->q.dx);
     const f4 z_lo = f4_set(in->z_lo), z_hi = f4_set(in->z_hi);
     float ar[VARY_MAX], adx[VARY_MAX];
-    f4 ar4[VARY_MAX], adx4[VARY_MAX]; /* the same, in every lane */
+    f4 ar4[VARY_MAX]; /* the row bases in every lane: row_of, four at a time */
+    const f4 Y4 = f4_set(Y), *adx4 = s->a_dx;
     for (int k = 0; k < n_var; k++) {
-        ar[k] = row_of(&in->a[k], Y);
+        ar4[k] = s->a_c[k] + s->a_dy[k] * Y4;
+        ar[k] = ar4[k][0];
         adx[k] = in->a[k].dx;
-        ar4[k] = f4_set(ar[k]), adx4[k] = f4_set(adx[k]);
     }
     /* trilinear: u and v's derivatives need the planes' y steps too */
     const bool lod = mode != SHADE_WIRE && filter == TEX_TRILINEAR && s->st->tex;
@@ -163,7 +165,8 @@ static inline __attribute__((always_inline)) void run(struct span_ctx *s, int y,
     const size_t row = (size_t)y * (size_t)fb_w;
     float *restrict depth_buf = s->fb->depth + row;
     uint8_t *restrict rgb_buf = s->fb->rgb + 3 * row;
-    uint32_t *restrict overdraw = s->fb->overdraw ? s->fb->overdraw + row : NULL;
+    /* plain: no overdraw count, no normals view (a constant in the default methods' copies) */
+    uint32_t *restrict overdraw = !plain && s->fb->overdraw ? s->fb->overdraw + row : NULL;
     const struct shade_ctx *sc = s->shade;
     const struct shade_tri *st = s->st;
     /* span methods: the current span's absolute start column, its clamped ends, the
@@ -238,7 +241,7 @@ static inline __attribute__((always_inline)) void run(struct span_ctx *s, int y,
                     var[k][l] = va[k] + f * vd[k];
             }
         }
-        if (sc->view == VIEW_NORMALS) { /* lane by lane */
+        if (!plain && sc->view == VIEW_NORMALS) { /* lane by lane */
             for (int l = 0; l < n; l++) {
                 if (!pass[l])
                     continue;
@@ -297,6 +300,11 @@ static void SPAN_DRAW(struct span_ctx *s, int y, int x0, int x1)
                     : s->mode == SHADE_GOURAUD || s->mode == SHADE_PHONG ? 8 : 2;
         setup_interp(s->tri, s->depth, &s->fb->proj, s->persp == PERSP_AFFINE,
                      n_var, &s->in);
+        for (int k = 0; k < n_var; k++) {
+            s->a_c[k] = f4_set(s->in.a[k].c);
+            s->a_dy[k] = f4_set(s->in.a[k].dy);
+            s->a_dx[k] = f4_set(s->in.a[k].dx);
+        }
         s->in_ready = true;
         if (s->hit)
             s->hit[s->tri_index] = 1;
@@ -304,26 +312,27 @@ static void SPAN_DRAW(struct span_ctx *s, int y, int x0, int x1)
     /* the default methods get copies of their own per filter (every test folds away); any
      * other combination shares one copy per shading mode */
     const enum tex_filter f = s->shade ? s->shade->filter : TEX_NEAREST;
-    if (s->depth == DEPTH_Z && s->persp == PERSP_CORRECT) {
+    if (s->depth == DEPTH_Z && s->persp == PERSP_CORRECT && !s->fb->overdraw &&
+        (!s->shade || s->shade->view != VIEW_NORMALS)) {
 #define RUN_FILTERS(MODE)                                                                      \
-    f == TEX_NEAREST    ? run(s, y, x0, x1, MODE, DEPTH_Z, PERSP_CORRECT, TEX_NEAREST)          \
-    : f == TEX_BILINEAR ? run(s, y, x0, x1, MODE, DEPTH_Z, PERSP_CORRECT, TEX_BILINEAR)         \
-                        : run(s, y, x0, x1, MODE, DEPTH_Z, PERSP_CORRECT, TEX_TRILINEAR)
+    f == TEX_NEAREST    ? run(s, y, x0, x1, MODE, DEPTH_Z, PERSP_CORRECT, TEX_NEAREST, true)    \
+    : f == TEX_BILINEAR ? run(s, y, x0, x1, MODE, DEPTH_Z, PERSP_CORRECT, TEX_BILINEAR, true)   \
+                        : run(s, y, x0, x1, MODE, DEPTH_Z, PERSP_CORRECT, TEX_TRILINEAR, true)
         switch (s->mode) {
         case SHADE_UNLIT: RUN_FILTERS(SHADE_UNLIT); break;
         case SHADE_FLAT: RUN_FILTERS(SHADE_FLAT); break;
         case SHADE_GOURAUD: RUN_FILTERS(SHADE_GOURAUD); break;
         case SHADE_PHONG: RUN_FILTERS(SHADE_PHONG); break;
-        default: run(s, y, x0, x1, SHADE_WIRE, DEPTH_Z, PERSP_CORRECT, TEX_NEAREST); break;
+        default: run(s, y, x0, x1, SHADE_WIRE, DEPTH_Z, PERSP_CORRECT, TEX_NEAREST, true); break;
         }
 #undef RUN_FILTERS
         return;
     }
     switch (s->mode) {
-    case SHADE_UNLIT: run(s, y, x0, x1, SHADE_UNLIT, s->depth, s->persp, f); break;
-    case SHADE_FLAT: run(s, y, x0, x1, SHADE_FLAT, s->depth, s->persp, f); break;
-    case SHADE_GOURAUD: run(s, y, x0, x1, SHADE_GOURAUD, s->depth, s->persp, f); break;
-    case SHADE_PHONG: run(s, y, x0, x1, SHADE_PHONG, s->depth, s->persp, f); break;
-    default: run(s, y, x0, x1, SHADE_WIRE, s->depth, s->persp, f); break;
+    case SHADE_UNLIT: run(s, y, x0, x1, SHADE_UNLIT, s->depth, s->persp, f, false); break;
+    case SHADE_FLAT: run(s, y, x0, x1, SHADE_FLAT, s->depth, s->persp, f, false); break;
+    case SHADE_GOURAUD: run(s, y, x0, x1, SHADE_GOURAUD, s->depth, s->persp, f, false); break;
+    case SHADE_PHONG: run(s, y, x0, x1, SHADE_PHONG, s->depth, s->persp, f, false); break;
+    default: run(s, y, x0, x1, SHADE_WIRE, s->depth, s->persp, f, false); break;
     }
 }
