@@ -30,7 +30,7 @@
 
 struct skybox_level {
     int n;          /* face interior is n x n; stored (n+2) x (n+2) with the border */
-    uint8_t *rgb[6]; /* per face, (n+2)^2 * 3 bytes */
+    uint8_t *rgb[6]; /* per face, (n+2)^2 texels of 4 bytes (r, g, b, 0: one 32-bit load) */
 };
 
 struct skybox {

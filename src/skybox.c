@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "simd.h"
 #include "texture.h"
 
 /* GL cube-map table: face of the major axis, its sc/tc coordinates */
@@ -45,7 +46,7 @@ static vec3 dir_of(int face, double sc, double tc)
 static inline uint8_t *texel(const struct skybox_level *l, int face, int i, int j)
 {
     /* i, j in [-1, n]: interior plus border */
-    return l->rgb[face] + ((size_t)(j + 1) * (size_t)(l->n + 2) + (size_t)(i + 1)) * 3;
+    return l->rgb[face] + ((size_t)(j + 1) * (size_t)(l->n + 2) + (size_t)(i + 1)) * 4;
 }
 
 /* border texels: nearest interior texel of the neighbouring face in that direction */
@@ -63,7 +64,7 @@ static void fill_border(struct skybox_level *l)
                 int si = (int)floor((sc / ma + 1) * 0.5 * n), sj = (int)floor((tc / ma + 1) * 0.5 * n);
                 si = si < 0 ? 0 : si >= n ? n - 1 : si;
                 sj = sj < 0 ? 0 : sj >= n ? n - 1 : sj;
-                memcpy(texel(l, f, i, j), texel(l, g, si, sj), 3);
+                memcpy(texel(l, f, i, j), texel(l, g, si, sj), 4);
             }
 }
 
@@ -71,7 +72,7 @@ static int alloc_level(struct skybox_level *l, int n)
 {
     l->n = n;
     for (int f = 0; f < 6; f++)
-        if (!(l->rgb[f] = malloc((size_t)(n + 2) * (size_t)(n + 2) * 3)))
+        if (!(l->rgb[f] = calloc((size_t)(n + 2) * (size_t)(n + 2), 4)))
             return -1;
     return 0;
 }
@@ -215,40 +216,6 @@ static inline void sample_face(const struct skybox_level *l, int f, double u, do
     }
 }
 
-/* face_of and sample_face in float, for the per-pixel loop of skybox_draw_rows */
-static inline int face_of_f(const float d[3], float *sc, float *tc, float *ma)
-{
-    float ax = fabsf(d[0]), ay = fabsf(d[1]), az = fabsf(d[2]);
-    if (ax >= ay && ax >= az) {
-        *ma = ax, *tc = -d[1], *sc = d[0] > 0 ? -d[2] : d[2];
-        return d[0] > 0 ? 0 : 1;
-    }
-    if (ay >= az) {
-        *ma = ay, *sc = d[0], *tc = d[1] > 0 ? d[2] : -d[2];
-        return d[1] > 0 ? 2 : 3;
-    }
-    *ma = az, *tc = -d[1], *sc = d[2] > 0 ? d[0] : -d[0];
-    return d[2] > 0 ? 4 : 5;
-}
-
-static inline void sample_face_f(const struct skybox_level *l, int f, float u, float v,
-                                 float rgb_out[3])
-{
-    float half = 0.5f * l->n, x = (u + 1) * half - 0.5f, y = (v + 1) * half - 0.5f;
-    int i0 = (int)x, j0 = (int)y; /* floor: x, y >= -0.5 here, and finite */
-    i0 -= x < i0, j0 -= y < j0;
-    i0 = i0 < -1 ? -1 : i0 > l->n - 1 ? l->n - 1 : i0;
-    j0 = j0 < -1 ? -1 : j0 > l->n - 1 ? l->n - 1 : j0;
-    float ax = x - i0, ay = y - j0;
-    ax = ax < 0 ? 0 : ax > 1 ? 1 : ax;
-    ay = ay < 0 ? 0 : ay > 1 ? 1 : ay;
-    const uint8_t *p00 = texel(l, f, i0, j0), *p01 = p00 + 3 * (l->n + 2);
-    for (int c = 0; c < 3; c++) {
-        float a = p00[c] + ax * (p00[c + 3] - p00[c]), b = p01[c] + ax * (p01[c + 3] - p01[c]);
-        rgb_out[c] = (a + ay * (b - a)) * (1.0f / 255.0f);
-    }
-}
-
 void skybox_sample(const struct skybox *s, int level, vec3 d, float rgb_out[3])
 {
     double sc, tc, ma;
@@ -258,6 +225,45 @@ void skybox_sample(const struct skybox *s, int level, vec3 d, float rgb_out[3])
         return;
     }
     sample_face(&s->level[level], f, sc / ma, tc / ma, rgb_out);
+}
+
+/* sample_face in float, four lanes at once, each lane on its own face (the per-pixel loop of
+ * skybox_draw_rows; sample_face stays the double-precision reference for skybox_sample) */
+static inline void sample_face4(const struct skybox_level *l, i4 face, f4 u, f4 v, f4 rgb_out[3])
+{
+    const f4 half = f4_set(0.5f * l->n), zero = f4_set(0), one = f4_set(1);
+    f4 x = (u + one) * half - f4_set(0.5f), y = (v + one) * half - f4_set(0.5f);
+    i4 i0 = i4_floor(x), j0 = i4_floor(y); /* x, y >= -0.5 here, and finite */
+    const i4 lo = i4_set(-1), hi = i4_set(l->n - 1);
+    i0 = i4_select(i0 < lo, lo, i4_select(i0 > hi, hi, i0));
+    j0 = i4_select(j0 < lo, lo, i4_select(j0 > hi, hi, j0));
+    f4 ax = x - f4_from_i4(i0), ay = y - f4_from_i4(j0);
+    ax = f4_select(ax < zero, zero, f4_select(ax > one, one, ax));
+    ay = f4_select(ay < zero, zero, f4_select(ay > one, one, ay));
+    const int stride = 4 * (l->n + 2);
+    i4 off = ((j0 + 1) * i4_set(l->n + 2) + (i0 + 1)) * i4_set(4);
+    uint32_t w[4][SIMD_LANES]; /* p00 p10 p01 p11 of each lane, r g b 0 in memory order */
+    for (int k = 0; k < SIMD_LANES; k++) {
+        const uint8_t *p = l->rgb[face[k]] + off[k];
+        __builtin_memcpy(&w[0][k], p, 4);
+        __builtin_memcpy(&w[1][k], p + 4, 4);
+        __builtin_memcpy(&w[2][k], p + stride, 4);
+        __builtin_memcpy(&w[3][k], p + stride + 4, 4);
+    }
+    i4 t[4];
+    for (int q = 0; q < 4; q++)
+        __builtin_memcpy(&t[q], w[q], sizeof t[q]);
+    for (int c = 0; c < 3; c++) {
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+        const int sh = 24 - 8 * c;
+#else
+        const int sh = 8 * c;
+#endif
+        f4 p00 = f4_from_i4((t[0] >> sh) & i4_set(255)), p10 = f4_from_i4((t[1] >> sh) & i4_set(255));
+        f4 p01 = f4_from_i4((t[2] >> sh) & i4_set(255)), p11 = f4_from_i4((t[3] >> sh) & i4_set(255));
+        f4 a = p00 + ax * (p10 - p00), b = p01 + ax * (p11 - p01);
+        rgb_out[c] = (a + ay * (b - a)) * f4_set(1.0f / 255.0f);
+    }
 }
 
 void skybox_draw_rows(const struct skybox *s, const struct camera *cam, struct fb *fb, int y0,
@@ -282,35 +288,56 @@ void skybox_draw_rows(const struct skybox *s, const struct camera *cam, struct f
     const struct skybox_level *l0 = &s->level[level], *l1 = &s->level[level + (frac > 0)];
     y0 = y0 < 0 ? 0 : y0;
     y1 = y1 > fb->h ? fb->h : y1;
-    /* per pixel in float, as a GPU would: the direction is a row vector plus a step along r,
-     * one reciprocal of the major axis gives both face coordinates */
-    const float rx = (float)(r.x * tx), ry = (float)(r.y * tx), rz = (float)(r.z * tx);
-    const float sx = 2.0f / fb->w;
+    /* per pixel in float, as a GPU would, four pixels at a time (simd.h): the direction is a
+     * row vector plus a step along r, one reciprocal of the major axis gives both face
+     * coordinates; face_of's cube-map table as selects, lane by lane */
+    const f4 rx = f4_set((float)(r.x * tx)), ry = f4_set((float)(r.y * tx)),
+             rz = f4_set((float)(r.z * tx));
+    const f4 sx = f4_set(2.0f / fb->w), zero = f4_set(0), fr = f4_set(frac);
+    const f4 lane = {0, 1, 2, 3};
+    const i4 abs_mask = i4_set(0x7fffffff);
     for (int y = y0; y < y1; y++) {
         double ny = 1 - 2 * (y + 0.5) / fb->h;
         vec3 row = v3_add(f, v3_scale(u, ny * ty));
-        const float ox = (float)row.x, oy = (float)row.y, oz = (float)row.z;
-        for (int x = 0; x < fb->w; x++) {
+        const f4 ox = f4_set((float)row.x), oy = f4_set((float)row.y), oz = f4_set((float)row.z);
+        for (int x = 0; x < fb->w; x += SIMD_LANES) {
             size_t i = (size_t)y * fb->w + x;
-            if (fb_covered(fb, i))
+            int n = fb->w - x < SIMD_LANES ? fb->w - x : SIMD_LANES, todo = 0;
+            for (int k = 0; k < n; k++)
+                todo |= !fb_covered(fb, i + k) << k;
+            if (!todo)
                 continue;
-            float nx = (x + 0.5f) * sx - 1;
-            float d[3] = {ox + nx * rx, oy + nx * ry, oz + nx * rz}, sc, tc, ma;
-            int face = face_of_f(d, &sc, &tc, &ma);
-            float c[3] = {0, 0, 0};
-            if (ma > 0) {
-                float im = 1.0f / ma, fu = sc * im, fv = tc * im;
-                sample_face_f(l0, face, fu, fv, c);
-                if (frac > 0) { /* trilinear: blend with the next coarser level */
-                    float c2[3];
-                    sample_face_f(l1, face, fu, fv, c2);
-                    for (int k = 0; k < 3; k++)
-                        c[k] += frac * (c2[k] - c[k]);
-                }
+            f4 nx = (f4_from_i4(i4_set(x)) + lane + f4_set(0.5f)) * sx - f4_set(1);
+            f4 d0 = ox + nx * rx, d1 = oy + nx * ry, d2 = oz + nx * rz;
+            f4 ax = (f4)((i4)d0 & abs_mask), ay = (f4)((i4)d1 & abs_mask),
+               az = (f4)((i4)d2 & abs_mask);
+            i4 isx = (ax >= ay) & (ax >= az), isy = ~isx & (ay >= az);
+            f4 ma = f4_select(isx, ax, f4_select(isy, ay, az));
+            f4 sc = f4_select(isx, f4_select(d0 > zero, -d2, d2),
+                              f4_select(isy, d0, f4_select(d2 > zero, d0, -d0)));
+            f4 tc = f4_select(isy, f4_select(d1 > zero, d2, -d2), -d1);
+            i4 face = i4_select(isx, i4_select(d0 > zero, i4_set(0), i4_set(1)),
+                                i4_select(isy, i4_select(d1 > zero, i4_set(2), i4_set(3)),
+                                          i4_select(d2 > zero, i4_set(4), i4_set(5))));
+            i4 seen = ma > zero; /* else black */
+            f4 im = f4_set(1.0f) / f4_select(seen, ma, f4_set(1));
+            f4 fu = f4_select(seen, sc * im, zero), fv = f4_select(seen, tc * im, zero);
+            f4 c[3];
+            sample_face4(l0, face, fu, fv, c);
+            if (frac > 0) { /* trilinear: blend with the next coarser level */
+                f4 c2[3];
+                sample_face4(l1, face, fu, fv, c2);
+                for (int k = 0; k < 3; k++)
+                    c[k] += fr * (c2[k] - c[k]);
             }
-            fb->rgb[3 * i] = fb_quantize(c[0]);
-            fb->rgb[3 * i + 1] = fb_quantize(c[1]);
-            fb->rgb[3 * i + 2] = fb_quantize(c[2]);
+            i4 q[3];
+            for (int k = 0; k < 3; k++)
+                q[k] = fb_quantize4(f4_select(seen, c[k], zero));
+            for (int k = 0; k < n; k++)
+                if (todo >> k & 1) {
+                    uint8_t *p = fb->rgb + 3 * (i + k);
+                    p[0] = (uint8_t)q[0][k], p[1] = (uint8_t)q[1][k], p[2] = (uint8_t)q[2][k];
+                }
         }
     }
 }
