@@ -261,6 +261,60 @@ static inline void texture_bilinear4(const struct texture_level *lv, f4 u, f4 v,
     }
 }
 
+/* texture_bilinear4 with a level of t per lane (lane l samples level lv[l]): the same
+ * operations lane by lane, with that level's size */
+static inline void texture_bilinear4_levels(const struct texture *t, i4 lv, f4 u, f4 v,
+                                            f4 rgb_out[3])
+{
+    const f4 k = f4_set(1.0f / 255.0f);
+    i4 W, H;
+    const uint8_t *px[SIMD_LANES];
+    for (int l = 0; l < SIMD_LANES; l++) {
+        struct texture_level L = lv[l] == 0 ? texture_base(t) : t->level[lv[l]];
+        W[l] = L.w, H[l] = L.h, px[l] = L.rgba;
+    }
+    f4 x = u * f4_from_i4(W) - f4_set(0.5f), y = v * f4_from_i4(H) - f4_set(0.5f);
+    i4 ok = (x > f4_set(-1e9f)) & (x < f4_set(1e9f)) & (y > f4_set(-1e9f)) & (y < f4_set(1e9f));
+    x = f4_select(ok, x, f4_set(0));
+    y = f4_select(ok, y, f4_set(0));
+    i4 xi = i4_floor(x), yi = i4_floor(y);
+    f4 ax = x - f4_from_i4(xi), ay = y - f4_from_i4(yi);
+    /* texture_wrap of whole numbers: floor(x) mod n in [0, n) */
+    i4 i0 = xi, j0 = yi;
+    i4 outside = (i0 < i4_set(0)) | (i0 >= W) | (j0 < i4_set(0)) | (j0 >= H);
+    if (i4_any(outside))
+        for (int l = 0; l < SIMD_LANES; l++) {
+            int r = i0[l] % W[l], q = j0[l] % H[l];
+            i0[l] = r < 0 ? r + W[l] : r;
+            j0[l] = q < 0 ? q + H[l] : q;
+        }
+    i4 i1 = i4_select(i0 + 1 == W, i4_set(0), i0 + 1);
+    i4 j1 = i4_select(j0 + 1 == H, i4_set(0), j0 + 1);
+    i4 r0 = (H - 1 - j0) * W, r1 = (H - 1 - j1) * W; /* row starts, in texels */
+    i4 w[4];
+    for (int l = 0; l < SIMD_LANES; l++) {
+        const uint8_t *p = px[l];
+        uint32_t a, b, c, d;
+        __builtin_memcpy(&a, p + (size_t)(r0[l] + i0[l]) * 4, 4);
+        __builtin_memcpy(&b, p + (size_t)(r0[l] + i1[l]) * 4, 4);
+        __builtin_memcpy(&c, p + (size_t)(r1[l] + i0[l]) * 4, 4);
+        __builtin_memcpy(&d, p + (size_t)(r1[l] + i1[l]) * 4, 4);
+        w[0][l] = (int32_t)a, w[1][l] = (int32_t)b, w[2][l] = (int32_t)c, w[3][l] = (int32_t)d;
+    }
+    for (int ch = 0; ch < 3; ch++) {
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+        const int sh = 24 - 8 * ch;
+#else
+        const int sh = 8 * ch;
+#endif
+        f4 c00 = f4_from_i4((w[0] >> sh) & i4_set(255)), c10 = f4_from_i4((w[1] >> sh) & i4_set(255));
+        f4 c01 = f4_from_i4((w[2] >> sh) & i4_set(255)), c11 = f4_from_i4((w[3] >> sh) & i4_set(255));
+        f4 a = c00 + ax * (c10 - c00);
+        f4 b = c01 + ax * (c11 - c01);
+        rgb_out[ch] = (a + ay * (b - a)) * k;
+    }
+}
+
 /* The level of detail (texture_sample's lambda) of four pixels from the screen-space
  * derivatives of u and v: log2 of the longer side of the pixel's footprint in level-0
  * texels, rho = max(|(du/dx, dv/dx)|, |(du/dy, dv/dy)|) (GL's formula, without its
@@ -294,28 +348,34 @@ static inline void texture_sample4(const struct texture *t, enum tex_filter f, f
         texture_bilinear4(&base, u, v, rgb_out);
         return;
     }
-    int l0[SIMD_LANES];
-    float frac[SIMD_LANES];
-    int same = 1, any_frac = 0;
-    for (int l = 0; l < SIMD_LANES; l++) {
-        l0[l] = texture_levels(t, lambda[l], &frac[l]);
-        same &= l0[l] == l0[0];
-        any_frac |= frac[l] != 0;
-    }
-    if (!same) { /* the footprint changes level inside these four: pixel by pixel */
-        for (int l = 0; l < SIMD_LANES; l++) {
-            float c[3];
-            texture_sample(t, TEX_TRILINEAR, u[l], v[l], lambda[l], c);
-            rgb_out[0][l] = c[0], rgb_out[1][l] = c[1], rgb_out[2][l] = c[2];
-        }
+    if (t->n_levels < 2) { /* no chain: level 0 alone, as texture_levels says */
+        texture_bilinear4(&base, u, v, rgb_out);
         return;
     }
-    texture_bilinear4(l0[0] == 0 ? &base : &t->level[l0[0]], u, v, rgb_out);
-    if (!any_frac)
+    /* texture_levels in four lanes */
+    const int top = t->n_levels - 1;
+    i4 in = (lambda > f4_set(0)) & (lambda < f4_set((float)top)); /* between two levels */
+    i4 beyond = (lambda > f4_set(0)) & ~in;                        /* the last level */
+    i4 l0 = i4_trunc(f4_select(in, lambda, f4_set(0)));
+    l0 = i4_select(beyond, i4_set(top), l0);
+    f4 fr = f4_select(in, lambda - f4_from_i4(l0), f4_set(0));
+    if (i4_all(l0 == i4_set(l0[0]))) { /* one level for all four: its size is a constant */
+        texture_bilinear4(l0[0] == 0 ? &base : &t->level[l0[0]], u, v, rgb_out);
+        if (!i4_any(fr != f4_set(0)))
+            return;
+        f4 c1[3];
+        texture_bilinear4(&t->level[l0[0] + 1], u, v, c1);
+        for (int ch = 0; ch < 3; ch++) /* frac 0 lanes: + 0 * (c1 - c0), exactly c0 */
+            rgb_out[ch] += fr * (c1[ch] - rgb_out[ch]);
         return;
-    f4 c1[3], fr = {frac[0], frac[1], frac[2], frac[3]};
-    texture_bilinear4(&t->level[l0[0] + 1], u, v, c1);
-    for (int ch = 0; ch < 3; ch++) /* frac 0 lanes: + 0 * (c1 - c0), exactly c0 */
+    }
+    /* the footprint changes level inside these four: each lane on its own level */
+    texture_bilinear4_levels(t, l0, u, v, rgb_out);
+    if (!i4_any(fr != f4_set(0)))
+        return;
+    f4 c1[3];
+    texture_bilinear4_levels(t, i4_select(l0 < i4_set(top), l0 + 1, l0), u, v, c1);
+    for (int ch = 0; ch < 3; ch++)
         rgb_out[ch] += fr * (c1[ch] - rgb_out[ch]);
 }
 
