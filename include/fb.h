@@ -71,6 +71,8 @@ int fb_init(struct fb *fb, int w, int h, bool count_overdraw, struct err *e);
 void fb_free(struct fb *fb);
 /* Colour to bg, depth to depth_mode's clear value, overdraw to 0. */
 void fb_clear(struct fb *fb, const uint8_t bg[3]);
+/* fb_clear of rows y0 .. y1-1 only (the pipeline clears in bands, on every thread) */
+void fb_clear_rows(struct fb *fb, const uint8_t bg[3], int y0, int y1);
 
 static inline float fb_depth_clear_value(enum depth_mode m)
 {

@@ -32,24 +32,31 @@ void fb_free(struct fb *fb)
     memset(fb, 0, sizeof *fb);
 }
 
-void fb_clear(struct fb *fb, const uint8_t bg[3])
+void fb_clear_rows(struct fb *fb, const uint8_t bg[3], int y0, int y1)
 {
-    size_t n = (size_t)fb->w * (size_t)fb->h;
+    size_t w = (size_t)fb->w, i0 = (size_t)y0 * w, n = (size_t)(y1 - y0) * w;
+    if (n == 0)
+        return;
     float clear = fb_depth_clear_value(fb->depth_mode);
     if (bg[0] == bg[1] && bg[1] == bg[2]) { /* grey (black): one memset */
-        memset(fb->rgb, bg[0], n * 3);
+        memset(fb->rgb + 3 * i0, bg[0], n * 3);
     } else { /* one row by pattern, then copies of it */
-        uint8_t *row = fb->rgb;
-        for (int x = 0; x < fb->w; x++)
+        uint8_t *row = fb->rgb + 3 * i0;
+        for (size_t x = 0; x < w; x++)
             memcpy(row + 3 * x, bg, 3);
-        for (int y = 1; y < fb->h; y++)
-            memcpy(fb->rgb + (size_t)y * fb->w * 3, row, (size_t)fb->w * 3);
+        for (int y = y0 + 1; y < y1; y++)
+            memcpy(fb->rgb + (size_t)y * w * 3, row, w * 3);
     }
-    float *d = fb->depth;
+    float *d = fb->depth + i0;
     for (size_t i = 0; i < n; i++) /* a constant store: the compiler vectorises it */
         d[i] = clear;
     if (fb->overdraw)
-        memset(fb->overdraw, 0, n * sizeof *fb->overdraw);
+        memset(fb->overdraw + i0, 0, n * sizeof *fb->overdraw);
+}
+
+void fb_clear(struct fb *fb, const uint8_t bg[3])
+{
+    fb_clear_rows(fb, bg, 0, fb->h);
 }
 
 float fb_depth_encode(const struct fb *fb, double z01)

@@ -356,7 +356,23 @@ static void vertex_stage(struct pipeline *p, const struct mesh *m,
                          const struct vertex_uniforms *u, struct vertex_out *out)
 {
     struct vertex_job j = {m, u, out};
-    workers_for(p->workers, m->n_verts, 4096, vertex_chunk, &j);
+    /* chunks of 4096 vertices, smaller for small meshes so that every thread gets some
+     * (a chunk is at least 256 vertices: less is not worth a hand-over) */
+    size_t per = (m->n_verts + 2 * (size_t)p->n_threads - 1) / (2 * (size_t)p->n_threads);
+    size_t chunk = per < 256 ? 256 : per > 4096 ? 4096 : per;
+    workers_for(p->workers, m->n_verts, chunk, vertex_chunk, &j);
+}
+
+/* the clear on every thread, in bands of 16 rows */
+struct clear_job {
+    struct fb *fb;
+    const uint8_t *bg;
+};
+
+static void clear_band(void *arg, size_t y0, size_t y1)
+{
+    const struct clear_job *j = arg;
+    fb_clear_rows(j->fb, j->bg, (int)y0, (int)y1);
 }
 
 /* the sky on every thread, in bands of 8 rows */
@@ -408,7 +424,8 @@ int pipeline_draw(struct pipeline *p, const struct draw_item *items, int n_items
         return -1;
     fb->depth_mode = o->depth;
     fb->proj = (struct fb_depth_proj){cam->ortho_height > 0, cam->near, cam->far};
-    fb_clear(fb, o->background);
+    struct clear_job cj = {fb, o->background};
+    workers_for(p->workers, (size_t)fb->h, 16, clear_band, &cj);
     mat4 pv = m4_mul(camera_proj(cam, fb_aspect(fb)), camera_view(cam));
     struct frame f;
     frame_init(&f, cam, o, fb, stats);

@@ -189,9 +189,9 @@ static inline __attribute__((always_inline)) void run(struct span_ctx *s, int y,
             z = f4_from_i4(qi);
         }
         f4 old;
-        if (x + SIMD_LANES <= fb_w) /* inside the row: one load (lanes past xb are unused) */
+        if (n == SIMD_LANES) /* a whole group inside the run: one load */
             __builtin_memcpy(&old, depth_buf + x, sizeof old);
-        else
+        else /* never past the run: the pixels after it may be another thread's tile */
             for (int l = 0; l < SIMD_LANES; l++)
                 old[l] = l < n ? depth_buf[x + l] : 0;
         i4 pass = (depth == DEPTH_RZ ? z > old : z < old) & (f4_set((float)n) > lane);

@@ -3,7 +3,9 @@
 
 #include <pthread.h>
 #include <stdatomic.h>
+#include <stdbool.h>
 #include <stdlib.h>
+#include <time.h>
 #include <unistd.h>
 
 struct workers {
@@ -11,10 +13,10 @@ struct workers {
     pthread_t *th;
     pthread_mutex_t mu;
     pthread_cond_t go, done;
-    unsigned long gen; /* job number: a change wakes the threads */
-    int busy;          /* threads still inside the current job */
-    int quit;
-    workers_fn fn;
+    atomic_ulong gen; /* job number: a change starts the threads on the job */
+    atomic_int busy;  /* threads still inside the current job */
+    atomic_int quit;
+    workers_fn fn;    /* the job: written before gen changes, read after */
     void *arg;
 };
 
@@ -23,6 +25,57 @@ struct start {
     int k;
 };
 
+/* A frame is several short jobs in a row (clear, vertices, tiles, sky), a fraction of a
+ * millisecond each: a thread that went to sleep after one job takes tens of microseconds to
+ * be woken for the next, and the caller does that share alone meanwhile. So both sides
+ * first spin on the atomic for up to SPIN_US, then sleep on the condition variable. */
+#define SPIN_US 200
+
+static double now_us(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec * 1e6 + (double)ts.tv_nsec / 1e3;
+}
+
+static inline void cpu_relax(void)
+{
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_ia32_pause();
+#endif
+}
+
+/* spin until cond(w) holds or SPIN_US pass; whether it holds */
+static bool spin_until(struct workers *w, bool (*cond)(struct workers *, unsigned long),
+                       unsigned long v)
+{
+    double t0 = 0;
+    for (unsigned i = 0;; i++) {
+        if (cond(w, v))
+            return true;
+        if ((i & 255) == 255) {
+            double t = now_us();
+            if (t0 == 0)
+                t0 = t;
+            else if (t - t0 > SPIN_US)
+                return false;
+        }
+        cpu_relax();
+    }
+}
+
+static bool new_job(struct workers *w, unsigned long seen)
+{
+    return atomic_load_explicit(&w->gen, memory_order_acquire) != seen ||
+           atomic_load_explicit(&w->quit, memory_order_relaxed);
+}
+
+static bool all_done(struct workers *w, unsigned long unused)
+{
+    (void)unused;
+    return atomic_load_explicit(&w->busy, memory_order_acquire) == 0;
+}
+
 static void *thread_main(void *p)
 {
     struct start *s = p;
@@ -30,22 +83,25 @@ static void *thread_main(void *p)
     int k = s->k;
     free(s);
     unsigned long seen = 0;
-    pthread_mutex_lock(&w->mu);
     for (;;) {
-        while (w->gen == seen && !w->quit)
-            pthread_cond_wait(&w->go, &w->mu);
-        if (w->quit)
+        if (!spin_until(w, new_job, seen)) {
+            pthread_mutex_lock(&w->mu);
+            while (!new_job(w, seen))
+                pthread_cond_wait(&w->go, &w->mu);
+            pthread_mutex_unlock(&w->mu);
+        }
+        if (atomic_load_explicit(&w->quit, memory_order_relaxed))
             break;
-        seen = w->gen;
-        workers_fn fn = w->fn;
-        void *arg = w->arg;
-        pthread_mutex_unlock(&w->mu);
-        fn(arg, k);
-        pthread_mutex_lock(&w->mu);
-        if (--w->busy == 0)
+        seen = atomic_load_explicit(&w->gen, memory_order_acquire);
+        w->fn(w->arg, k);
+        if (atomic_fetch_sub_explicit(&w->busy, 1, memory_order_acq_rel) == 1) {
+            /* the last one: wake the caller if it went to sleep (it checks busy under the
+             * lock, so taking the lock here means it is either waiting or will see 0) */
+            pthread_mutex_lock(&w->mu);
             pthread_cond_signal(&w->done);
+            pthread_mutex_unlock(&w->mu);
+        }
     }
-    pthread_mutex_unlock(&w->mu);
     return NULL;
 }
 
@@ -61,6 +117,9 @@ struct workers *workers_new(int n, struct err *e)
     pthread_mutex_init(&w->mu, NULL);
     pthread_cond_init(&w->go, NULL);
     pthread_cond_init(&w->done, NULL);
+    atomic_init(&w->gen, 0);
+    atomic_init(&w->busy, 0);
+    atomic_init(&w->quit, 0);
     for (int i = 0; i < n; i++) {
         struct start *s = malloc(sizeof *s);
         if (!s || (s->w = w, s->k = i + 1, pthread_create(&w->th[i], NULL, thread_main, s))) {
@@ -79,7 +138,7 @@ void workers_destroy(struct workers *w)
     if (!w)
         return;
     pthread_mutex_lock(&w->mu);
-    w->quit = 1;
+    atomic_store(&w->quit, 1);
     pthread_cond_broadcast(&w->go);
     pthread_mutex_unlock(&w->mu);
     for (int i = 0; i < w->n; i++)
@@ -102,18 +161,20 @@ void workers_run(struct workers *w, workers_fn fn, void *arg)
         fn(arg, 0);
         return;
     }
-    pthread_mutex_lock(&w->mu);
     w->fn = fn;
     w->arg = arg;
-    w->busy = w->n;
-    w->gen++;
+    atomic_store_explicit(&w->busy, w->n, memory_order_relaxed);
+    pthread_mutex_lock(&w->mu); /* sleeping threads check gen under the lock */
+    atomic_fetch_add_explicit(&w->gen, 1, memory_order_release);
     pthread_cond_broadcast(&w->go);
     pthread_mutex_unlock(&w->mu);
     fn(arg, 0);
-    pthread_mutex_lock(&w->mu);
-    while (w->busy > 0)
-        pthread_cond_wait(&w->done, &w->mu);
-    pthread_mutex_unlock(&w->mu);
+    if (!spin_until(w, all_done, 0)) {
+        pthread_mutex_lock(&w->mu);
+        while (!all_done(w, 0))
+            pthread_cond_wait(&w->done, &w->mu);
+        pthread_mutex_unlock(&w->mu);
+    }
 }
 
 int workers_cores(void)
