@@ -140,7 +140,7 @@ static inline void light_normalize(float v[3])
 }
 
 /* light_normalize, four vectors at once (v[k] holds component k of the four) */
-static inline void light_normalize4(f4 v[3])
+static inline __attribute__((always_inline)) void light_normalize4(f4 v[3])
 {
     f4 l = f4_sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
     i4 pos = l > f4_set(0);
@@ -148,10 +148,16 @@ static inline void light_normalize4(f4 v[3])
     v[0] *= il, v[1] *= il, v[2] *= il;
 }
 
-/* x^n in each lane, exactly as light_pow */
-static inline f4 light_pow4(f4 x, float n)
+/* x^n in each lane, exactly as light_pow; k = light_pow_int(n), which callers compute once
+ * for many pixels. A power of two is that many squarings (square-and-multiply would only add
+ * a final 1 * x, which is exact). */
+static inline f4 light_pow4_k(f4 x, int k, float n)
 {
-    int k = light_pow_int(n);
+    if (k && (k & (k - 1)) == 0) {
+        for (; k > 1; k >>= 1)
+            x *= x;
+        return x;
+    }
     if (k) {
         f4 r = f4_set(1);
         for (;;) {
@@ -168,11 +174,36 @@ static inline f4 light_pow4(f4 x, float n)
     return r;
 }
 
+static inline f4 light_pow4(f4 x, float n)
+{
+    return light_pow4_k(x, light_pow_int(n), n);
+}
+
 /* light_terms for four points (n, v: unit vectors, one component per vector): in every lane
  * exactly what light_terms gives */
-static inline void light_terms4(const struct light_env *env, const f4 n[3], const f4 v[3],
-                                float ns, f4 d_out[3], f4 s_out[3])
+static inline __attribute__((always_inline)) void
+light_terms4k(const struct light_env *env, const f4 n[3], const f4 v[3], float ns, int pow_k,
+              f4 d_out[3], f4 s_out[3])
 {
+    f4 up = f4_set(0.5f) + f4_set(0.5f) * n[1];
+    if (env->n == 1) { /* one light (the default): no sums to keep, fewer registers */
+        const float *l = env->dir[0], *col = env->col[0];
+        f4 h[3] = {f4_set(l[0]) + v[0], f4_set(l[1]) + v[1], f4_set(l[2]) + v[2]};
+        f4 hl = f4_sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+        i4 pos = hl > f4_set(0);
+        f4 ih = f4_select(pos, f4_set(1.0f) / f4_select(pos, hl, f4_set(1)), f4_set(0));
+        f4 ndl = n[0] * f4_set(l[0]) + n[1] * f4_set(l[1]) + n[2] * f4_set(l[2]);
+        f4 ndh = (n[0] * h[0] + n[1] * h[1] + n[2] * h[2]) * ih;
+        f4 dd = f4_max(ndl, f4_set(0));
+        f4 ss = light_pow4_k(f4_max(ndh, f4_set(0)), pow_k, ns);
+        for (int k = 0; k < 3; k++) { /* as below with d = 0 + dd col, s = 0 + ss col */
+            float sky = env->sky[k], ground = env->ground[k];
+            f4 a = sky == ground ? f4_set(sky) : f4_set(ground) + up * f4_set(sky - ground);
+            d_out[k] = a + f4_set(LIGHT_DIFFUSE) * (dd * f4_set(col[k]));
+            s_out[k] = ss * f4_set(col[k]);
+        }
+        return;
+    }
     f4 d[3] = {f4_set(0), f4_set(0), f4_set(0)}, s[3] = {f4_set(0), f4_set(0), f4_set(0)};
     for (int i = 0; i < env->n; i++) {
         const float *l = env->dir[i], *col = env->col[i];
@@ -183,19 +214,25 @@ static inline void light_terms4(const struct light_env *env, const f4 n[3], cons
         f4 ndl = n[0] * f4_set(l[0]) + n[1] * f4_set(l[1]) + n[2] * f4_set(l[2]);
         f4 ndh = (n[0] * h[0] + n[1] * h[1] + n[2] * h[2]) * ih;
         f4 dd = f4_max(ndl, f4_set(0));
-        f4 ss = light_pow4(f4_max(ndh, f4_set(0)), ns);
+        f4 ss = light_pow4_k(f4_max(ndh, f4_set(0)), pow_k, ns);
         for (int k = 0; k < 3; k++) {
             d[k] += dd * f4_set(col[k]);
             s[k] += ss * f4_set(col[k]);
         }
     }
-    f4 up = f4_set(0.5f) + f4_set(0.5f) * n[1];
     for (int k = 0; k < 3; k++) {
         float sky = env->sky[k], ground = env->ground[k];
         f4 a = sky == ground ? f4_set(sky) : f4_set(ground) + up * f4_set(sky - ground);
         d_out[k] = a + f4_set(LIGHT_DIFFUSE) * d[k];
         s_out[k] = s[k];
     }
+}
+
+/* light_terms4k with pow_k = light_pow_int(ns) */
+static inline void light_terms4(const struct light_env *env, const f4 n[3], const f4 v[3],
+                                float ns, f4 d_out[3], f4 s_out[3])
+{
+    light_terms4k(env, n, v, ns, light_pow_int(ns), d_out, s_out);
 }
 
 #endif

@@ -104,10 +104,11 @@ static inline void shade_fragment(const struct shade_ctx *c, enum shade_mode mod
 /* Four pixels at once (the normals view goes pixel by pixel through shade_fragment): in every
  * lane exactly what shade_fragment gives. var[k] holds varying k of the four pixels; lambda
  * their texture level of detail (texture_lod4; trilinear only); filter is c->filter (an
- * argument so that a caller can make it a constant). */
+ * argument so that a caller can make it a constant); pow_k is light_pow_int(t->mat->ns)
+ * (phong only: computed once for many pixels). */
 static inline __attribute__((always_inline)) void
 shade_fragment4(const struct shade_ctx *c, enum shade_mode mode, enum tex_filter filter,
-                const struct shade_tri *t, const f4 *var, f4 lambda, f4 rgb_out[3])
+                const struct shade_tri *t, int pow_k, const f4 *var, f4 lambda, f4 rgb_out[3])
 {
     f4 albedo[3];
     if (t->tex) {
@@ -135,7 +136,7 @@ shade_fragment4(const struct shade_ctx *c, enum shade_mode mode, enum tex_filter
             light_normalize4(vv);
         }
         light_normalize4(n);
-        light_terms4(&c->lights, n, vv, t->mat->ns, d, sp);
+        light_terms4k(&c->lights, n, vv, t->mat->ns, pow_k, d, sp);
     }
     for (int k = 0; k < 3; k++) {
         if (mode == SHADE_PHONG)

@@ -331,8 +331,8 @@ static inline f4 texture_lod4(const struct texture *t, f4 dudx, f4 dvdx, f4 dudy
 }
 
 /* Four samples at once: in every lane exactly what texture_sample gives (lambda per lane). */
-static inline void texture_sample4(const struct texture *t, enum tex_filter f, f4 u, f4 v,
-                                   f4 lambda, f4 rgb_out[3])
+static inline __attribute__((always_inline)) void
+texture_sample4(const struct texture *t, enum tex_filter f, f4 u, f4 v, f4 lambda, f4 rgb_out[3])
 {
     struct texture_level base = texture_base(t);
     if (f == TEX_NEAREST) {

@@ -169,6 +169,7 @@ static inline __attribute__((always_inline)) void run(struct span_ctx *s, int y,
     uint32_t *restrict overdraw = !plain && s->fb->overdraw ? s->fb->overdraw + row : NULL;
     const struct shade_ctx *sc = s->shade;
     const struct shade_tri *st = s->st;
+    const int pow_k = mode == SHADE_PHONG ? light_pow_int(st->mat->ns) : 0;
     /* span methods: the current span's absolute start column, its clamped ends, the
      * varyings there and their change per pixel; the row's covered extent */
     int anchor = -1, a0 = 0, row_lo = -1, row_hi = -1;
@@ -262,7 +263,7 @@ static inline __attribute__((always_inline)) void run(struct span_ctx *s, int y,
                                   (udy - var[0] * qdy) * rq, (vdy - var[1] * qdy) * rq);
         }
         f4 rgb[3];
-        shade_fragment4(sc, mode, filter, st, var, lambda, rgb);
+        shade_fragment4(sc, mode, filter, st, pow_k, var, lambda, rgb);
         i4 r8 = fb_quantize4(rgb[0]), g8 = fb_quantize4(rgb[1]), b8 = fb_quantize4(rgb[2]);
         if (n == SIMD_LANES && i4_all(pass)) {
             /* four pixels, twelve bytes: each lane's rgb0 as one 32-bit store, in order, so

@@ -329,34 +329,41 @@ TEST(the_headlight_lights_a_model_from_every_side)
 
 TEST(four_lane_terms_equal_one_lane_terms_with_a_hemisphere)
 {
-    /* the span shader's light_terms4 gives, lane by lane, exactly light_terms, also with the
-     * headlight's two lights and hemisphere ambient */
+    /* the span shader's light_terms4 gives, lane by lane, exactly light_terms: with the
+     * default single light (its own code path) and with the headlight's two lights and
+     * hemisphere ambient, for exponents by squaring (a power of two or not) and by powf */
     struct camera c;
     camera_default(&c);
-    struct render_opts ro;
-    render_opts_default(&ro);
-    light_use_camera(&ro, &c);
-    struct light_env env;
-    light_env_init(&env, &ro);
-    uint32_t seed = 5;
-    for (int i = 0; i < 500; i++) {
-        float n[4][3], v[4][3];
-        f4 n4[3], v4[3], d4[3], s4[3];
-        for (int l = 0; l < 4; l++) {
-            unit(n[l], &seed);
-            unit(v[l], &seed);
-            for (int k = 0; k < 3; k++)
-                n4[k][l] = n[l][k], v4[k][l] = v[l][k];
-        }
-        light_terms4(&env, n4, v4, 32, d4, s4);
-        for (int l = 0; l < 4; l++) {
-            float d[3], s[3];
-            light_terms(&env, n[l], v[l], 32, d, s);
-            for (int k = 0; k < 3; k++)
-                if (d[k] != d4[k][l] || s[k] != s4[k][l]) {
-                    test_fail(t, __FILE__, __LINE__, "lane %d: D %.9g vs %.9g", l, d4[k][l], d[k]);
-                    return;
-                }
+    const float exps[3] = {32, 10, 7.5f};
+    for (int e = 0; e < 2; e++) {
+        struct render_opts ro;
+        render_opts_default(&ro);
+        if (e == 1)
+            light_use_camera(&ro, &c);
+        struct light_env env;
+        light_env_init(&env, &ro);
+        CHECK_EQ_INT(env.n, e == 0 ? 1 : 2);
+        uint32_t seed = 5;
+        for (int i = 0; i < 600; i++) {
+            float n[4][3], v[4][3], ns = exps[i % 3];
+            f4 n4[3], v4[3], d4[3], s4[3];
+            for (int l = 0; l < 4; l++) {
+                unit(n[l], &seed);
+                unit(v[l], &seed);
+                for (int k = 0; k < 3; k++)
+                    n4[k][l] = n[l][k], v4[k][l] = v[l][k];
+            }
+            light_terms4(&env, n4, v4, ns, d4, s4);
+            for (int l = 0; l < 4; l++) {
+                float d[3], s[3];
+                light_terms(&env, n[l], v[l], ns, d, s);
+                for (int k = 0; k < 3; k++)
+                    if (d[k] != d4[k][l] || s[k] != s4[k][l]) {
+                        test_fail(t, __FILE__, __LINE__, "%d lights, ns %g, lane %d: D %.9g vs %.9g, S %.9g vs %.9g",
+                                  env.n, ns, l, d4[k][l], d[k], s4[k][l], s[k]);
+                        return;
+                    }
+            }
         }
     }
 }
