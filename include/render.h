@@ -94,7 +94,8 @@ struct frame_stats {
     uint64_t tris_clipped;  /* needed polygon clipping */
     uint64_t tris_drawn;    /* reached the rasterizer (after clipping, fan pieces counted) */
     uint64_t tris_empty;    /* reached the rasterizer but covered no pixel centre */
-    uint64_t tris_no_centre; /* dropped by setup: zero area or no pixel centre in the box (not
+    uint64_t tris_no_centre; /* dropped by setup: zero area, no pixel centre in the box, or a
+                              * box of at most 4 pixels whose centres it misses (not
                               * lit, no shading record); unclipped, in = rejected + culled +
                               * no_centre + drawn */
     uint64_t verts_lit;     /* vertices lit (vertex_shade): only those of triangles drawn */

@@ -20,8 +20,10 @@
  *   "inside" is simply e >= 0 for all three edges.
  *   Front face = counter-clockwise as displayed (GL's default, glFrontFace(GL_CCW)); in
  *   y-down image coordinates that is a negative signed area.
- *   Zero-area triangles (after snapping) and triangles whose box holds no pixel centre
- *   produce nothing.
+ *   Zero-area triangles (after snapping), triangles whose box holds no pixel centre and
+ *   triangles whose box is a few pixels (up to 4) none of whose centres they cover produce
+ *   nothing (SETUP_EMPTY): at terminal sizes most triangles of a dense mesh are one of these,
+ *   and the front end then neither lights their vertices nor records them.
  *
  * Back end, once per triangle that covers at least one pixel (the rasterizer finds out):
  * setup_interp() builds the interpolation planes. A quarter of a typical mesh's triangles
@@ -44,11 +46,13 @@
 #ifndef RASTTY_SETUP_H
 #define RASTTY_SETUP_H
 
+#include <stdbool.h>
 #include <stdint.h>
 
 #include "fb.h"
 #include "render.h"
 #include "vertex.h"
+#include "viewport.h"
 
 /* Everything a rasterizer needs, and what interpolation setup starts from. */
 struct setup_tri {
@@ -95,10 +99,37 @@ static inline int setup_culled(enum cull_mode cull, int front)
     return (cull == CULL_BACK && !front) || (cull == CULL_FRONT && front);
 }
 
+/* The pixel box of three projected corners: the pixels whose centres lie within the
+ * corners' snapped bounds, clipped to the framebuffer; false when it holds no pixel centre.
+ * Inline: the front end asks it first of every triangle (most triangles of a dense mesh hold
+ * no pixel centre), before anything else is read or written. */
+static inline bool setup_box(const struct vertex_out *a, const struct vertex_out *b,
+                             const struct vertex_out *c, int fb_w, int fb_h, int64_t box[4])
+{
+    int64_t x0 = a->fx, x1 = b->fx, x2 = c->fx, y0 = a->fy, y1 = b->fy, y2 = c->fy;
+    int64_t minx = x0 < x1 ? x0 : x1, maxx = x0 < x1 ? x1 : x0;
+    int64_t miny = y0 < y1 ? y0 : y1, maxy = y0 < y1 ? y1 : y0;
+    minx = x2 < minx ? x2 : minx, maxx = x2 > maxx ? x2 : maxx;
+    miny = y2 < miny ? y2 : miny, maxy = y2 > maxy ? y2 : maxy;
+    const int64_t one = VIEWPORT_SUBPIX_ONE, half = one / 2;
+    /* first and last centre: floor by arithmetic shift, negatives too */
+    int64_t px0 = (minx - half + one - 1) >> VIEWPORT_SUBPIX_BITS, px1 = (maxx - half) >> VIEWPORT_SUBPIX_BITS;
+    int64_t py0 = (miny - half + one - 1) >> VIEWPORT_SUBPIX_BITS, py1 = (maxy - half) >> VIEWPORT_SUBPIX_BITS;
+    box[0] = px0 < 0 ? 0 : px0;
+    box[1] = py0 < 0 ? 0 : py0;
+    box[2] = px1 > fb_w - 1 ? fb_w - 1 : px1;
+    box[3] = py1 > fb_h - 1 ? fb_h - 1 : py1;
+    return box[0] <= box[2] && box[1] <= box[3];
+}
+
 /* Coverage setup of one triangle whose corners are projected (vertex_out.projected). */
 enum setup_result setup_triangle(const struct vertex_out *v0, const struct vertex_out *v1,
                                  const struct vertex_out *v2, int fb_w, int fb_h,
                                  struct setup_tri *out);
+/* setup_triangle for a triangle whose setup_box (non-empty) the caller already has */
+enum setup_result setup_triangle_in_box(const struct vertex_out *v0, const struct vertex_out *v1,
+                                        const struct vertex_out *v2, const int64_t box[4],
+                                        struct setup_tri *t);
 
 /* Interpolation setup (see above) of n_var varyings; proj is the depth method's camera data
  * (fb.h); affine: numerators without the division by w. */

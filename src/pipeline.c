@@ -215,29 +215,42 @@ static int front_end(struct pipeline *p, struct frame *f, const struct draw_item
     struct batch *bt = &p->batch;
     int n_var = depth_only ? 0 : m->colors ? VARY_COLOR + 3 : vertex_varying_count(o->shade, o->view);
     struct shade_proto proto = {.mat = -1};
+    /* counted in locals, added once: through the stats pointer every count would be a
+     * memory update the compiler must keep in order with the batch's stores */
+    uint64_t n_rejected = 0, n_culled = 0, n_no_centre = 0;
+    const int fb_w = f->fb->w, fb_h = f->fb->h;
     for (uint32_t i = 0; i < m->n_tris; i++) {
         struct vertex_out *v[3] = {&vo[m->tris[i][0]], &vo[m->tris[i][1]], &vo[m->tris[i][2]]};
         uint32_t all = v[0]->outcode & v[1]->outcode & v[2]->outcode;
         uint32_t any = v[0]->outcode | v[1]->outcode | v[2]->outcode;
-        stats->tris_in++;
         if ((all & VERTEX_OUT_FRUSTUM) || (any & VERTEX_INVALID)) {
-            stats->tris_rejected++;
+            n_rejected++;
+            continue;
+        }
+        /* an unclipped triangle whose box holds no pixel centre goes first: at terminal
+         * sizes most triangles of a dense mesh do */
+        int64_t box[4] = {0, 0, -1, -1};
+        bool unclipped = !(any & VERTEX_NEEDS_CLIP);
+        if (unclipped && !setup_box(v[0], v[1], v[2], fb_w, fb_h, box) &&
+            (depth_only || o->cull == CULL_NONE ||
+             !setup_culled(o->cull, setup_front_facing(v[0], v[1], v[2])))) {
+            n_no_centre++;
             continue;
         }
         /* culling: once per source triangle, never per clipped piece */
         if (!depth_only && o->cull != CULL_NONE &&
             setup_culled(o->cull, setup_front_facing(v[0], v[1], v[2]))) {
-            stats->tris_culled++;
+            n_culled++;
             continue;
         }
         if (!batch_has_room(bt) && flush(p, f, e))
             return -1;
-        if (!(any & VERTEX_NEEDS_CLIP)) {
+        if (unclipped) {
             /* set up first: most triangles of a dense mesh hold no pixel centre, and their
              * vertices need no lighting and the triangle no shading record */
             struct setup_tri *t = &bt->tris[bt->n_tris];
-            if (setup_triangle(v[0], v[1], v[2], f->fb->w, f->fb->h, t) != SETUP_DRAW) {
-                stats->tris_no_centre++;
+            if (setup_triangle_in_box(v[0], v[1], v[2], box, t) != SETUP_DRAW) {
+                n_no_centre++;
                 continue;
             }
             shade_vertices(m, f, i, v);
@@ -255,11 +268,15 @@ static int front_end(struct pipeline *p, struct frame *f, const struct draw_item
                               poly);
         for (int k = 0; k < n; k++)
             if (!poly[k].projected) /* a vertex made by clipping */
-                vertex_project(&poly[k], f->fb->w, f->fb->h);
+                vertex_project(&poly[k], fb_w, fb_h);
         bt->n_verts += (uint32_t)n;
         for (int k = 1; k + 1 < n; k++)
             add_setup(p, f, &poly[0], &poly[k], &poly[k + 1], shade);
     }
+    stats->tris_in += m->n_tris;
+    stats->tris_rejected += n_rejected;
+    stats->tris_culled += n_culled;
+    stats->tris_no_centre += n_no_centre;
     return 0;
 }
 

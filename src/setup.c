@@ -11,6 +11,9 @@
  * 1/4 matches Mesa on every oracle scene and still bounds the extrapolation */
 #define SETUP_SLIVER_EPS (1.0 / 4)
 
+/* boxes of at most this many pixels have their centres tested in setup */
+#define SETUP_SMALL_BOX 4
+
 int setup_front_facing(const struct vertex_out *va, const struct vertex_out *vb,
                        const struct vertex_out *vc)
 {
@@ -21,34 +24,25 @@ int setup_front_facing(const struct vertex_out *va, const struct vertex_out *vb,
     return det > 0; /* counter-clockwise in GL window coordinates */
 }
 
-static inline int64_t floor_px(int64_t a)
-{
-    return a >> VIEWPORT_SUBPIX_BITS; /* arithmetic shift: floor for negatives too */
-}
-
 enum setup_result setup_triangle(const struct vertex_out *v0, const struct vertex_out *v1,
                                  const struct vertex_out *v2, int fb_w, int fb_h,
                                  struct setup_tri *t)
 {
-    const struct vertex_out *v[3] = {v0, v1, v2};
-    int64_t X[3] = {v0->fx, v1->fx, v2->fx}, Y[3] = {v0->fy, v1->fy, v2->fy};
     /* the pixel box first: most triangles of a dense mesh hold no pixel centre */
-    int64_t minx = X[0], maxx = X[0], miny = Y[0], maxy = Y[0];
-    for (int i = 1; i < 3; i++) {
-        minx = X[i] < minx ? X[i] : minx;
-        maxx = X[i] > maxx ? X[i] : maxx;
-        miny = Y[i] < miny ? Y[i] : miny;
-        maxy = Y[i] > maxy ? Y[i] : maxy;
-    }
-    const int64_t one = VIEWPORT_SUBPIX_ONE, half = one / 2;
-    int64_t px0 = floor_px(minx - half + one - 1), px1 = floor_px(maxx - half);
-    int64_t py0 = floor_px(miny - half + one - 1), py1 = floor_px(maxy - half);
-    px0 = px0 < 0 ? 0 : px0;
-    py0 = py0 < 0 ? 0 : py0;
-    px1 = px1 > fb_w - 1 ? fb_w - 1 : px1;
-    py1 = py1 > fb_h - 1 ? fb_h - 1 : py1;
-    if (px0 > px1 || py0 > py1)
+    int64_t box[4];
+    if (!setup_box(v0, v1, v2, fb_w, fb_h, box))
         return SETUP_EMPTY;
+    return setup_triangle_in_box(v0, v1, v2, box, t);
+}
+
+enum setup_result setup_triangle_in_box(const struct vertex_out *v0, const struct vertex_out *v1,
+                                        const struct vertex_out *v2, const int64_t box[4],
+                                        struct setup_tri *t)
+{
+    const struct vertex_out *v[3] = {v0, v1, v2};
+    const int64_t px0 = box[0], py0 = box[1], px1 = box[2], py1 = box[3];
+    const int64_t one = VIEWPORT_SUBPIX_ONE, half = one / 2;
+    int64_t X[3] = {v0->fx, v1->fx, v2->fx}, Y[3] = {v0->fy, v1->fy, v2->fy};
     int64_t area = (X[1] - X[0]) * (Y[2] - Y[0]) - (Y[1] - Y[0]) * (X[2] - X[0]);
     if (area == 0)
         return SETUP_EMPTY;
@@ -71,6 +65,18 @@ enum setup_result setup_triangle(const struct vertex_out *v0, const struct verte
         t->e[k] = dx * (cy - t->Y[a]) - dy * (cx - t->X[a]) - (owns ? 0 : 1);
         t->e_dx[k] = -dy * one;
         t->e_dy[k] = dx * one;
+    }
+    /* a box of a few pixels (most triangles of a dense mesh at terminal sizes): test its
+     * centres now, as every rasterizer would; covering none, the triangle is dropped here and
+     * never lit, recorded or rasterized */
+    if ((px1 - px0 + 1) * (py1 - py0 + 1) <= SETUP_SMALL_BOX) {
+        for (int64_t y = 0; y <= py1 - py0; y++)
+            for (int64_t x = 0; x <= px1 - px0; x++)
+                if (((t->e[0] + x * t->e_dx[0] + y * t->e_dy[0]) |
+                     (t->e[1] + x * t->e_dx[1] + y * t->e_dy[1]) |
+                     (t->e[2] + x * t->e_dx[2] + y * t->e_dy[2])) >= 0)
+                    return SETUP_DRAW;
+        return SETUP_EMPTY;
     }
     return SETUP_DRAW;
 }

@@ -183,9 +183,10 @@ TEST(culling_is_decided_once_per_source_triangle)
 TEST(triangles_that_cover_no_pixel_are_counted)
 {
     /* orthographic, 32 px for 32 units: window = (x + 16, 16 - y). A sliver from (0.6,1.0)
-     * to (3.4,2.0)/(3.4,2.05) in window coordinates has pixel centres in its box but none
-     * inside it; a 4x4 square covers 16. Drawn alone or together, on any thread count. */
-    const char *obj = "v -15.4 15 0\nv -12.6 14 0\nv -12.6 13.95 0\n"
+     * to (9.4,2.0)/(9.4,2.05) in window coordinates has 8 pixel centres in its box (too many
+     * for setup to test) but none inside it; a 4x4 square covers 16. Drawn alone or
+     * together, on any thread count. */
+    const char *obj = "v -15.4 15 0\nv -6.6 14 0\nv -6.6 13.95 0\n"
                       "v 0 0 0\nv 4 0 0\nv 4 4 0\nv 0 4 0\nf 1 2 3\nf 4 5 6 7\n";
     struct frame f;
     REQUIRE(frame_init(&f, obj, 32, 32) == 0);
@@ -205,20 +206,23 @@ TEST(triangles_that_cover_no_pixel_are_counted)
 TEST(triangles_without_a_pixel_centre_are_not_lit)
 {
     /* the window mapping of the test above: a triangle inside one pixel, away from its centre
-     * (8.1..8.4, 8.1..8.4), and a zero-area one, beside the 4x4 square. Setup drops both
-     * before any lighting: only the square's four vertices are lit, and the counters add up
-     * (in = rejected + culled + no centre + drawn). */
+     * (8.1..8.4, 8.1..8.4), a zero-area one, and one whose box holds the centre (7.5, 7.5)
+     * that it misses ((7.2,7.2), (7.7,7.2), (7.2,7.7)), beside the 4x4 square. Setup drops
+     * all three before any lighting: only the square's four vertices are lit, and the
+     * counters add up (in = rejected + culled + no centre + drawn). */
     const char *obj = "v -7.9 7.9 0\nv -7.6 7.9 0\nv -7.9 7.6 0\n"
                       "v -10 -10 0\nv -9 -9 0\nv -8 -8 0\n"
-                      "v 0 0 0\nv 4 0 0\nv 4 4 0\nv 0 4 0\nf 1 2 3\nf 4 5 6\nf 7 8 9 10\n";
+                      "v 0 0 0\nv 4 0 0\nv 4 4 0\nv 0 4 0\n"
+                      "v -8.8 8.8 0\nv -8.3 8.8 0\nv -8.8 8.3 0\n"
+                      "f 1 2 3\nf 4 5 6\nf 7 8 9 10\nf 11 12 13\n";
     struct frame f;
     REQUIRE(frame_init(&f, obj, 32, 32) == 0);
     f.cam.ortho_height = 32;
     for (int threads = 1; threads <= 2; threads++) {
         f.ro.threads = threads;
         REQUIRE(draw(&f) == 0);
-        CHECK_EQ_INT(f.st.tris_in, 4);
-        CHECK_EQ_INT(f.st.tris_no_centre, 2);
+        CHECK_EQ_INT(f.st.tris_in, 5);
+        CHECK_EQ_INT(f.st.tris_no_centre, 3);
         CHECK_EQ_INT(f.st.tris_drawn, 2);
         CHECK_EQ_INT(f.st.tris_in, f.st.tris_rejected + f.st.tris_culled +
                                        f.st.tris_no_centre + f.st.tris_drawn);
