@@ -103,8 +103,9 @@ static inline uint32_t vertex_outcode(const double c[4], double gx, double gy)
     oc |= (y < -gy * w) ? VERTEX_GUARD_BOTTOM : 0;
     oc |= (y > gy * w) ? VERTEX_GUARD_TOP : 0;
     /* inf or NaN (a model scaled by 1e300, say): no clipping or snapping can use it, so
-     * every triangle touching it is dropped (x - x is 0 only for finite x) */
-    if (!(x - x == 0 && y - y == 0 && z - z == 0 && w - w == 0))
+     * every triangle touching it is dropped (x - x is 0 only for finite x, NaN otherwise,
+     * and a NaN anywhere makes the sum NaN: one test for the four) */
+    if (!((x - x) + (y - y) + (z - z) + (w - w) == 0))
         oc = VERTEX_OUT_FRUSTUM | VERTEX_NEEDS_CLIP | VERTEX_INVALID;
     return oc;
 }
