@@ -135,16 +135,20 @@ TEST(non_finite_vertices_drop_their_triangles)
 {
     /* 1e10 * a scale of 1e300 overflows to inf in clip space: such triangles can be neither
      * clipped nor snapped, so they are dropped, in every mode, without undefined behaviour
-     * (the sanitizer build checks float-to-int conversions) */
+     * (the sanitizer build checks float-to-int conversions); the finite triangle beside them
+     * (x 0 .. 0.5 once scaled) is drawn and covers pixels */
     struct frame f;
-    REQUIRE(frame_init(&f, "v 0 0 0\nv 1e10 0 0\nv 0 1 0\nv -1 -1 0\nf 1 2 3\nf 1 3 4\n", 32,
-                       32) == 0);
+    REQUIRE(frame_init(&f, "v 0 0 0\nv 1e10 0 0\nv 0 1 0\nv -1 -1 0\nv 5e-301 0.5 0\n"
+                           "f 1 2 3\nf 1 3 4\nf 1 5 3\n", 32, 32) == 0);
     f.item.model = m4_scale(v3(1e300, 1, 1));
     const enum shade_mode modes[] = {SHADE_PHONG, SHADE_WIRE};
     for (int i = 0; i < 2; i++) {
         f.ro.shade = modes[i];
         REQUIRE(draw(&f) == 0);
         CHECK(f.st.tris_rejected >= 1);
+        CHECK(f.st.tris_drawn >= 1);
+        if (modes[i] == SHADE_PHONG)
+            CHECK(covered(&f.fb) > 0);
     }
     f.ro.shade = SHADE_FLAT;
     f.ro.view = VIEW_WIRE_OVERLAY;
