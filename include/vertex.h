@@ -87,7 +87,8 @@ void vertex_run(const struct mesh *m, const struct vertex_uniforms *u, struct ve
  * used by back faces alone. */
 void vertex_shade(const struct mesh *m, const struct vertex_uniforms *u, uint32_t i,
                   struct vertex_out *o);
-/* Outcode of a clip-space position (also used by clip.c for new vertices). */
+/* Outcode of a clip-space position (also used by clip.c for new vertices); the guard band
+ * gx, gy >= 1 (as multiples of w: never inside the frustum). */
 static inline uint32_t vertex_outcode(const double c[4], double gx, double gy)
 {
     double x = c[0], y = c[1], z = c[2], w = c[3];
@@ -98,10 +99,12 @@ static inline uint32_t vertex_outcode(const double c[4], double gx, double gy)
     oc |= (y > w) ? VERTEX_OUT_TOP : 0;
     oc |= (z < -w) ? VERTEX_OUT_NEAR : 0;
     oc |= (z > w) ? VERTEX_OUT_FAR : 0;
-    oc |= (x < -gx * w) ? VERTEX_GUARD_LEFT : 0;
-    oc |= (x > gx * w) ? VERTEX_GUARD_RIGHT : 0;
-    oc |= (y < -gy * w) ? VERTEX_GUARD_BOTTOM : 0;
-    oc |= (y > gy * w) ? VERTEX_GUARD_TOP : 0;
+    if (oc & 0xf) { /* inside x and y (|x|, |y| <= w): inside the wider guard band too */
+        oc |= (x < -gx * w) ? VERTEX_GUARD_LEFT : 0;
+        oc |= (x > gx * w) ? VERTEX_GUARD_RIGHT : 0;
+        oc |= (y < -gy * w) ? VERTEX_GUARD_BOTTOM : 0;
+        oc |= (y > gy * w) ? VERTEX_GUARD_TOP : 0;
+    }
     /* inf or NaN (a model scaled by 1e300, say): no clipping or snapping can use it, so
      * every triangle touching it is dropped (x - x is 0 only for finite x, NaN otherwise,
      * and a NaN anywhere makes the sum NaN: one test for the four) */
