@@ -51,16 +51,24 @@ enum {
  * functions (products of two coordinates) stay below 2^46: int64 with room to spare. */
 #define VERTEX_GUARD_PX 16384.0
 
+/* 128 bytes in two halves of one cache line each (when the array is 64-byte aligned, as the
+ * pipeline allocates it): the first is all the vertex stage writes for every vertex and all
+ * the front end reads to reject, cull and box a triangle; the second is written only for
+ * vertices of drawn triangles (vertex_shade). On a dense mesh the vertex array is larger
+ * than the caches, so the untouched half is memory traffic saved. Window depth is not kept:
+ * setup_interp computes it from clip as viewport_window does (the same bits). */
 struct vertex_out {
-    double clip[4];  /* x, y, z, w in clip space */
-    double win[3];   /* window x, y (pixels, y down) and depth; valid when `projected` */
-    int64_t fx, fy;  /* win x, y snapped to 1/256 pixel (viewport.h); valid when `projected` */
-    int projected;   /* set by vertex_project (the vertex stage does it for every w > 0) */
-    int shaded;      /* wpos and var are valid (vertex_shade) */
+    int32_t fx, fy;    /* win x, y snapped to 1/256 pixel (viewport.h; the guard band keeps
+                          them below 2^23); valid when `projected` */
     uint32_t outcode;
-    float wpos[3];   /* world position (flat shading, centroid and face normal) */
+    uint8_t projected; /* set by vertex_project (the vertex stage does it for every w > 0) */
+    uint8_t shaded;    /* wpos and var are valid (vertex_shade) */
+    double clip[4];    /* x, y, z, w in clip space */
+    double win[2];     /* window x, y (pixels, y down); valid when `projected` */
+    float wpos[3];     /* world position (flat shading, centroid and face normal) */
     float var[VARY_MAX];
 };
+_Static_assert(sizeof(struct vertex_out) == 128, "struct vertex_out: two cache lines");
 
 struct vertex_uniforms {
     int fb_w, fb_h;
@@ -113,7 +121,7 @@ static inline uint32_t vertex_outcode(const double c[4], double gx, double gy)
     return oc;
 }
 /* Perspective divide, viewport and the 1/256-pixel snap (viewport.h) of a vertex inside the
- * guard band with w > 0. Sets win, fx, fy, projected. */
+ * guard band with w > 0. Sets win, fx, fy, projected (depth: see struct vertex_out). */
 void vertex_project(struct vertex_out *v, int fb_w, int fb_h);
 /* light.h's D and S at a world-space point with unit normal n (Gouraud per vertex, flat per
  * face): V toward the eye from p, or view_back for orthographic cameras. */

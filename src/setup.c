@@ -156,7 +156,7 @@ void setup_interp(const struct setup_tri *t, enum depth_mode depth,
             d[i] = proj->ortho ? 0.5 * (c[2] / c[3] * (proj->far - proj->near) + proj->far + proj->near)
                                : c[3];
             break;
-        default: d[i] = t->v[i]->win[2]; break;
+        default: d[i] = 0.5 * c[2] * rw[i] + 0.5; break; /* viewport_window's depth */
         }
         lo = d[i] < lo ? d[i] : lo;
         hi = d[i] > hi ? d[i] : hi;

@@ -14,9 +14,11 @@ int vertex_varying_count(enum shade_mode shade, enum debug_view view)
 
 void vertex_project(struct vertex_out *v, int fb_w, int fb_h)
 {
-    viewport_window(v->clip, fb_w, fb_h, v->win);
-    v->fx = viewport_snap(v->win[0]);
-    v->fy = viewport_snap(v->win[1]);
+    double win[3];
+    viewport_window(v->clip, fb_w, fb_h, win);
+    v->win[0] = win[0], v->win[1] = win[1];
+    v->fx = (int32_t)viewport_snap(win[0]);
+    v->fy = (int32_t)viewport_snap(win[1]);
     v->projected = 1;
 }
 

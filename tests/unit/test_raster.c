@@ -372,8 +372,7 @@ TEST(sliver_depth_stays_within_its_corners)
         struct vertex_out v[3];
         for (int k = 0; k < 3; k++) {
             v[k] = win(xs[k], ys[k]);
-            v[k].clip[2] = 2 * zs[k] - 1;
-            v[k].win[2] = zs[k];
+            v[k].clip[2] = 2 * zs[k] - 1; /* window depth zs[k] */
         }
         /* the snapped corners: two at 10.5+2/256 (1.5 rounds to even 2), one moved to 1/256
          * above the centre row (as a snap of a slightly different position would put it):
