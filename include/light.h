@@ -179,51 +179,56 @@ static inline f4 light_pow4(f4 x, float n)
     return light_pow4_k(x, light_pow_int(n), n);
 }
 
+/* One light's diffuse and specular factors for four points: max(0, N.L) and
+ * max(0, N.H)^ns with H = normalize(L + V) (pow_k = light_pow_int(ns)) */
+static inline __attribute__((always_inline)) void
+light_one4(const float l[3], const f4 n[3], const f4 v[3], float ns, int pow_k, f4 *dd_out,
+           f4 *ss_out)
+{
+    f4 h[3] = {f4_set(l[0]) + v[0], f4_set(l[1]) + v[1], f4_set(l[2]) + v[2]};
+    f4 hl = f4_sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+    i4 pos = hl > f4_set(0);
+    f4 ih = f4_select(pos, f4_set(1.0f) / f4_select(pos, hl, f4_set(1)), f4_set(0));
+    f4 ndl = n[0] * f4_set(l[0]) + n[1] * f4_set(l[1]) + n[2] * f4_set(l[2]);
+    f4 ndh = (n[0] * h[0] + n[1] * h[1] + n[2] * h[2]) * ih;
+    *dd_out = f4_max(ndl, f4_set(0));
+    *ss_out = light_pow4_k(f4_max(ndh, f4_set(0)), pow_k, ns);
+}
+
+/* the hemisphere ambient of channel k, up = (1 + n.y) / 2 */
+static inline f4 light_ambient4(const struct light_env *env, f4 up, int k)
+{
+    float sky = env->sky[k], ground = env->ground[k];
+    return sky == ground ? f4_set(sky) : f4_set(ground) + up * f4_set(sky - ground);
+}
+
 /* light_terms for four points (n, v: unit vectors, one component per vector): in every lane
  * exactly what light_terms gives */
 static inline __attribute__((always_inline)) void
 light_terms4k(const struct light_env *env, const f4 n[3], const f4 v[3], float ns, int pow_k,
               f4 d_out[3], f4 s_out[3])
 {
-    f4 up = f4_set(0.5f) + f4_set(0.5f) * n[1];
+    f4 up = f4_set(0.5f) + f4_set(0.5f) * n[1], dd, ss;
     if (env->n == 1) { /* one light (the default): no sums to keep, fewer registers */
-        const float *l = env->dir[0], *col = env->col[0];
-        f4 h[3] = {f4_set(l[0]) + v[0], f4_set(l[1]) + v[1], f4_set(l[2]) + v[2]};
-        f4 hl = f4_sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
-        i4 pos = hl > f4_set(0);
-        f4 ih = f4_select(pos, f4_set(1.0f) / f4_select(pos, hl, f4_set(1)), f4_set(0));
-        f4 ndl = n[0] * f4_set(l[0]) + n[1] * f4_set(l[1]) + n[2] * f4_set(l[2]);
-        f4 ndh = (n[0] * h[0] + n[1] * h[1] + n[2] * h[2]) * ih;
-        f4 dd = f4_max(ndl, f4_set(0));
-        f4 ss = light_pow4_k(f4_max(ndh, f4_set(0)), pow_k, ns);
+        const float *col = env->col[0];
+        light_one4(env->dir[0], n, v, ns, pow_k, &dd, &ss);
         for (int k = 0; k < 3; k++) { /* as below with d = 0 + dd col, s = 0 + ss col */
-            float sky = env->sky[k], ground = env->ground[k];
-            f4 a = sky == ground ? f4_set(sky) : f4_set(ground) + up * f4_set(sky - ground);
-            d_out[k] = a + f4_set(LIGHT_DIFFUSE) * (dd * f4_set(col[k]));
+            d_out[k] = light_ambient4(env, up, k) + f4_set(LIGHT_DIFFUSE) * (dd * f4_set(col[k]));
             s_out[k] = ss * f4_set(col[k]);
         }
         return;
     }
     f4 d[3] = {f4_set(0), f4_set(0), f4_set(0)}, s[3] = {f4_set(0), f4_set(0), f4_set(0)};
     for (int i = 0; i < env->n; i++) {
-        const float *l = env->dir[i], *col = env->col[i];
-        f4 h[3] = {f4_set(l[0]) + v[0], f4_set(l[1]) + v[1], f4_set(l[2]) + v[2]};
-        f4 hl = f4_sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
-        i4 pos = hl > f4_set(0);
-        f4 ih = f4_select(pos, f4_set(1.0f) / f4_select(pos, hl, f4_set(1)), f4_set(0));
-        f4 ndl = n[0] * f4_set(l[0]) + n[1] * f4_set(l[1]) + n[2] * f4_set(l[2]);
-        f4 ndh = (n[0] * h[0] + n[1] * h[1] + n[2] * h[2]) * ih;
-        f4 dd = f4_max(ndl, f4_set(0));
-        f4 ss = light_pow4_k(f4_max(ndh, f4_set(0)), pow_k, ns);
+        const float *col = env->col[i];
+        light_one4(env->dir[i], n, v, ns, pow_k, &dd, &ss);
         for (int k = 0; k < 3; k++) {
             d[k] += dd * f4_set(col[k]);
             s[k] += ss * f4_set(col[k]);
         }
     }
     for (int k = 0; k < 3; k++) {
-        float sky = env->sky[k], ground = env->ground[k];
-        f4 a = sky == ground ? f4_set(sky) : f4_set(ground) + up * f4_set(sky - ground);
-        d_out[k] = a + f4_set(LIGHT_DIFFUSE) * d[k];
+        d_out[k] = light_ambient4(env, up, k) + f4_set(LIGHT_DIFFUSE) * d[k];
         s_out[k] = s[k];
     }
 }
