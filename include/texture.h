@@ -218,8 +218,18 @@ static inline i4 texture_wrap4(f4 x, int n)
     return i;
 }
 
+/* byte c (0 r, 1 g, 2 b) of four texels loaded as 32-bit words (RGBA8 in memory order) */
+static inline i4 texel_channel4(i4 words, int c)
+{
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+    return (words >> (24 - 8 * c)) & i4_set(255);
+#else
+    return (words >> (8 * c)) & i4_set(255);
+#endif
+}
+
 /* the rgb of the texels at (i, j), j counted from the bottom, one vector per channel: one
- * 32-bit load per texel (RGBA8 in memory order), split into channels in vector registers */
+ * 32-bit load per texel, split into channels in vector registers */
 static inline void texture_fetch4(const struct texture_level *lv, i4 i, i4 j, i4 rgb_out[3])
 {
     i4 idx = (i4_set(lv->h - 1) - j) * i4_set(lv->w) + i;
@@ -227,13 +237,8 @@ static inline void texture_fetch4(const struct texture_level *lv, i4 i, i4 j, i4
     for (int l = 0; l < SIMD_LANES; l++)
         __builtin_memcpy(&w[l], lv->rgba + (size_t)idx[l] * 4, 4);
     i4 v = {(int32_t)w[0], (int32_t)w[1], (int32_t)w[2], (int32_t)w[3]};
-#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
-    rgb_out[0] = (v >> 24) & i4_set(255), rgb_out[1] = (v >> 16) & i4_set(255);
-    rgb_out[2] = (v >> 8) & i4_set(255);
-#else
-    rgb_out[0] = v & i4_set(255), rgb_out[1] = (v >> 8) & i4_set(255);
-    rgb_out[2] = (v >> 16) & i4_set(255);
-#endif
+    for (int c = 0; c < 3; c++)
+        rgb_out[c] = texel_channel4(v, c);
 }
 
 /* texture_bilinear, four samples of one level at once */
@@ -302,13 +307,8 @@ static inline void texture_bilinear4_levels(const struct texture *t, i4 lv, f4 u
         w[0][l] = (int32_t)a, w[1][l] = (int32_t)b, w[2][l] = (int32_t)c, w[3][l] = (int32_t)d;
     }
     for (int ch = 0; ch < 3; ch++) {
-#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
-        const int sh = 24 - 8 * ch;
-#else
-        const int sh = 8 * ch;
-#endif
-        f4 c00 = f4_from_i4((w[0] >> sh) & i4_set(255)), c10 = f4_from_i4((w[1] >> sh) & i4_set(255));
-        f4 c01 = f4_from_i4((w[2] >> sh) & i4_set(255)), c11 = f4_from_i4((w[3] >> sh) & i4_set(255));
+        f4 c00 = f4_from_i4(texel_channel4(w[0], ch)), c10 = f4_from_i4(texel_channel4(w[1], ch));
+        f4 c01 = f4_from_i4(texel_channel4(w[2], ch)), c11 = f4_from_i4(texel_channel4(w[3], ch));
         f4 a = c00 + ax * (c10 - c00);
         f4 b = c01 + ax * (c11 - c01);
         rgb_out[ch] = (a + ay * (b - a)) * k;

@@ -254,13 +254,8 @@ static inline void sample_face4(const struct skybox_level *l, i4 face, f4 u, f4 
     for (int q = 0; q < 4; q++)
         __builtin_memcpy(&t[q], w[q], sizeof t[q]);
     for (int c = 0; c < 3; c++) {
-#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
-        const int sh = 24 - 8 * c;
-#else
-        const int sh = 8 * c;
-#endif
-        f4 p00 = f4_from_i4((t[0] >> sh) & i4_set(255)), p10 = f4_from_i4((t[1] >> sh) & i4_set(255));
-        f4 p01 = f4_from_i4((t[2] >> sh) & i4_set(255)), p11 = f4_from_i4((t[3] >> sh) & i4_set(255));
+        f4 p00 = f4_from_i4(texel_channel4(t[0], c)), p10 = f4_from_i4(texel_channel4(t[1], c));
+        f4 p01 = f4_from_i4(texel_channel4(t[2], c)), p11 = f4_from_i4(texel_channel4(t[3], c));
         f4 a = p00 + ax * (p10 - p00), b = p01 + ax * (p11 - p01);
         rgb_out[c] = (a + ay * (b - a)) * f4_set(1.0f / 255.0f);
     }
