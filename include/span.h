@@ -1,13 +1,21 @@
 /* span.h: the per-pixel work of the back end — one function for every rasterizer.
  *
  * A rasterizer (raster.h) only finds covered pixels and hands them over as runs: pixels
- * (x0..x1, y) of the current triangle. span_draw() does everything else for the run, pixel by
- * pixel: the depth test, interpolation, shading (shade.h) and the framebuffer write. Each
- * pixel's weights come from its absolute position (x, y) in one fixed order of operations —
- *   l_k = (lam_k + (y - y0) * lam_dy_k) + (x - x0) * lam_dx_k      (setup.h's planes, double)
- * — never from how the run was found, so any rasterizer that finds the same pixels writes
- * the same bytes. Interpolation setup (setup_interp) runs on the first run of a triangle:
- * triangles that cover nothing never pay for it.
+ * (x0..x1, y) of the current triangle (span_draw). The runs of a triangle are queued and
+ * drawn together at span_end (or when the queue fills), which does everything else: the
+ * depth test, interpolation, shading (shade.h) and the framebuffer write. Each pixel's
+ * weights come from its absolute position (x, y) in one fixed order of operations —
+ *   v = (c + (y - y0) * dy) + (x - x0) * dx         (setup.h's planes, float)
+ * — never from how the run was found or which pixels it was drawn beside, so any
+ * rasterizer that finds the same pixels writes the same bytes. Interpolation setup
+ * (setup_interp) runs when a triangle's first runs are drawn: triangles that cover nothing
+ * never pay for it.
+ *
+ * Pixels go four at a time (simd.h). In the default methods (span.c's "packs"), four
+ * pixels of one run side by side are one group; what is left at a run's end (at terminal
+ * sizes most runs are one to three pixels) is packed with the leftovers of the triangle's
+ * other rows, so a group of four lanes is full whatever the triangle's shape. The other
+ * methods go run by run.
  *
  * Per pixel, in order: depth d in the depth method's measure (fb.h) from the screen-linear
  * l_k (DEPTH_W: perspective-correct), clamped to the corners' range; overdraw count; the
@@ -31,18 +39,21 @@
  *                  Cost: two divisions per n pixels of a row, three per row for its ends.
  *                  Fails: far less than affine — the error is the bend of 1/w across n
  *                  pixels, which grows with n and with how fast depth changes across the
- *                  screen (grazing surfaces close to the eye); seams where two spans meet.
- *                  surfaces close to the eye). */
+ *                  screen (grazing surfaces close to the eye); seams where two spans meet. */
 #ifndef RASTTY_SPAN_H
 #define RASTTY_SPAN_H
 
 #include <stdbool.h>
+#include <stdint.h>
 
 #include "fb.h"
 #include "render.h"
 #include "setup.h"
 #include "shade.h"
 #include "simd.h"
+
+/* runs queued per triangle before they are drawn (a triangle with more is drawn in parts) */
+#define SPAN_QUEUE 128
 
 /* One back-end worker's state: the frame's constants and the current triangle. */
 struct span_ctx {
@@ -62,13 +73,32 @@ struct span_ctx {
     /* results, added to the frame's stats by the caller */
     uint8_t *hit;              /* hit[tri_index] = 1 once a triangle has a run (or NULL) */
     uint64_t tested, shaded;
+    /* the current triangle's runs not drawn yet */
+    int n_runs;
+    struct span_run {
+        int16_t y, x0, x1;     /* FB_MAX_DIM fits */
+    } runs[SPAN_QUEUE];
 };
 
-/* Start a triangle: its interpolation setup waits for its first run. */
+/* Start a triangle: its interpolation setup waits for its first runs. */
 void span_begin(struct span_ctx *s, const struct setup_tri *t, const struct shade_tri *st,
                 uint32_t tri_index);
-/* Pixels x0..x1 (inclusive, x0 <= x1, inside the triangle's box) of row y, all covered. */
-void span_draw(struct span_ctx *s, int y, int x0, int x1);
+/* Draw the queued runs now (span_draw and span_end call it). */
+void span_flush(struct span_ctx *s);
+/* Pixels x0..x1 (inclusive, x0 <= x1, inside the triangle's box) of row y, all covered:
+ * queued, drawn by span_end at the latest. */
+static inline void span_draw(struct span_ctx *s, int y, int x0, int x1)
+{
+    if (s->n_runs == SPAN_QUEUE)
+        span_flush(s);
+    s->runs[s->n_runs++] = (struct span_run){(int16_t)y, (int16_t)x0, (int16_t)x1};
+}
+/* The triangle's rasterization is done: draw what is queued. */
+static inline void span_end(struct span_ctx *s)
+{
+    if (s->n_runs)
+        span_flush(s);
+}
 
 /* The instruction set span_draw runs on. On x86-64 the build makes a second copy of this
  * stage for AVX2 (the same C and the same bytes, fewer instructions: blends, rounding,

@@ -105,6 +105,7 @@ static void draw_tiles(void *arg, int k)
             const struct setup_tri *tri = &b->tris[i];
             span_begin(s, tri, &b->shades[tri->shade], i);
             j->raster(tri, r, s);
+            span_end(s);
         }
     }
 }
@@ -119,6 +120,7 @@ long batch_draw(struct batch *b, raster_fn raster, int fb_w, int fb_h, struct wo
             const struct setup_tri *t = &b->tris[i];
             span_begin(ctx, t, &b->shades[t->shade], i);
             raster(t, all, ctx);
+            span_end(ctx);
         }
     } else {
         struct tile_job j = {.b = b, .raster = raster, .ctx = ctx, .fb_w = fb_w, .fb_h = fb_h};

@@ -12,12 +12,12 @@
  * -mavx2 -DSPAN_AVX2_COPY, which makes only span_draw_avx2 — the same C, so the same IEEE
  * operations in the same order (no fused multiply-add: -mno-fma, -ffp-contract=off) and the
  * same bytes, in VEX encoding with blends, rounding and 32-bit multiplies (simd.h). */
-void span_draw_avx2(struct span_ctx *s, int y, int x0, int x1);
+void span_flush_avx2(struct span_ctx *s);
 #ifdef SPAN_AVX2_COPY
-#define SPAN_DRAW span_draw_avx2
+#define SPAN_FLUSH span_flush_avx2
 #else
-#define SPAN_DRAW span_draw_base
-static void span_draw_base(struct span_ctx *s, int y, int x0, int x1);
+#define SPAN_FLUSH span_flush_base
+static void span_flush_base(struct span_ctx *s);
 
 void span_begin(struct span_ctx *s, const struct setup_tri *t, const struct shade_tri *st,
                 uint32_t tri_index)
@@ -26,6 +26,7 @@ void span_begin(struct span_ctx *s, const struct setup_tri *t, const struct shad
     s->st = st;
     s->tri_index = tri_index;
     s->in_ready = false;
+    s->n_runs = 0;
 }
 
 #ifdef RASTTY_SPAN_AVX2
@@ -74,12 +75,12 @@ const char *span_isa_name(void)
     return isa_get() == SPAN_ISA_AVX2 ? "avx2" : "sse2";
 }
 
-void span_draw(struct span_ctx *s, int y, int x0, int x1)
+void span_flush(struct span_ctx *s)
 {
     if (isa_get() == SPAN_ISA_AVX2)
-        span_draw_avx2(s, y, x0, x1);
+        span_flush_avx2(s);
     else
-        span_draw_base(s, y, x0, x1);
+        span_flush_base(s);
 }
 #endif
 
@@ -124,25 +125,84 @@ static inline void exact_at(float qr, float qdx, const float *ar, const float *a
         var_out[k] = (ar[k] + adx[k] * X) * rq;
 }
 
-/* One run, instantiated per shading mode by span_draw's switch: `mode` is a compile-time
- * constant in each copy, so the shading's switches fold away. Pixels go four at a time
- * (simd.h): depth, the test and the varyings of four pixels in a few vector operations, then
- * the shading four at a time too (shade_fragment4; the normals view lane by lane).
- * A lane's arithmetic is the scalar formula, so a pixel's bytes never depend on where its
- * group of four started. Every plane coefficient is copied into a local first: the
- * framebuffer's byte stores may alias anything and would otherwise force reloads. */
+/* varyings a triangle's pixels interpolate in a shading mode */
+static inline int span_n_var(const struct span_ctx *s, enum shade_mode mode)
+{
+    /* (the depth-only pass has no shading record: never look at s->st there) */
+    return mode == SHADE_WIRE        ? 0
+           : s->st->vcolor           ? VARY_COLOR + 3
+           : mode == SHADE_GOURAUD || mode == SHADE_PHONG ? 8
+                                     : 2;
+}
+
+/* What the texture's level of detail needs (trilinear): the planes of u, v and q per pixel
+ * step, in every lane. */
+struct lod_planes {
+    f4 udx, vdx, qdx, udy, vdy, qdy;
+};
+
+static inline struct lod_planes lod_planes_of(const struct setup_interp *in)
+{
+    return (struct lod_planes){f4_set(in->a[0].dx), f4_set(in->a[1].dx), f4_set(in->q.dx),
+                               f4_set(in->a[0].dy), f4_set(in->a[1].dy), f4_set(in->q.dy)};
+}
+
+/* The rest of a group of four pixels once its depth test is done: the colour of the lanes
+ * in `pass` from their varyings, quantised and written. rq: 1 / q at the four pixels (the
+ * level of detail's d(a/q) = (da - (a/q) dq) / q, exactly, from the planes). The pixels'
+ * colours are at rgb + off[l]; `contig`: at rgb + off[0] + 3 l instead (side by side; when
+ * every lane passed, one wide store). */
+static inline __attribute__((always_inline)) void
+shade_write4(const struct span_ctx *s, const enum shade_mode mode, const enum tex_filter filter,
+             const bool lod, const struct lod_planes *lp, int pow_k, const f4 *var, f4 rq,
+             i4 pass, uint8_t *restrict rgb, const bool contig, const size_t off[SIMD_LANES])
+{
+    const struct shade_tri *st = s->st;
+    f4 lambda = f4_set(0);
+    if (lod)
+        lambda = texture_lod4(st->tex, (lp->udx - var[0] * lp->qdx) * rq,
+                              (lp->vdx - var[1] * lp->qdx) * rq, (lp->udy - var[0] * lp->qdy) * rq,
+                              (lp->vdy - var[1] * lp->qdy) * rq);
+    f4 c[3];
+    shade_fragment4(s->shade, mode, filter, st, pow_k, var, lambda, c);
+    i4 r8 = fb_quantize4(c[0]), g8 = fb_quantize4(c[1]), b8 = fb_quantize4(c[2]);
+    if (contig && i4_all(pass)) {
+        /* four pixels, twelve bytes: each lane's rgb0 as one 32-bit store, in order, so
+         * each overwrites the byte the one before wrote past its pixel; the last one
+         * stops at its own three bytes */
+        i4 px = r8 | (g8 << 8) | (b8 << 16);
+        uint8_t *p = rgb + off[0];
+        for (int l = 0; l < SIMD_LANES - 1; l++) {
+            uint32_t w = (uint32_t)px[l];
+            uint8_t le[4] = {(uint8_t)w, (uint8_t)(w >> 8), (uint8_t)(w >> 16), 0};
+            __builtin_memcpy(p + 3 * l, le, 4);
+        }
+        p[9] = (uint8_t)r8[3], p[10] = (uint8_t)g8[3], p[11] = (uint8_t)b8[3];
+        return;
+    }
+    for (int l = 0; l < SIMD_LANES; l++)
+        if (pass[l]) {
+            uint8_t *p = rgb + (contig ? off[0] + 3 * (size_t)l : off[l]);
+            p[0] = (uint8_t)r8[l], p[1] = (uint8_t)g8[l], p[2] = (uint8_t)b8[l];
+        }
+}
+
+/* One run in any method, instantiated per shading mode by span_flush's switch: `mode` is a
+ * compile-time constant in each copy, so the shading's switches fold away. Pixels go four
+ * at a time (simd.h): depth, the test and the varyings of four pixels in a few vector
+ * operations, then the shading four at a time too (shade_write4; the normals view lane by
+ * lane). A lane's arithmetic is the scalar formula, so a pixel's bytes never depend on
+ * where its group of four started. Every plane coefficient is copied into a local first:
+ * the framebuffer's byte stores may alias anything and would otherwise force reloads. */
 static inline __attribute__((always_inline)) void run(struct span_ctx *s, int y, int xa, int xb,
                                                       const enum shade_mode mode,
                                                       const enum depth_mode depth,
                                                       const enum persp_method persp,
-                                                      const enum tex_filter filter,
-                                                      const bool plain)
+                                                      const enum tex_filter filter)
 {
     const struct setup_interp *in = &s->in;
     const struct setup_tri *t = s->tri;
-    /* (the depth-only pass has no shading record: never look at s->st there) */
-    const int n_var = mode != SHADE_WIRE && s->st->vcolor ? VARY_COLOR + 3
-                      : mode == SHADE_GOURAUD || mode == SHADE_PHONG ? 8 : 2;
+    const int n_var = span_n_var(s, mode);
     const int span_n = persp == PERSP_SPAN8 ? 8 : persp == PERSP_SPAN16 ? 16 : 32;
     const float Y = (float)(y - t->y0);
     /* depth: the plane's value as c + (small part), rounded once (setup.h) */
@@ -158,18 +218,15 @@ static inline __attribute__((always_inline)) void run(struct span_ctx *s, int y,
         ar[k] = ar4[k][0];
         adx[k] = in->a[k].dx;
     }
-    /* trilinear: u and v's derivatives need the planes' y steps too */
     const bool lod = mode != SHADE_WIRE && filter == TEX_TRILINEAR && s->st->tex;
-    const f4 udy = f4_set(in->a[0].dy), vdy = f4_set(in->a[1].dy), qdy = f4_set(in->q.dy);
+    const struct lod_planes lp = lod_planes_of(in);
     const int x_org = t->x0, fb_w = s->fb->w;
     const size_t row = (size_t)y * (size_t)fb_w;
     float *restrict depth_buf = s->fb->depth + row;
     uint8_t *restrict rgb_buf = s->fb->rgb + 3 * row;
-    /* plain: no overdraw count, no normals view (a constant in the default methods' copies) */
-    uint32_t *restrict overdraw = !plain && s->fb->overdraw ? s->fb->overdraw + row : NULL;
+    uint32_t *restrict overdraw = s->fb->overdraw ? s->fb->overdraw + row : NULL;
     const struct shade_ctx *sc = s->shade;
-    const struct shade_tri *st = s->st;
-    const int pow_k = mode == SHADE_PHONG ? light_pow_int(st->mat->ns) : 0;
+    const int pow_k = mode == SHADE_PHONG ? light_pow_int(s->st->mat->ns) : 0;
     /* span methods: the current span's absolute start column, its clamped ends, the
      * varyings there and their change per pixel; the row's covered extent */
     int anchor = -1, a0 = 0, row_lo = -1, row_hi = -1;
@@ -215,8 +272,8 @@ static inline __attribute__((always_inline)) void run(struct span_ctx *s, int y,
         if (mode == SHADE_WIRE)
             continue;
         f4 var[VARY_MAX];
+        const f4 rq = f4_set(1.0f) / (f4_set(qr) + qdx * X);
         if (persp == PERSP_CORRECT || persp == PERSP_AFFINE) {
-            f4 rq = f4_set(1.0f) / (f4_set(qr) + qdx * X);
             for (int k = 0; k < n_var; k++)
                 var[k] = (ar4[k] + adx4[k] * X) * rq;
         } else {
@@ -242,63 +299,145 @@ static inline __attribute__((always_inline)) void run(struct span_ctx *s, int y,
                     var[k][l] = va[k] + f * vd[k];
             }
         }
-        if (!plain && sc->view == VIEW_NORMALS) { /* lane by lane */
+        if (sc->view == VIEW_NORMALS) { /* lane by lane */
             for (int l = 0; l < n; l++) {
                 if (!pass[l])
                     continue;
                 float v1[VARY_MAX] = {0}, rgb[3];
                 for (int k = 0; k < n_var; k++)
                     v1[k] = var[k][l];
-                shade_fragment(sc, mode, st, v1, rgb);
+                shade_fragment(sc, mode, s->st, v1, rgb);
                 uint8_t *p = rgb_buf + 3 * (x + l);
                 p[0] = fb_quantize(rgb[0]), p[1] = fb_quantize(rgb[1]), p[2] = fb_quantize(rgb[2]);
             }
             continue;
         }
-        f4 lambda = f4_set(0);
-        if (lod) { /* d(a/q) = (da - (a/q) dq) / q, exactly, from the planes */
-            f4 rq = f4_set(1.0f) / (f4_set(qr) + qdx * X);
-            lambda = texture_lod4(st->tex, (f4_set(adx[0]) - var[0] * qdx) * rq,
-                                  (f4_set(adx[1]) - var[1] * qdx) * rq,
-                                  (udy - var[0] * qdy) * rq, (vdy - var[1] * qdy) * rq);
-        }
-        f4 rgb[3];
-        shade_fragment4(sc, mode, filter, st, pow_k, var, lambda, rgb);
-        i4 r8 = fb_quantize4(rgb[0]), g8 = fb_quantize4(rgb[1]), b8 = fb_quantize4(rgb[2]);
-        if (n == SIMD_LANES && i4_all(pass)) {
-            /* four pixels, twelve bytes: each lane's rgb0 as one 32-bit store, in order, so
-             * each overwrites the byte the one before wrote past its pixel; the last one
-             * stops at its own three bytes */
-            i4 px = r8 | (g8 << 8) | (b8 << 16);
-            uint8_t *p = rgb_buf + 3 * x;
-            for (int l = 0; l < SIMD_LANES - 1; l++) {
-                uint32_t w = (uint32_t)px[l];
-                uint8_t le[4] = {(uint8_t)w, (uint8_t)(w >> 8), (uint8_t)(w >> 16), 0};
-                __builtin_memcpy(p + 3 * l, le, 4);
-            }
-            p[9] = (uint8_t)r8[3], p[10] = (uint8_t)g8[3], p[11] = (uint8_t)b8[3];
-            continue;
-        }
-        for (int l = 0; l < n; l++)
-            if (pass[l]) {
-                uint8_t *p = rgb_buf + 3 * (x + l);
-                p[0] = (uint8_t)r8[l], p[1] = (uint8_t)g8[l], p[2] = (uint8_t)b8[l];
-            }
+        const size_t off[SIMD_LANES] = {3 * (size_t)x}; /* side by side: lanes past the run
+                                                           are never in pass */
+        shade_write4(s, mode, filter, lod, &lp, pow_k, var, rq, pass, rgb_buf, true, off);
     }
     s->tested += (uint64_t)(xb - xa + 1);
     s->shaded += shaded;
 }
 
+/* The triangle's constants a group of the default methods reads, in every lane. */
+struct pack_ctx {
+    f4 zc, z_c_lo, zdy, zdx, z_lo, z_hi; /* depth: c + ((c_lo + dy Y) + dx X) */
+    f4 qc, qdy, qdx;
+    const f4 *a_c, *a_dy, *a_dx;
+    int n_var, pow_k;
+    bool lod;
+    struct lod_planes lp;
+    float *restrict depth;
+    uint8_t *restrict rgb;
+};
+
+/* One group of the default methods (depth z, perspective-correct, no overdraw count, no
+ * normals view): four pixels at columns x_org + X, rows y_org + Y, at depth[idx[l]] and
+ * rgb[3 idx[l]]; `contig`: idx[l] = idx[0] + l (four pixels of a run side by side), else
+ * the first n lanes are pixels (leftovers of several runs). The same operations, in the
+ * same order, as run() gives these pixels. Returns how many passed the depth test. */
+static inline __attribute__((always_inline)) uint64_t
+pack_group(const struct span_ctx *s, const struct pack_ctx *k, const enum shade_mode mode,
+           const enum tex_filter filter, const bool contig, f4 X, f4 Y, const size_t idx[4], int n)
+{
+    f4 z = k->zc + ((k->z_c_lo + k->zdy * Y) + k->zdx * X);
+    z = f4_max(k->z_lo, z);
+    z = f4_min(k->z_hi, z);
+    f4 old;
+    i4 pass;
+    if (contig) {
+        __builtin_memcpy(&old, k->depth + idx[0], sizeof old);
+        pass = z < old;
+    } else {
+        const f4 lane = {0, 1, 2, 3};
+        for (int l = 0; l < SIMD_LANES; l++)
+            old[l] = l < n ? k->depth[idx[l]] : 0;
+        pass = (z < old) & (f4_set((float)n) > lane);
+    }
+    if (!i4_any(pass))
+        return 0;
+    if (contig) {
+        f4 kept = f4_select(pass, z, old);
+        __builtin_memcpy(k->depth + idx[0], &kept, sizeof kept);
+    } else {
+        for (int l = 0; l < SIMD_LANES; l++)
+            if (pass[l])
+                k->depth[idx[l]] = z[l];
+    }
+    uint64_t shaded = (uint64_t)-(pass[0] + pass[1] + pass[2] + pass[3]); /* lanes are -1 */
+    if (mode == SHADE_WIRE)
+        return shaded;
+    const f4 rq = f4_set(1.0f) / ((k->qc + k->qdy * Y) + k->qdx * X);
+    f4 var[VARY_MAX];
+    for (int v = 0; v < k->n_var; v++)
+        var[v] = ((k->a_c[v] + k->a_dy[v] * Y) + k->a_dx[v] * X) * rq;
+    size_t off[SIMD_LANES];
+    for (int l = 0; l < SIMD_LANES; l++)
+        off[l] = 3 * idx[l];
+    shade_write4(s, mode, filter, k->lod, &k->lp, k->pow_k, var, rq, pass, k->rgb, contig, off);
+    return shaded;
+}
+
+/* The queued runs in the default methods: four pixels side by side of one run are a group;
+ * the pixels left at a run's end wait for the leftovers of the next runs (span.h). */
+static inline __attribute__((always_inline)) void packs(struct span_ctx *s,
+                                                        const enum shade_mode mode,
+                                                        const enum tex_filter filter)
+{
+    const struct setup_interp *in = &s->in;
+    const struct setup_tri *t = s->tri;
+    struct pack_ctx k = {
+        .zc = f4_set(in->z.c), .z_c_lo = f4_set(in->z_c_lo), .zdy = f4_set(in->z.dy),
+        .zdx = f4_set(in->z.dx), .z_lo = f4_set(in->z_lo), .z_hi = f4_set(in->z_hi),
+        .qc = f4_set(in->q.c), .qdy = f4_set(in->q.dy), .qdx = f4_set(in->q.dx),
+        .a_c = s->a_c, .a_dy = s->a_dy, .a_dx = s->a_dx,
+        .n_var = span_n_var(s, mode),
+        .pow_k = mode == SHADE_PHONG ? light_pow_int(s->st->mat->ns) : 0,
+        .lod = mode != SHADE_WIRE && filter == TEX_TRILINEAR && s->st->tex,
+        .lp = lod_planes_of(in),
+        .depth = s->fb->depth, .rgb = s->fb->rgb,
+    };
+    const int x_org = t->x0, y_org = t->y0;
+    const size_t fb_w = (size_t)s->fb->w;
+    const f4 lane = {0, 1, 2, 3};
+    f4 lx = f4_set(0), ly = f4_set(0); /* the leftovers waiting: columns, rows, pixels */
+    size_t lidx[SIMD_LANES] = {0};
+    int nl = 0;
+    uint64_t tested = 0, shaded = 0;
+    for (int r = 0; r < s->n_runs; r++) {
+        const int y = s->runs[r].y, x1 = s->runs[r].x1;
+        int x = s->runs[r].x0;
+        tested += (uint64_t)(x1 - x + 1);
+        const size_t row = (size_t)y * fb_w;
+        const f4 Y = f4_set((float)(y - y_org));
+        for (; x + SIMD_LANES - 1 <= x1; x += SIMD_LANES) {
+            const size_t idx[SIMD_LANES] = {row + (size_t)x};
+            shaded += pack_group(s, &k, mode, filter, true, f4_set((float)(x - x_org)) + lane, Y,
+                                 idx, SIMD_LANES);
+        }
+        for (; x <= x1; x++) {
+            lx[nl] = (float)(x - x_org), ly[nl] = (float)(y - y_org), lidx[nl] = row + (size_t)x;
+            if (++nl == SIMD_LANES) {
+                shaded += pack_group(s, &k, mode, filter, false, lx, ly, lidx, SIMD_LANES);
+                nl = 0;
+            }
+        }
+    }
+    if (nl)
+        shaded += pack_group(s, &k, mode, filter, false, lx, ly, lidx, nl);
+    s->tested += tested;
+    s->shaded += shaded;
+}
+
 #ifdef SPAN_AVX2_COPY
-void SPAN_DRAW(struct span_ctx *s, int y, int x0, int x1)
+void SPAN_FLUSH(struct span_ctx *s)
 #else
-static void SPAN_DRAW(struct span_ctx *s, int y, int x0, int x1)
+static void SPAN_FLUSH(struct span_ctx *s)
 #endif
 {
     if (!s->in_ready) {
-        int n_var = s->mode == SHADE_WIRE ? 0
-                    : s->st->vcolor ? VARY_COLOR + 3
-                    : s->mode == SHADE_GOURAUD || s->mode == SHADE_PHONG ? 8 : 2;
+        int n_var = span_n_var(s, s->mode);
         setup_interp(s->tri, s->depth, &s->fb->proj, s->persp == PERSP_AFFINE,
                      n_var, &s->in);
         for (int k = 0; k < n_var; k++) {
@@ -310,30 +449,35 @@ static void SPAN_DRAW(struct span_ctx *s, int y, int x0, int x1)
         if (s->hit)
             s->hit[s->tri_index] = 1;
     }
-    /* the default methods get copies of their own per filter (every test folds away); any
-     * other combination shares one copy per shading mode */
+    /* the default methods go in packs, with copies of their own per filter (every test
+     * folds away); any other combination run by run, one copy per shading mode */
     const enum tex_filter f = s->shade ? s->shade->filter : TEX_NEAREST;
     if (s->depth == DEPTH_Z && s->persp == PERSP_CORRECT && !s->fb->overdraw &&
         (!s->shade || s->shade->view != VIEW_NORMALS)) {
-#define RUN_FILTERS(MODE)                                                                      \
-    f == TEX_NEAREST    ? run(s, y, x0, x1, MODE, DEPTH_Z, PERSP_CORRECT, TEX_NEAREST, true)    \
-    : f == TEX_BILINEAR ? run(s, y, x0, x1, MODE, DEPTH_Z, PERSP_CORRECT, TEX_BILINEAR, true)   \
-                        : run(s, y, x0, x1, MODE, DEPTH_Z, PERSP_CORRECT, TEX_TRILINEAR, true)
+#define PACK_FILTERS(MODE)                                                                     \
+    f == TEX_NEAREST    ? packs(s, MODE, TEX_NEAREST)                                          \
+    : f == TEX_BILINEAR ? packs(s, MODE, TEX_BILINEAR)                                         \
+                        : packs(s, MODE, TEX_TRILINEAR)
         switch (s->mode) {
-        case SHADE_UNLIT: RUN_FILTERS(SHADE_UNLIT); break;
-        case SHADE_FLAT: RUN_FILTERS(SHADE_FLAT); break;
-        case SHADE_GOURAUD: RUN_FILTERS(SHADE_GOURAUD); break;
-        case SHADE_PHONG: RUN_FILTERS(SHADE_PHONG); break;
-        default: run(s, y, x0, x1, SHADE_WIRE, DEPTH_Z, PERSP_CORRECT, TEX_NEAREST, true); break;
+        case SHADE_UNLIT: PACK_FILTERS(SHADE_UNLIT); break;
+        case SHADE_FLAT: PACK_FILTERS(SHADE_FLAT); break;
+        case SHADE_GOURAUD: PACK_FILTERS(SHADE_GOURAUD); break;
+        case SHADE_PHONG: PACK_FILTERS(SHADE_PHONG); break;
+        default: packs(s, SHADE_WIRE, TEX_NEAREST); break;
         }
-#undef RUN_FILTERS
+#undef PACK_FILTERS
+        s->n_runs = 0;
         return;
     }
-    switch (s->mode) {
-    case SHADE_UNLIT: run(s, y, x0, x1, SHADE_UNLIT, s->depth, s->persp, f, false); break;
-    case SHADE_FLAT: run(s, y, x0, x1, SHADE_FLAT, s->depth, s->persp, f, false); break;
-    case SHADE_GOURAUD: run(s, y, x0, x1, SHADE_GOURAUD, s->depth, s->persp, f, false); break;
-    case SHADE_PHONG: run(s, y, x0, x1, SHADE_PHONG, s->depth, s->persp, f, false); break;
-    default: run(s, y, x0, x1, SHADE_WIRE, s->depth, s->persp, f, false); break;
+    for (int r = 0; r < s->n_runs; r++) {
+        const int y = s->runs[r].y, x0 = s->runs[r].x0, x1 = s->runs[r].x1;
+        switch (s->mode) {
+        case SHADE_UNLIT: run(s, y, x0, x1, SHADE_UNLIT, s->depth, s->persp, f); break;
+        case SHADE_FLAT: run(s, y, x0, x1, SHADE_FLAT, s->depth, s->persp, f); break;
+        case SHADE_GOURAUD: run(s, y, x0, x1, SHADE_GOURAUD, s->depth, s->persp, f); break;
+        case SHADE_PHONG: run(s, y, x0, x1, SHADE_PHONG, s->depth, s->persp, f); break;
+        default: run(s, y, x0, x1, SHADE_WIRE, s->depth, s->persp, f); break;
+        }
     }
+    s->n_runs = 0;
 }

@@ -69,6 +69,7 @@ static int draw(struct rig *r, struct vertex_out a, struct vertex_out b, struct 
     struct raster_rect all = {0, 0, W - 1, H - 1};
     span_begin(&r->span, &t, &r->st, 0);
     raster_methods[r->method](&t, all, &r->span);
+    span_end(&r->span);
     return 1;
 }
 
