@@ -84,7 +84,9 @@ struct setup_interp {
     float z_lo, z_hi;       /* the corners' range of the depth: no pixel leaves it */
     struct setup_plane q;   /* interpolation denominator: sum l_k / w_k (correct, spans),
                                the constant 1 (affine) */
-    struct setup_plane a[VARY_MAX]; /* numerators: sum l_k a_k / w_k (affine: sum l_k a_k) */
+    /* numerators sum l_k a_k / w_k (affine: sum l_k a_k), varying k's plane a_c[k],
+     * a_dx[k], a_dy[k] (by coefficient: four varyings' planes are made at once) */
+    float a_c[VARY_MAX], a_dx[VARY_MAX], a_dy[VARY_MAX];
 };
 
 enum setup_result { SETUP_DRAW, SETUP_EMPTY };
@@ -136,5 +138,9 @@ enum setup_result setup_triangle_in_box(const struct vertex_out *v0, const struc
 void setup_interp(const struct setup_tri *t, enum depth_mode depth,
                   const struct fb_depth_proj *proj, int affine, int n_var,
                   struct setup_interp *out);
+/* the same, compiled for AVX2 (x86-64 builds; the span stage's AVX2 copy calls it) */
+void setup_interp_avx2(const struct setup_tri *t, enum depth_mode depth,
+                       const struct fb_depth_proj *proj, int affine, int n_var,
+                       struct setup_interp *out);
 
 #endif

@@ -11,6 +11,15 @@
  * 1/4 matches Mesa on every oracle scene and still bounds the extrapolation */
 #define SETUP_SLIVER_EPS (1.0 / 4)
 
+/* This file is compiled twice on x86-64 (Makefile), as span.c is: the second copy, with
+ * -mavx2 -DSETUP_AVX2_COPY, makes only setup_interp_avx2, which the span stage's AVX2 copy
+ * calls — the same C, the same IEEE double operations in the same order, so the same
+ * planes, with four doubles to a register. */
+#ifdef SETUP_AVX2_COPY
+#define SETUP_INTERP setup_interp_avx2
+#else
+#define SETUP_INTERP setup_interp
+
 /* boxes of at most this many pixels have their centres tested in setup */
 #define SETUP_SMALL_BOX 4
 
@@ -81,6 +90,8 @@ enum setup_result setup_triangle_in_box(const struct vertex_out *v0, const struc
     return SETUP_DRAW;
 }
 
+#endif /* !SETUP_AVX2_COPY */
+
 /* barycentric planes l_k of the triangle (px[k], py[k]) at pixel centre (ox, oy): value and
  * change per pixel in x and y; 0 if degenerate */
 struct bary {
@@ -106,6 +117,17 @@ static int planes(const double px[3], const double py[3], double ox, double oy, 
 /* do the planes stay within [-eps, 1+eps] over the snapped triangle (its corners)? */
 static int planes_bounded(const struct setup_tri *t, const struct bary *b)
 {
+    /* at the unsnapped corners l_k is 0 or 1, and snapping moves a corner by at most 1/512
+     * px in x and in y: while no plane changes by more than 100 per pixel (a triangle more
+     * than ~1/100 px high), l_k at a snapped corner is within 100 / 512 < eps of 0 or 1
+     * (the doubles' rounding is ~1e-12 of that) and the test below would pass */
+    double g = 0;
+    for (int k = 0; k < 3; k++) {
+        double gk = fabs(b->dx[k]) + fabs(b->dy[k]);
+        g = gk > g ? gk : g;
+    }
+    if (g <= 100)
+        return 1;
     for (int j = 0; j < 3; j++) {
         double dx = (double)t->v[j]->fx / VIEWPORT_SUBPIX_ONE - (t->x0 + 0.5);
         double dy = (double)t->v[j]->fy / VIEWPORT_SUBPIX_ONE - (t->y0 + 0.5);
@@ -128,7 +150,7 @@ static struct setup_plane combine(const struct bary *b, const double f[3])
     return p;
 }
 
-void setup_interp(const struct setup_tri *t, enum depth_mode depth,
+void SETUP_INTERP(const struct setup_tri *t, enum depth_mode depth,
                   const struct fb_depth_proj *proj, int affine, int n_var,
                   struct setup_interp *in)
 {
@@ -174,21 +196,36 @@ void setup_interp(const struct setup_tri *t, enum depth_mode depth,
         in->z_c_lo = (float)(c - (double)in->z.c);
     }
     in->q = affine ? (struct setup_plane){1, 0, 0} : combine(&b, rw);
-    /* the varyings two at a time: the same double sums as combine(), in vector registers */
-    typedef double d2 __attribute__((vector_size(16)));
-    for (int k = 0; k < n_var; k += 2) {
-        d2 fv[3];
+    /* the varyings four (then two, then one) at a time: the same double sums as combine(),
+     * in vector registers */
+    typedef double d4 __attribute__((vector_size(32)));
+    typedef float f4v __attribute__((vector_size(16)));
+    const float *va[3] = {t->v[0]->var, t->v[1]->var, t->v[2]->var};
+    double sc[3];
+    for (int i = 0; i < 3; i++)
+        sc[i] = affine ? 1.0 : rw[i];
+    int k = 0;
+    for (; k + 4 <= n_var; k += 4) {
+        d4 fv[3];
         for (int i = 0; i < 3; i++) {
-            double s = affine ? 1.0 : rw[i];
-            fv[i] = (d2){(double)t->v[i]->var[k] * s, (double)t->v[i]->var[k + 1] * s};
+            f4v a;
+            __builtin_memcpy(&a, va[i] + k, sizeof a);
+            fv[i] = __builtin_convertvector(a, d4) * sc[i];
         }
-        d2 c = (d2){b.l[0], b.l[0]} * fv[0] + (d2){b.l[1], b.l[1]} * fv[1] +
-               (d2){b.l[2], b.l[2]} * fv[2];
-        d2 dx = (d2){b.dx[0], b.dx[0]} * fv[0] + (d2){b.dx[1], b.dx[1]} * fv[1] +
-                (d2){b.dx[2], b.dx[2]} * fv[2];
-        d2 dy = (d2){b.dy[0], b.dy[0]} * fv[0] + (d2){b.dy[1], b.dy[1]} * fv[1] +
-                (d2){b.dy[2], b.dy[2]} * fv[2];
-        for (int l = 0; l < 2; l++)
-            in->a[k + l] = (struct setup_plane){(float)c[l], (float)dx[l], (float)dy[l]};
+        d4 c = b.l[0] * fv[0] + b.l[1] * fv[1] + b.l[2] * fv[2];
+        d4 dx = b.dx[0] * fv[0] + b.dx[1] * fv[1] + b.dx[2] * fv[2];
+        d4 dy = b.dy[0] * fv[0] + b.dy[1] * fv[1] + b.dy[2] * fv[2];
+        f4v cf = __builtin_convertvector(c, f4v), dxf = __builtin_convertvector(dx, f4v),
+            dyf = __builtin_convertvector(dy, f4v);
+        __builtin_memcpy(in->a_c + k, &cf, sizeof cf);
+        __builtin_memcpy(in->a_dx + k, &dxf, sizeof dxf);
+        __builtin_memcpy(in->a_dy + k, &dyf, sizeof dyf);
+    }
+    for (; k < n_var; k++) {
+        double fk[3];
+        for (int i = 0; i < 3; i++)
+            fk[i] = (double)va[i][k] * sc[i];
+        struct setup_plane p = combine(&b, fk);
+        in->a_c[k] = p.c, in->a_dx[k] = p.dx, in->a_dy[k] = p.dy;
     }
 }

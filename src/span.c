@@ -143,8 +143,8 @@ struct lod_planes {
 
 static inline struct lod_planes lod_planes_of(const struct setup_interp *in)
 {
-    return (struct lod_planes){f4_set(in->a[0].dx), f4_set(in->a[1].dx), f4_set(in->q.dx),
-                               f4_set(in->a[0].dy), f4_set(in->a[1].dy), f4_set(in->q.dy)};
+    return (struct lod_planes){f4_set(in->a_dx[0]), f4_set(in->a_dx[1]), f4_set(in->q.dx),
+                               f4_set(in->a_dy[0]), f4_set(in->a_dy[1]), f4_set(in->q.dy)};
 }
 
 /* The rest of a group of four pixels once its depth test is done: the colour of the lanes
@@ -216,7 +216,7 @@ static inline __attribute__((always_inline)) void run(struct span_ctx *s, int y,
     for (int k = 0; k < n_var; k++) {
         ar4[k] = s->a_c[k] + s->a_dy[k] * Y4;
         ar[k] = ar4[k][0];
-        adx[k] = in->a[k].dx;
+        adx[k] = in->a_dx[k];
     }
     const bool lod = mode != SHADE_WIRE && filter == TEX_TRILINEAR && s->st->tex;
     const struct lod_planes lp = lod_planes_of(in);
@@ -438,12 +438,16 @@ static void SPAN_FLUSH(struct span_ctx *s)
 {
     if (!s->in_ready) {
         int n_var = span_n_var(s, s->mode);
-        setup_interp(s->tri, s->depth, &s->fb->proj, s->persp == PERSP_AFFINE,
-                     n_var, &s->in);
+#ifdef SPAN_AVX2_COPY
+        setup_interp_avx2(s->tri, s->depth, &s->fb->proj, s->persp == PERSP_AFFINE, n_var,
+                          &s->in);
+#else
+        setup_interp(s->tri, s->depth, &s->fb->proj, s->persp == PERSP_AFFINE, n_var, &s->in);
+#endif
         for (int k = 0; k < n_var; k++) {
-            s->a_c[k] = f4_set(s->in.a[k].c);
-            s->a_dy[k] = f4_set(s->in.a[k].dy);
-            s->a_dx[k] = f4_set(s->in.a[k].dx);
+            s->a_c[k] = f4_set(s->in.a_c[k]);
+            s->a_dy[k] = f4_set(s->in.a_dy[k]);
+            s->a_dx[k] = f4_set(s->in.a_dx[k]);
         }
         s->in_ready = true;
         if (s->hit)
