@@ -109,7 +109,7 @@ static inline uint8_t fb_quantize(float c)
 }
 
 /* fb_quantize of four values (0..255 in each lane) */
-static inline i4 fb_quantize4(f4 c)
+static inline __attribute__((always_inline)) i4 fb_quantize4(f4 c)
 {
     c = f4_max(c, f4_set(0)); /* c > 0 ? c : 0 (NaN: 0) */
     c = f4_min(c, f4_set(1)); /* c < 1 ? c : 1 */

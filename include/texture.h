@@ -201,7 +201,7 @@ static inline void texture_sample(const struct texture *t, enum tex_filter f, fl
 }
 
 /* texture_wrap for four coordinates */
-static inline i4 texture_wrap4(f4 x, int n)
+static inline __attribute__((always_inline)) i4 texture_wrap4(f4 x, int n)
 {
     i4 ok = (x > f4_set(-1e9f)) & (x < f4_set(1e9f));
     x = f4_select(ok, x, f4_set(0));
@@ -219,7 +219,7 @@ static inline i4 texture_wrap4(f4 x, int n)
 }
 
 /* byte c (0 r, 1 g, 2 b) of four texels loaded as 32-bit words (RGBA8 in memory order) */
-static inline i4 texel_channel4(i4 words, int c)
+static inline __attribute__((always_inline)) i4 texel_channel4(i4 words, int c)
 {
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
     return (words >> (24 - 8 * c)) & i4_set(255);
@@ -230,7 +230,8 @@ static inline i4 texel_channel4(i4 words, int c)
 
 /* the rgb of the texels at (i, j), j counted from the bottom, one vector per channel: one
  * 32-bit load per texel, split into channels in vector registers */
-static inline void texture_fetch4(const struct texture_level *lv, i4 i, i4 j, i4 rgb_out[3])
+static inline __attribute__((always_inline)) void texture_fetch4(const struct texture_level *lv, i4 i, i4 j,
+                                                                  i4 rgb_out[3])
 {
     i4 idx = (i4_set(lv->h - 1) - j) * i4_set(lv->w) + i;
     uint32_t w[SIMD_LANES];
