@@ -109,11 +109,11 @@ static inline uint8_t fb_quantize(float c)
 }
 
 /* fb_quantize of four values (0..255 in each lane) */
-static inline __attribute__((always_inline)) i4 fb_quantize4(f4 c)
+static inline __attribute__((always_inline)) vi fb_quantize_v(vf c)
 {
-    c = f4_max(c, f4_set(0)); /* c > 0 ? c : 0 (NaN: 0) */
-    c = f4_min(c, f4_set(1)); /* c < 1 ? c : 1 */
-    return i4_trunc(c * f4_set(255.0f) + f4_set(0.5f));
+    c = vf_max(c, vf_set(0)); /* c > 0 ? c : 0 (NaN: 0) */
+    c = vf_min(c, vf_set(1)); /* c < 1 ? c : 1 */
+    return vi_trunc(c * vf_set(255.0f) + vf_set(0.5f));
 }
 
 #endif

@@ -140,18 +140,18 @@ static inline void light_normalize(float v[3])
 }
 
 /* light_normalize, four vectors at once (v[k] holds component k of the four) */
-static inline __attribute__((always_inline)) void light_normalize4(f4 v[3])
+static inline __attribute__((always_inline)) void light_normalize_v(vf v[3])
 {
-    f4 l = f4_sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    i4 pos = l > f4_set(0);
-    f4 il = f4_select(pos, f4_set(1.0f) / f4_select(pos, l, f4_set(1)), f4_set(0));
+    vf l = vf_sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    vi pos = l > vf_set(0);
+    vf il = vf_select(pos, vf_set(1.0f) / vf_select(pos, l, vf_set(1)), vf_set(0));
     v[0] *= il, v[1] *= il, v[2] *= il;
 }
 
 /* x^n in each lane, exactly as light_pow; k = light_pow_int(n), which callers compute once
  * for many pixels. A power of two is that many squarings (square-and-multiply would only add
  * a final 1 * x, which is exact). */
-static inline f4 light_pow4_k(f4 x, int k, float n)
+static inline vf light_pow_v_k(vf x, int k, float n)
 {
     if (k && (k & (k - 1)) == 0) {
         for (; k > 1; k >>= 1)
@@ -159,7 +159,7 @@ static inline f4 light_pow4_k(f4 x, int k, float n)
         return x;
     }
     if (k) {
-        f4 r = f4_set(1);
+        vf r = vf_set(1);
         for (;;) {
             if (k & 1)
                 r *= x;
@@ -168,76 +168,76 @@ static inline f4 light_pow4_k(f4 x, int k, float n)
             x *= x;
         }
     }
-    f4 r;
+    vf r;
     for (int l = 0; l < SIMD_LANES; l++) /* 0^n = 0 exactly: most lanes face away */
         r[l] = x[l] > 0 || n <= 0 ? powf(x[l], n) : 0;
     return r;
 }
 
-static inline f4 light_pow4(f4 x, float n)
+static inline vf light_pow_v(vf x, float n)
 {
-    return light_pow4_k(x, light_pow_int(n), n);
+    return light_pow_v_k(x, light_pow_int(n), n);
 }
 
 /* One light's diffuse and specular factors for four points: max(0, N.L) and
  * max(0, N.H)^ns with H = normalize(L + V) (pow_k = light_pow_int(ns)) */
 static inline __attribute__((always_inline)) void
-light_one4(const float l[3], const f4 n[3], const f4 v[3], float ns, int pow_k, f4 *dd_out,
-           f4 *ss_out)
+light_one_v(const float l[3], const vf n[3], const vf v[3], float ns, int pow_k, vf *dd_out,
+           vf *ss_out)
 {
-    f4 h[3] = {f4_set(l[0]) + v[0], f4_set(l[1]) + v[1], f4_set(l[2]) + v[2]};
-    f4 hl = f4_sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
-    i4 pos = hl > f4_set(0);
-    f4 ih = f4_select(pos, f4_set(1.0f) / f4_select(pos, hl, f4_set(1)), f4_set(0));
-    f4 ndl = n[0] * f4_set(l[0]) + n[1] * f4_set(l[1]) + n[2] * f4_set(l[2]);
-    f4 ndh = (n[0] * h[0] + n[1] * h[1] + n[2] * h[2]) * ih;
-    *dd_out = f4_max(ndl, f4_set(0));
-    *ss_out = light_pow4_k(f4_max(ndh, f4_set(0)), pow_k, ns);
+    vf h[3] = {vf_set(l[0]) + v[0], vf_set(l[1]) + v[1], vf_set(l[2]) + v[2]};
+    vf hl = vf_sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+    vi pos = hl > vf_set(0);
+    vf ih = vf_select(pos, vf_set(1.0f) / vf_select(pos, hl, vf_set(1)), vf_set(0));
+    vf ndl = n[0] * vf_set(l[0]) + n[1] * vf_set(l[1]) + n[2] * vf_set(l[2]);
+    vf ndh = (n[0] * h[0] + n[1] * h[1] + n[2] * h[2]) * ih;
+    *dd_out = vf_max(ndl, vf_set(0));
+    *ss_out = light_pow_v_k(vf_max(ndh, vf_set(0)), pow_k, ns);
 }
 
 /* the hemisphere ambient of channel k, up = (1 + n.y) / 2 */
-static inline f4 light_ambient4(const struct light_env *env, f4 up, int k)
+static inline vf light_ambient_v(const struct light_env *env, vf up, int k)
 {
     float sky = env->sky[k], ground = env->ground[k];
-    return sky == ground ? f4_set(sky) : f4_set(ground) + up * f4_set(sky - ground);
+    return sky == ground ? vf_set(sky) : vf_set(ground) + up * vf_set(sky - ground);
 }
 
 /* light_terms for four points (n, v: unit vectors, one component per vector): in every lane
  * exactly what light_terms gives */
 static inline __attribute__((always_inline)) void
-light_terms4k(const struct light_env *env, const f4 n[3], const f4 v[3], float ns, int pow_k,
-              f4 d_out[3], f4 s_out[3])
+light_terms_v_k(const struct light_env *env, const vf n[3], const vf v[3], float ns, int pow_k,
+              vf d_out[3], vf s_out[3])
 {
-    f4 up = f4_set(0.5f) + f4_set(0.5f) * n[1], dd, ss;
+    vf up = vf_set(0.5f) + vf_set(0.5f) * n[1], dd, ss;
     if (env->n == 1) { /* one light (the default): no sums to keep, fewer registers */
         const float *col = env->col[0];
-        light_one4(env->dir[0], n, v, ns, pow_k, &dd, &ss);
+        light_one_v(env->dir[0], n, v, ns, pow_k, &dd, &ss);
         for (int k = 0; k < 3; k++) { /* as below with d = 0 + dd col, s = 0 + ss col */
-            d_out[k] = light_ambient4(env, up, k) + f4_set(LIGHT_DIFFUSE) * (dd * f4_set(col[k]));
-            s_out[k] = ss * f4_set(col[k]);
+            d_out[k] = light_ambient_v(env, up, k) + vf_set(LIGHT_DIFFUSE) * (dd * vf_set(col[k]));
+            s_out[k] = ss * vf_set(col[k]);
         }
         return;
     }
-    f4 d[3] = {f4_set(0), f4_set(0), f4_set(0)}, s[3] = {f4_set(0), f4_set(0), f4_set(0)};
+    vf d[3] = {vf_set(0), vf_set(0), vf_set(0)}, s[3] = {vf_set(0), vf_set(0), vf_set(0)};
     for (int i = 0; i < env->n; i++) {
         const float *col = env->col[i];
-        light_one4(env->dir[i], n, v, ns, pow_k, &dd, &ss);
+        light_one_v(env->dir[i], n, v, ns, pow_k, &dd, &ss);
         for (int k = 0; k < 3; k++) {
-            d[k] += dd * f4_set(col[k]);
-            s[k] += ss * f4_set(col[k]);
+            d[k] += dd * vf_set(col[k]);
+            s[k] += ss * vf_set(col[k]);
         }
     }
     for (int k = 0; k < 3; k++) {
-        d_out[k] = light_ambient4(env, up, k) + f4_set(LIGHT_DIFFUSE) * d[k];
+        d_out[k] = light_ambient_v(env, up, k) + vf_set(LIGHT_DIFFUSE) * d[k];
         s_out[k] = s[k];
     }
 }
 
-/* light_terms4k with pow_k = light_pow_int(ns) */
-static inline void light_terms4(const struct light_env *env, const f4 n[3], const f4 v[3],
-                                float ns, f4 d_out[3], f4 s_out[3])
+/* light_terms_v_k with pow_k = light_pow_int(ns) */
+static inline void light_terms_v(const struct light_env *env, const vf n[3], const vf v[3],
+                                float ns, vf d_out[3], vf s_out[3])
 {
-    light_terms4k(env, n, v, ns, light_pow_int(ns), d_out, s_out);
+    light_terms_v_k(env, n, v, ns, light_pow_int(ns), d_out, s_out);
 }
 
 #endif

@@ -103,48 +103,48 @@ static inline void shade_fragment(const struct shade_ctx *c, enum shade_mode mod
 
 /* Four pixels at once (the normals view goes pixel by pixel through shade_fragment): in every
  * lane exactly what shade_fragment gives. var[k] holds varying k of the four pixels; lambda
- * their texture level of detail (texture_lod4; trilinear only); filter is c->filter (an
+ * their texture level of detail (texture_lod_v; trilinear only); filter is c->filter (an
  * argument so that a caller can make it a constant); pow_k is light_pow_int(t->mat->ns)
  * (phong only: computed once for many pixels). */
 static inline __attribute__((always_inline)) void
-shade_fragment4(const struct shade_ctx *c, enum shade_mode mode, enum tex_filter filter,
-                const struct shade_tri *t, int pow_k, const f4 *var, f4 lambda, f4 rgb_out[3])
+shade_fragment_v(const struct shade_ctx *c, enum shade_mode mode, enum tex_filter filter,
+                const struct shade_tri *t, int pow_k, const vf *var, vf lambda, vf rgb_out[3])
 {
-    f4 albedo[3];
+    vf albedo[3];
     if (t->tex) {
-        f4 tx[3];
-        texture_sample4(t->tex, filter, var[0], var[1], lambda, tx);
+        vf tx[3];
+        texture_sample_v(t->tex, filter, var[0], var[1], lambda, tx);
         for (int k = 0; k < 3; k++)
-            albedo[k] = f4_set(t->base[k]) * tx[k];
+            albedo[k] = vf_set(t->base[k]) * tx[k];
     } else {
         for (int k = 0; k < 3; k++)
-            albedo[k] = f4_set(t->base[k]);
+            albedo[k] = vf_set(t->base[k]);
     }
     if (t->vcolor)
         for (int k = 0; k < 3; k++)
             albedo[k] *= var[VARY_COLOR + k];
     const float *ks = t->mat->ks;
-    f4 d[3], sp[3];
+    vf d[3], sp[3];
     if (mode == SHADE_PHONG) { /* as shade_phong */
-        f4 n[3] = {var[5], var[6], var[7]}, vv[3];
+        vf n[3] = {var[5], var[6], var[7]}, vv[3];
         if (c->ortho) {
             for (int k = 0; k < 3; k++)
-                vv[k] = f4_set(c->view_back[k]);
+                vv[k] = vf_set(c->view_back[k]);
         } else {
             for (int k = 0; k < 3; k++)
-                vv[k] = f4_set(c->eye[k]) - var[2 + k];
-            light_normalize4(vv);
+                vv[k] = vf_set(c->eye[k]) - var[2 + k];
+            light_normalize_v(vv);
         }
-        light_normalize4(n);
-        light_terms4k(&c->lights, n, vv, t->mat->ns, pow_k, d, sp);
+        light_normalize_v(n);
+        light_terms_v_k(&c->lights, n, vv, t->mat->ns, pow_k, d, sp);
     }
     for (int k = 0; k < 3; k++) {
         if (mode == SHADE_PHONG)
-            rgb_out[k] = albedo[k] * d[k] + f4_set(ks[k]) * sp[k];
+            rgb_out[k] = albedo[k] * d[k] + vf_set(ks[k]) * sp[k];
         else if (mode == SHADE_FLAT)
-            rgb_out[k] = albedo[k] * f4_set(t->flat_d[k]) + f4_set(ks[k]) * f4_set(t->flat_s[k]);
+            rgb_out[k] = albedo[k] * vf_set(t->flat_d[k]) + vf_set(ks[k]) * vf_set(t->flat_s[k]);
         else if (mode == SHADE_GOURAUD)
-            rgb_out[k] = albedo[k] * var[2 + k] + f4_set(ks[k]) * var[5 + k];
+            rgb_out[k] = albedo[k] * var[2 + k] + vf_set(ks[k]) * var[5 + k];
         else
             rgb_out[k] = albedo[k];
     }

@@ -68,7 +68,7 @@ struct span_ctx {
     const struct shade_tri *st;
     uint32_t tri_index;        /* its place in the batch */
     struct setup_interp in;
-    f4 a_c[VARY_MAX], a_dy[VARY_MAX], a_dx[VARY_MAX]; /* in.a's planes, in every lane */
+    vf a_c[VARY_MAX], a_dy[VARY_MAX], a_dx[VARY_MAX]; /* in.a's planes, in every lane */
     bool in_ready;             /* setup_interp done for tri */
     /* results, added to the frame's stats by the caller */
     uint8_t *hit;              /* hit[tri_index] = 1 once a triangle has a run (or NULL) */

@@ -201,15 +201,15 @@ static inline void texture_sample(const struct texture *t, enum tex_filter f, fl
 }
 
 /* texture_wrap for four coordinates */
-static inline __attribute__((always_inline)) i4 texture_wrap4(f4 x, int n)
+static inline __attribute__((always_inline)) vi texture_wrap_v(vf x, int n)
 {
-    i4 ok = (x > f4_set(-1e9f)) & (x < f4_set(1e9f));
-    x = f4_select(ok, x, f4_set(0));
-    i4 i = i4_floor(x) & ok;
+    vi ok = (x > vf_set(-1e9f)) & (x < vf_set(1e9f));
+    x = vf_select(ok, x, vf_set(0));
+    vi i = vi_floor(x) & ok;
     if ((n & (n - 1)) == 0)
-        return i & i4_set(n - 1);
-    i4 inside = (i >= i4_set(0)) & (i < i4_set(n));
-    if (i4_any(~inside))
+        return i & vi_set(n - 1);
+    vi inside = (i >= vi_set(0)) & (i < vi_set(n));
+    if (vi_any(~inside))
         for (int l = 0; l < SIMD_LANES; l++)
             if (!inside[l]) {
                 int r = i[l] % n;
@@ -219,85 +219,85 @@ static inline __attribute__((always_inline)) i4 texture_wrap4(f4 x, int n)
 }
 
 /* byte c (0 r, 1 g, 2 b) of four texels loaded as 32-bit words (RGBA8 in memory order) */
-static inline __attribute__((always_inline)) i4 texel_channel4(i4 words, int c)
+static inline __attribute__((always_inline)) vi texel_channel_v(vi words, int c)
 {
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
-    return (words >> (24 - 8 * c)) & i4_set(255);
+    return (words >> (24 - 8 * c)) & vi_set(255);
 #else
-    return (words >> (8 * c)) & i4_set(255);
+    return (words >> (8 * c)) & vi_set(255);
 #endif
 }
 
 /* the rgb of the texels at (i, j), j counted from the bottom, one vector per channel: one
  * 32-bit load per texel, split into channels in vector registers */
-static inline __attribute__((always_inline)) void texture_fetch4(const struct texture_level *lv, i4 i, i4 j,
-                                                                  i4 rgb_out[3])
+static inline __attribute__((always_inline)) void texture_fetch_v(const struct texture_level *lv, vi i, vi j,
+                                                                  vi rgb_out[3])
 {
-    i4 idx = (i4_set(lv->h - 1) - j) * i4_set(lv->w) + i;
+    vi idx = (vi_set(lv->h - 1) - j) * vi_set(lv->w) + i;
     uint32_t w[SIMD_LANES];
     for (int l = 0; l < SIMD_LANES; l++)
         __builtin_memcpy(&w[l], lv->rgba + (size_t)idx[l] * 4, 4);
-    i4 v = {(int32_t)w[0], (int32_t)w[1], (int32_t)w[2], (int32_t)w[3]};
+    vi v = {(int32_t)w[0], (int32_t)w[1], (int32_t)w[2], (int32_t)w[3]};
     for (int c = 0; c < 3; c++)
-        rgb_out[c] = texel_channel4(v, c);
+        rgb_out[c] = texel_channel_v(v, c);
 }
 
 /* texture_bilinear, four samples of one level at once */
-static inline void texture_bilinear4(const struct texture_level *lv, f4 u, f4 v, f4 rgb_out[3])
+static inline void texture_bilinear_v(const struct texture_level *lv, vf u, vf v, vf rgb_out[3])
 {
-    const f4 k = f4_set(1.0f / 255.0f);
-    f4 x = u * f4_set((float)lv->w) - f4_set(0.5f), y = v * f4_set((float)lv->h) - f4_set(0.5f);
-    i4 ok = (x > f4_set(-1e9f)) & (x < f4_set(1e9f)) & (y > f4_set(-1e9f)) & (y < f4_set(1e9f));
-    x = f4_select(ok, x, f4_set(0));
-    y = f4_select(ok, y, f4_set(0));
-    i4 xi = i4_floor(x), yi = i4_floor(y);
-    f4 ax = x - f4_from_i4(xi), ay = y - f4_from_i4(yi);
-    i4 i0 = texture_wrap4(f4_from_i4(xi), lv->w), j0 = texture_wrap4(f4_from_i4(yi), lv->h);
-    i4 i1 = i4_select(i0 + 1 == i4_set(lv->w), i4_set(0), i0 + 1);
-    i4 j1 = i4_select(j0 + 1 == i4_set(lv->h), i4_set(0), j0 + 1);
-    i4 c00[3], c10[3], c01[3], c11[3];
-    texture_fetch4(lv, i0, j0, c00);
-    texture_fetch4(lv, i1, j0, c10);
-    texture_fetch4(lv, i0, j1, c01);
-    texture_fetch4(lv, i1, j1, c11);
+    const vf k = vf_set(1.0f / 255.0f);
+    vf x = u * vf_set((float)lv->w) - vf_set(0.5f), y = v * vf_set((float)lv->h) - vf_set(0.5f);
+    vi ok = (x > vf_set(-1e9f)) & (x < vf_set(1e9f)) & (y > vf_set(-1e9f)) & (y < vf_set(1e9f));
+    x = vf_select(ok, x, vf_set(0));
+    y = vf_select(ok, y, vf_set(0));
+    vi xi = vi_floor(x), yi = vi_floor(y);
+    vf ax = x - vf_from_vi(xi), ay = y - vf_from_vi(yi);
+    vi i0 = texture_wrap_v(vf_from_vi(xi), lv->w), j0 = texture_wrap_v(vf_from_vi(yi), lv->h);
+    vi i1 = vi_select(i0 + 1 == vi_set(lv->w), vi_set(0), i0 + 1);
+    vi j1 = vi_select(j0 + 1 == vi_set(lv->h), vi_set(0), j0 + 1);
+    vi c00[3], c10[3], c01[3], c11[3];
+    texture_fetch_v(lv, i0, j0, c00);
+    texture_fetch_v(lv, i1, j0, c10);
+    texture_fetch_v(lv, i0, j1, c01);
+    texture_fetch_v(lv, i1, j1, c11);
     for (int ch = 0; ch < 3; ch++) {
-        f4 a = f4_from_i4(c00[ch]) + ax * f4_from_i4(c10[ch] - c00[ch]);
-        f4 b = f4_from_i4(c01[ch]) + ax * f4_from_i4(c11[ch] - c01[ch]);
+        vf a = vf_from_vi(c00[ch]) + ax * vf_from_vi(c10[ch] - c00[ch]);
+        vf b = vf_from_vi(c01[ch]) + ax * vf_from_vi(c11[ch] - c01[ch]);
         rgb_out[ch] = (a + ay * (b - a)) * k;
     }
 }
 
-/* texture_bilinear4 with a level of t per lane (lane l samples level lv[l]): the same
+/* texture_bilinear_v with a level of t per lane (lane l samples level lv[l]): the same
  * operations lane by lane, with that level's size */
-static inline void texture_bilinear4_levels(const struct texture *t, i4 lv, f4 u, f4 v,
-                                            f4 rgb_out[3])
+static inline void texture_bilinear_v_levels(const struct texture *t, vi lv, vf u, vf v,
+                                            vf rgb_out[3])
 {
-    const f4 k = f4_set(1.0f / 255.0f);
-    i4 W, H;
+    const vf k = vf_set(1.0f / 255.0f);
+    vi W, H;
     const uint8_t *px[SIMD_LANES];
     for (int l = 0; l < SIMD_LANES; l++) {
         struct texture_level L = lv[l] == 0 ? texture_base(t) : t->level[lv[l]];
         W[l] = L.w, H[l] = L.h, px[l] = L.rgba;
     }
-    f4 x = u * f4_from_i4(W) - f4_set(0.5f), y = v * f4_from_i4(H) - f4_set(0.5f);
-    i4 ok = (x > f4_set(-1e9f)) & (x < f4_set(1e9f)) & (y > f4_set(-1e9f)) & (y < f4_set(1e9f));
-    x = f4_select(ok, x, f4_set(0));
-    y = f4_select(ok, y, f4_set(0));
-    i4 xi = i4_floor(x), yi = i4_floor(y);
-    f4 ax = x - f4_from_i4(xi), ay = y - f4_from_i4(yi);
+    vf x = u * vf_from_vi(W) - vf_set(0.5f), y = v * vf_from_vi(H) - vf_set(0.5f);
+    vi ok = (x > vf_set(-1e9f)) & (x < vf_set(1e9f)) & (y > vf_set(-1e9f)) & (y < vf_set(1e9f));
+    x = vf_select(ok, x, vf_set(0));
+    y = vf_select(ok, y, vf_set(0));
+    vi xi = vi_floor(x), yi = vi_floor(y);
+    vf ax = x - vf_from_vi(xi), ay = y - vf_from_vi(yi);
     /* texture_wrap of whole numbers: floor(x) mod n in [0, n) */
-    i4 i0 = xi, j0 = yi;
-    i4 outside = (i0 < i4_set(0)) | (i0 >= W) | (j0 < i4_set(0)) | (j0 >= H);
-    if (i4_any(outside))
+    vi i0 = xi, j0 = yi;
+    vi outside = (i0 < vi_set(0)) | (i0 >= W) | (j0 < vi_set(0)) | (j0 >= H);
+    if (vi_any(outside))
         for (int l = 0; l < SIMD_LANES; l++) {
             int r = i0[l] % W[l], q = j0[l] % H[l];
             i0[l] = r < 0 ? r + W[l] : r;
             j0[l] = q < 0 ? q + H[l] : q;
         }
-    i4 i1 = i4_select(i0 + 1 == W, i4_set(0), i0 + 1);
-    i4 j1 = i4_select(j0 + 1 == H, i4_set(0), j0 + 1);
-    i4 r0 = (H - 1 - j0) * W, r1 = (H - 1 - j1) * W; /* row starts, in texels */
-    i4 w[4];
+    vi i1 = vi_select(i0 + 1 == W, vi_set(0), i0 + 1);
+    vi j1 = vi_select(j0 + 1 == H, vi_set(0), j0 + 1);
+    vi r0 = (H - 1 - j0) * W, r1 = (H - 1 - j1) * W; /* row starts, in texels */
+    vi w[4];
     for (int l = 0; l < SIMD_LANES; l++) {
         const uint8_t *p = px[l];
         uint32_t a, b, c, d;
@@ -308,10 +308,10 @@ static inline void texture_bilinear4_levels(const struct texture *t, i4 lv, f4 u
         w[0][l] = (int32_t)a, w[1][l] = (int32_t)b, w[2][l] = (int32_t)c, w[3][l] = (int32_t)d;
     }
     for (int ch = 0; ch < 3; ch++) {
-        f4 c00 = f4_from_i4(texel_channel4(w[0], ch)), c10 = f4_from_i4(texel_channel4(w[1], ch));
-        f4 c01 = f4_from_i4(texel_channel4(w[2], ch)), c11 = f4_from_i4(texel_channel4(w[3], ch));
-        f4 a = c00 + ax * (c10 - c00);
-        f4 b = c01 + ax * (c11 - c01);
+        vf c00 = vf_from_vi(texel_channel_v(w[0], ch)), c10 = vf_from_vi(texel_channel_v(w[1], ch));
+        vf c01 = vf_from_vi(texel_channel_v(w[2], ch)), c11 = vf_from_vi(texel_channel_v(w[3], ch));
+        vf a = c00 + ax * (c10 - c00);
+        vf b = c01 + ax * (c11 - c01);
         rgb_out[ch] = (a + ay * (b - a)) * k;
     }
 }
@@ -320,62 +320,62 @@ static inline void texture_bilinear4_levels(const struct texture *t, i4 lv, f4 u
  * derivatives of u and v: log2 of the longer side of the pixel's footprint in level-0
  * texels, rho = max(|(du/dx, dv/dx)|, |(du/dy, dv/dy)|) (GL's formula, without its
  * approximations). A zero or non-finite footprint gives -1: magnification. */
-static inline f4 texture_lod4(const struct texture *t, f4 dudx, f4 dvdx, f4 dudy, f4 dvdy)
+static inline vf texture_lod_v(const struct texture *t, vf dudx, vf dvdx, vf dudy, vf dvdy)
 {
-    f4 w = f4_set((float)t->w), h = f4_set((float)t->h);
-    f4 ax = dudx * w, bx = dvdx * h, ay = dudy * w, by = dvdy * h;
-    f4 rx = ax * ax + bx * bx, ry = ay * ay + by * by;
-    f4 r2 = f4_select(rx > ry, rx, ry);
-    i4 ok = (r2 > f4_set(1e-30f)) & (r2 < f4_set(1e30f));
-    f4 lambda = f4_set(0.5f) * f4_log2(f4_select(ok, r2, f4_set(1)));
-    return f4_select(ok, lambda, f4_set(-1));
+    vf w = vf_set((float)t->w), h = vf_set((float)t->h);
+    vf ax = dudx * w, bx = dvdx * h, ay = dudy * w, by = dvdy * h;
+    vf rx = ax * ax + bx * bx, ry = ay * ay + by * by;
+    vf r2 = vf_select(rx > ry, rx, ry);
+    vi ok = (r2 > vf_set(1e-30f)) & (r2 < vf_set(1e30f));
+    vf lambda = vf_set(0.5f) * vf_log2(vf_select(ok, r2, vf_set(1)));
+    return vf_select(ok, lambda, vf_set(-1));
 }
 
 /* Four samples at once: in every lane exactly what texture_sample gives (lambda per lane). */
 static inline __attribute__((always_inline)) void
-texture_sample4(const struct texture *t, enum tex_filter f, f4 u, f4 v, f4 lambda, f4 rgb_out[3])
+texture_sample_v(const struct texture *t, enum tex_filter f, vf u, vf v, vf lambda, vf rgb_out[3])
 {
     struct texture_level base = texture_base(t);
     if (f == TEX_NEAREST) {
-        const f4 k = f4_set(1.0f / 255.0f);
-        i4 c[3];
-        texture_fetch4(&base, texture_wrap4(u * f4_set((float)base.w), base.w),
-                       texture_wrap4(v * f4_set((float)base.h), base.h), c);
+        const vf k = vf_set(1.0f / 255.0f);
+        vi c[3];
+        texture_fetch_v(&base, texture_wrap_v(u * vf_set((float)base.w), base.w),
+                       texture_wrap_v(v * vf_set((float)base.h), base.h), c);
         for (int ch = 0; ch < 3; ch++)
-            rgb_out[ch] = f4_from_i4(c[ch]) * k;
+            rgb_out[ch] = vf_from_vi(c[ch]) * k;
         return;
     }
     if (f == TEX_BILINEAR) {
-        texture_bilinear4(&base, u, v, rgb_out);
+        texture_bilinear_v(&base, u, v, rgb_out);
         return;
     }
     if (t->n_levels < 2) { /* no chain: level 0 alone, as texture_levels says */
-        texture_bilinear4(&base, u, v, rgb_out);
+        texture_bilinear_v(&base, u, v, rgb_out);
         return;
     }
     /* texture_levels in four lanes */
     const int top = t->n_levels - 1;
-    i4 in = (lambda > f4_set(0)) & (lambda < f4_set((float)top)); /* between two levels */
-    i4 beyond = (lambda > f4_set(0)) & ~in;                        /* the last level */
-    i4 l0 = i4_trunc(f4_select(in, lambda, f4_set(0)));
-    l0 = i4_select(beyond, i4_set(top), l0);
-    f4 fr = f4_select(in, lambda - f4_from_i4(l0), f4_set(0));
-    if (i4_all(l0 == i4_set(l0[0]))) { /* one level for all four: its size is a constant */
-        texture_bilinear4(l0[0] == 0 ? &base : &t->level[l0[0]], u, v, rgb_out);
-        if (!i4_any(fr != f4_set(0)))
+    vi in = (lambda > vf_set(0)) & (lambda < vf_set((float)top)); /* between two levels */
+    vi beyond = (lambda > vf_set(0)) & ~in;                        /* the last level */
+    vi l0 = vi_trunc(vf_select(in, lambda, vf_set(0)));
+    l0 = vi_select(beyond, vi_set(top), l0);
+    vf fr = vf_select(in, lambda - vf_from_vi(l0), vf_set(0));
+    if (vi_all(l0 == vi_set(l0[0]))) { /* one level for all four: its size is a constant */
+        texture_bilinear_v(l0[0] == 0 ? &base : &t->level[l0[0]], u, v, rgb_out);
+        if (!vi_any(fr != vf_set(0)))
             return;
-        f4 c1[3];
-        texture_bilinear4(&t->level[l0[0] + 1], u, v, c1);
+        vf c1[3];
+        texture_bilinear_v(&t->level[l0[0] + 1], u, v, c1);
         for (int ch = 0; ch < 3; ch++) /* frac 0 lanes: + 0 * (c1 - c0), exactly c0 */
             rgb_out[ch] += fr * (c1[ch] - rgb_out[ch]);
         return;
     }
     /* the footprint changes level inside these four: each lane on its own level */
-    texture_bilinear4_levels(t, l0, u, v, rgb_out);
-    if (!i4_any(fr != f4_set(0)))
+    texture_bilinear_v_levels(t, l0, u, v, rgb_out);
+    if (!vi_any(fr != vf_set(0)))
         return;
-    f4 c1[3];
-    texture_bilinear4_levels(t, i4_select(l0 < i4_set(top), l0 + 1, l0), u, v, c1);
+    vf c1[3];
+    texture_bilinear_v_levels(t, vi_select(l0 < vi_set(top), l0 + 1, l0), u, v, c1);
     for (int ch = 0; ch < 3; ch++)
         rgb_out[ch] += fr * (c1[ch] - rgb_out[ch]);
 }

@@ -229,19 +229,19 @@ void skybox_sample(const struct skybox *s, int level, vec3 d, float rgb_out[3])
 
 /* sample_face in float, four lanes at once, each lane on its own face (the per-pixel loop of
  * skybox_draw_rows; sample_face stays the double-precision reference for skybox_sample) */
-static inline void sample_face4(const struct skybox_level *l, i4 face, f4 u, f4 v, f4 rgb_out[3])
+static inline void sample_face_v(const struct skybox_level *l, vi face, vf u, vf v, vf rgb_out[3])
 {
-    const f4 half = f4_set(0.5f * l->n), zero = f4_set(0), one = f4_set(1);
-    f4 x = (u + one) * half - f4_set(0.5f), y = (v + one) * half - f4_set(0.5f);
-    i4 i0 = i4_floor(x), j0 = i4_floor(y); /* x, y >= -0.5 here, and finite */
-    const i4 lo = i4_set(-1), hi = i4_set(l->n - 1);
-    i0 = i4_select(i0 < lo, lo, i4_select(i0 > hi, hi, i0));
-    j0 = i4_select(j0 < lo, lo, i4_select(j0 > hi, hi, j0));
-    f4 ax = x - f4_from_i4(i0), ay = y - f4_from_i4(j0);
-    ax = f4_select(ax < zero, zero, f4_select(ax > one, one, ax));
-    ay = f4_select(ay < zero, zero, f4_select(ay > one, one, ay));
+    const vf half = vf_set(0.5f * l->n), zero = vf_set(0), one = vf_set(1);
+    vf x = (u + one) * half - vf_set(0.5f), y = (v + one) * half - vf_set(0.5f);
+    vi i0 = vi_floor(x), j0 = vi_floor(y); /* x, y >= -0.5 here, and finite */
+    const vi lo = vi_set(-1), hi = vi_set(l->n - 1);
+    i0 = vi_select(i0 < lo, lo, vi_select(i0 > hi, hi, i0));
+    j0 = vi_select(j0 < lo, lo, vi_select(j0 > hi, hi, j0));
+    vf ax = x - vf_from_vi(i0), ay = y - vf_from_vi(j0);
+    ax = vf_select(ax < zero, zero, vf_select(ax > one, one, ax));
+    ay = vf_select(ay < zero, zero, vf_select(ay > one, one, ay));
     const int stride = 4 * (l->n + 2);
-    i4 off = ((j0 + 1) * i4_set(l->n + 2) + (i0 + 1)) * i4_set(4);
+    vi off = ((j0 + 1) * vi_set(l->n + 2) + (i0 + 1)) * vi_set(4);
     uint32_t w[4][SIMD_LANES]; /* p00 p10 p01 p11 of each lane, r g b 0 in memory order */
     for (int k = 0; k < SIMD_LANES; k++) {
         const uint8_t *p = l->rgb[face[k]] + off[k];
@@ -250,14 +250,14 @@ static inline void sample_face4(const struct skybox_level *l, i4 face, f4 u, f4 
         __builtin_memcpy(&w[2][k], p + stride, 4);
         __builtin_memcpy(&w[3][k], p + stride + 4, 4);
     }
-    i4 t[4];
+    vi t[4];
     for (int q = 0; q < 4; q++)
         __builtin_memcpy(&t[q], w[q], sizeof t[q]);
     for (int c = 0; c < 3; c++) {
-        f4 p00 = f4_from_i4(texel_channel4(t[0], c)), p10 = f4_from_i4(texel_channel4(t[1], c));
-        f4 p01 = f4_from_i4(texel_channel4(t[2], c)), p11 = f4_from_i4(texel_channel4(t[3], c));
-        f4 a = p00 + ax * (p10 - p00), b = p01 + ax * (p11 - p01);
-        rgb_out[c] = (a + ay * (b - a)) * f4_set(1.0f / 255.0f);
+        vf p00 = vf_from_vi(texel_channel_v(t[0], c)), p10 = vf_from_vi(texel_channel_v(t[1], c));
+        vf p01 = vf_from_vi(texel_channel_v(t[2], c)), p11 = vf_from_vi(texel_channel_v(t[3], c));
+        vf a = p00 + ax * (p10 - p00), b = p01 + ax * (p11 - p01);
+        rgb_out[c] = (a + ay * (b - a)) * vf_set(1.0f / 255.0f);
     }
 }
 
@@ -286,15 +286,15 @@ void skybox_draw_rows(const struct skybox *s, const struct camera *cam, struct f
     /* per pixel in float, as a GPU would, four pixels at a time (simd.h): the direction is a
      * row vector plus a step along r, one reciprocal of the major axis gives both face
      * coordinates; face_of's cube-map table as selects, lane by lane */
-    const f4 rx = f4_set((float)(r.x * tx)), ry = f4_set((float)(r.y * tx)),
-             rz = f4_set((float)(r.z * tx));
-    const f4 sx = f4_set(2.0f / fb->w), zero = f4_set(0), fr = f4_set(frac);
-    const f4 lane = {0, 1, 2, 3};
-    const i4 abs_mask = i4_set(0x7fffffff);
+    const vf rx = vf_set((float)(r.x * tx)), ry = vf_set((float)(r.y * tx)),
+             rz = vf_set((float)(r.z * tx));
+    const vf sx = vf_set(2.0f / fb->w), zero = vf_set(0), fr = vf_set(frac);
+    const vf lane = {0, 1, 2, 3};
+    const vi abs_mask = vi_set(0x7fffffff);
     for (int y = y0; y < y1; y++) {
         double ny = 1 - 2 * (y + 0.5) / fb->h;
         vec3 row = v3_add(f, v3_scale(u, ny * ty));
-        const f4 ox = f4_set((float)row.x), oy = f4_set((float)row.y), oz = f4_set((float)row.z);
+        const vf ox = vf_set((float)row.x), oy = vf_set((float)row.y), oz = vf_set((float)row.z);
         for (int x = 0; x < fb->w; x += SIMD_LANES) {
             size_t i = (size_t)y * fb->w + x;
             int n = fb->w - x < SIMD_LANES ? fb->w - x : SIMD_LANES, todo = 0;
@@ -302,32 +302,32 @@ void skybox_draw_rows(const struct skybox *s, const struct camera *cam, struct f
                 todo |= !fb_covered(fb, i + k) << k;
             if (!todo)
                 continue;
-            f4 nx = (f4_from_i4(i4_set(x)) + lane + f4_set(0.5f)) * sx - f4_set(1);
-            f4 d0 = ox + nx * rx, d1 = oy + nx * ry, d2 = oz + nx * rz;
-            f4 ax = (f4)((i4)d0 & abs_mask), ay = (f4)((i4)d1 & abs_mask),
-               az = (f4)((i4)d2 & abs_mask);
-            i4 isx = (ax >= ay) & (ax >= az), isy = ~isx & (ay >= az);
-            f4 ma = f4_select(isx, ax, f4_select(isy, ay, az));
-            f4 sc = f4_select(isx, f4_select(d0 > zero, -d2, d2),
-                              f4_select(isy, d0, f4_select(d2 > zero, d0, -d0)));
-            f4 tc = f4_select(isy, f4_select(d1 > zero, d2, -d2), -d1);
-            i4 face = i4_select(isx, i4_select(d0 > zero, i4_set(0), i4_set(1)),
-                                i4_select(isy, i4_select(d1 > zero, i4_set(2), i4_set(3)),
-                                          i4_select(d2 > zero, i4_set(4), i4_set(5))));
-            i4 seen = ma > zero; /* else black */
-            f4 im = f4_set(1.0f) / f4_select(seen, ma, f4_set(1));
-            f4 fu = f4_select(seen, sc * im, zero), fv = f4_select(seen, tc * im, zero);
-            f4 c[3];
-            sample_face4(l0, face, fu, fv, c);
+            vf nx = (vf_from_vi(vi_set(x)) + lane + vf_set(0.5f)) * sx - vf_set(1);
+            vf d0 = ox + nx * rx, d1 = oy + nx * ry, d2 = oz + nx * rz;
+            vf ax = (vf)((vi)d0 & abs_mask), ay = (vf)((vi)d1 & abs_mask),
+               az = (vf)((vi)d2 & abs_mask);
+            vi isx = (ax >= ay) & (ax >= az), isy = ~isx & (ay >= az);
+            vf ma = vf_select(isx, ax, vf_select(isy, ay, az));
+            vf sc = vf_select(isx, vf_select(d0 > zero, -d2, d2),
+                              vf_select(isy, d0, vf_select(d2 > zero, d0, -d0)));
+            vf tc = vf_select(isy, vf_select(d1 > zero, d2, -d2), -d1);
+            vi face = vi_select(isx, vi_select(d0 > zero, vi_set(0), vi_set(1)),
+                                vi_select(isy, vi_select(d1 > zero, vi_set(2), vi_set(3)),
+                                          vi_select(d2 > zero, vi_set(4), vi_set(5))));
+            vi seen = ma > zero; /* else black */
+            vf im = vf_set(1.0f) / vf_select(seen, ma, vf_set(1));
+            vf fu = vf_select(seen, sc * im, zero), fv = vf_select(seen, tc * im, zero);
+            vf c[3];
+            sample_face_v(l0, face, fu, fv, c);
             if (frac > 0) { /* trilinear: blend with the next coarser level */
-                f4 c2[3];
-                sample_face4(l1, face, fu, fv, c2);
+                vf c2[3];
+                sample_face_v(l1, face, fu, fv, c2);
                 for (int k = 0; k < 3; k++)
                     c[k] += fr * (c2[k] - c[k]);
             }
-            i4 q[3];
+            vi q[3];
             for (int k = 0; k < 3; k++)
-                q[k] = fb_quantize4(f4_select(seen, c[k], zero));
+                q[k] = fb_quantize_v(vf_select(seen, c[k], zero));
             for (int k = 0; k < n; k++)
                 if (todo >> k & 1) {
                     uint8_t *p = fb->rgb + 3 * (i + k);

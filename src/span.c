@@ -138,13 +138,13 @@ static inline int span_n_var(const struct span_ctx *s, enum shade_mode mode)
 /* What the texture's level of detail needs (trilinear): the planes of u, v and q per pixel
  * step, in every lane. */
 struct lod_planes {
-    f4 udx, vdx, qdx, udy, vdy, qdy;
+    vf udx, vdx, qdx, udy, vdy, qdy;
 };
 
 static inline struct lod_planes lod_planes_of(const struct setup_interp *in)
 {
-    return (struct lod_planes){f4_set(in->a_dx[0]), f4_set(in->a_dx[1]), f4_set(in->q.dx),
-                               f4_set(in->a_dy[0]), f4_set(in->a_dy[1]), f4_set(in->q.dy)};
+    return (struct lod_planes){vf_set(in->a_dx[0]), vf_set(in->a_dx[1]), vf_set(in->q.dx),
+                               vf_set(in->a_dy[0]), vf_set(in->a_dy[1]), vf_set(in->q.dy)};
 }
 
 /* The rest of a group of four pixels once its depth test is done: the colour of the lanes
@@ -153,24 +153,24 @@ static inline struct lod_planes lod_planes_of(const struct setup_interp *in)
  * colours are at rgb + off[l]; `contig`: at rgb + off[0] + 3 l instead (side by side; when
  * every lane passed, one wide store). */
 static inline __attribute__((always_inline)) void
-shade_write4(const struct span_ctx *s, const enum shade_mode mode, const enum tex_filter filter,
-             const bool lod, const struct lod_planes *lp, int pow_k, const f4 *var, f4 rq,
-             i4 pass, uint8_t *restrict rgb, const bool contig, const size_t off[SIMD_LANES])
+shade_write_v(const struct span_ctx *s, const enum shade_mode mode, const enum tex_filter filter,
+             const bool lod, const struct lod_planes *lp, int pow_k, const vf *var, vf rq,
+             vi pass, uint8_t *restrict rgb, const bool contig, const size_t off[SIMD_LANES])
 {
     const struct shade_tri *st = s->st;
-    f4 lambda = f4_set(0);
+    vf lambda = vf_set(0);
     if (lod)
-        lambda = texture_lod4(st->tex, (lp->udx - var[0] * lp->qdx) * rq,
+        lambda = texture_lod_v(st->tex, (lp->udx - var[0] * lp->qdx) * rq,
                               (lp->vdx - var[1] * lp->qdx) * rq, (lp->udy - var[0] * lp->qdy) * rq,
                               (lp->vdy - var[1] * lp->qdy) * rq);
-    f4 c[3];
-    shade_fragment4(s->shade, mode, filter, st, pow_k, var, lambda, c);
-    i4 r8 = fb_quantize4(c[0]), g8 = fb_quantize4(c[1]), b8 = fb_quantize4(c[2]);
-    if (contig && i4_all(pass)) {
+    vf c[3];
+    shade_fragment_v(s->shade, mode, filter, st, pow_k, var, lambda, c);
+    vi r8 = fb_quantize_v(c[0]), g8 = fb_quantize_v(c[1]), b8 = fb_quantize_v(c[2]);
+    if (contig && vi_all(pass)) {
         /* four pixels, twelve bytes: each lane's rgb0 as one 32-bit store, in order, so
          * each overwrites the byte the one before wrote past its pixel; the last one
          * stops at its own three bytes */
-        i4 px = r8 | (g8 << 8) | (b8 << 16);
+        vi px = r8 | (g8 << 8) | (b8 << 16);
         uint8_t *p = rgb + off[0];
         for (int l = 0; l < SIMD_LANES - 1; l++) {
             uint32_t w = (uint32_t)px[l];
@@ -190,7 +190,7 @@ shade_write4(const struct span_ctx *s, const enum shade_mode mode, const enum te
 /* One run in any method, instantiated per shading mode by span_flush's switch: `mode` is a
  * compile-time constant in each copy, so the shading's switches fold away. Pixels go four
  * at a time (simd.h): depth, the test and the varyings of four pixels in a few vector
- * operations, then the shading four at a time too (shade_write4; the normals view lane by
+ * operations, then the shading four at a time too (shade_write_v; the normals view lane by
  * lane). A lane's arithmetic is the scalar formula, so a pixel's bytes never depend on
  * where its group of four started. Every plane coefficient is copied into a local first:
  * the framebuffer's byte stores may alias anything and would otherwise force reloads. */
@@ -206,13 +206,13 @@ static inline __attribute__((always_inline)) void run(struct span_ctx *s, int y,
     const int span_n = persp == PERSP_SPAN8 ? 8 : persp == PERSP_SPAN16 ? 16 : 32;
     const float Y = (float)(y - t->y0);
     /* depth: the plane's value as c + (small part), rounded once (setup.h) */
-    const f4 zc = f4_set(in->z.c);
+    const vf zc = vf_set(in->z.c);
     const float zr = in->z_c_lo + in->z.dy * Y, zqr = row_of(&in->zq, Y), qr = row_of(&in->q, Y);
-    const f4 zdx = f4_set(in->z.dx), zqdx = f4_set(in->zq.dx), qdx = f4_set(in->q.dx);
-    const f4 z_lo = f4_set(in->z_lo), z_hi = f4_set(in->z_hi);
+    const vf zdx = vf_set(in->z.dx), zqdx = vf_set(in->zq.dx), qdx = vf_set(in->q.dx);
+    const vf z_lo = vf_set(in->z_lo), z_hi = vf_set(in->z_hi);
     float ar[VARY_MAX], adx[VARY_MAX];
-    f4 ar4[VARY_MAX]; /* the row bases in every lane: row_of, four at a time */
-    const f4 Y4 = f4_set(Y), *adx4 = s->a_dx;
+    vf ar4[VARY_MAX]; /* the row bases in every lane: row_of, four at a time */
+    const vf Y4 = vf_set(Y), *adx4 = s->a_dx;
     for (int k = 0; k < n_var; k++) {
         ar4[k] = s->a_c[k] + s->a_dy[k] * Y4;
         ar[k] = ar4[k][0];
@@ -232,34 +232,34 @@ static inline __attribute__((always_inline)) void run(struct span_ctx *s, int y,
     int anchor = -1, a0 = 0, row_lo = -1, row_hi = -1;
     float va[VARY_MAX] = {0}, vd[VARY_MAX] = {0};
     uint64_t shaded = 0;
-    const f4 lane = {0, 1, 2, 3};
+    const vf lane = {0, 1, 2, 3};
     for (int x = xa; x <= xb; x += SIMD_LANES) {
         const int n = xb - x + 1 < SIMD_LANES ? xb - x + 1 : SIMD_LANES;
-        const f4 X = f4_set((float)(x - x_org)) + lane;
-        f4 z = zc + (f4_set(zr) + zdx * X);
+        const vf X = vf_set((float)(x - x_org)) + lane;
+        vf z = zc + (vf_set(zr) + zdx * X);
         if (depth == DEPTH_W)
-            z = z / (f4_set(zqr) + zqdx * X);
-        z = f4_max(z_lo, z); /* never past the corners: z < z_lo ? z_lo : z */
-        z = f4_min(z_hi, z); /* z > z_hi ? z_hi : z */
+            z = z / (vf_set(zqr) + zqdx * X);
+        z = vf_max(z_lo, z); /* never past the corners: z < z_lo ? z_lo : z */
+        z = vf_min(z_hi, z); /* z > z_hi ? z_hi : z */
         if (depth == DEPTH_Z16) { /* floor(z * 65535 + 0.5); z is in [0, 1] */
-            f4 q = z * f4_set(65535.0f) + f4_set(0.5f);
-            i4 qi = i4_trunc(q);
-            z = f4_from_i4(qi);
+            vf q = z * vf_set(65535.0f) + vf_set(0.5f);
+            vi qi = vi_trunc(q);
+            z = vf_from_vi(qi);
         }
-        f4 old;
+        vf old;
         if (n == SIMD_LANES) /* a whole group inside the run: one load */
             __builtin_memcpy(&old, depth_buf + x, sizeof old);
         else /* never past the run: the pixels after it may be another thread's tile */
             for (int l = 0; l < SIMD_LANES; l++)
                 old[l] = l < n ? depth_buf[x + l] : 0;
-        i4 pass = (depth == DEPTH_RZ ? z > old : z < old) & (f4_set((float)n) > lane);
+        vi pass = (depth == DEPTH_RZ ? z > old : z < old) & (vf_set((float)n) > lane);
         if (overdraw)
             for (int l = 0; l < n; l++)
                 overdraw[x + l]++;
-        if (!i4_any(pass))
+        if (!vi_any(pass))
             continue;
         if (n == SIMD_LANES) { /* a whole group inside the run: one store */
-            f4 kept = f4_select(pass, z, old);
+            vf kept = vf_select(pass, z, old);
             __builtin_memcpy(depth_buf + x, &kept, sizeof kept);
             shaded += (uint64_t)-(pass[0] + pass[1] + pass[2] + pass[3]); /* lanes are -1 */
         } else {
@@ -271,14 +271,14 @@ static inline __attribute__((always_inline)) void run(struct span_ctx *s, int y,
         }
         if (mode == SHADE_WIRE)
             continue;
-        f4 var[VARY_MAX];
-        const f4 rq = f4_set(1.0f) / (f4_set(qr) + qdx * X);
+        vf var[VARY_MAX];
+        const vf rq = vf_set(1.0f) / (vf_set(qr) + qdx * X);
         if (persp == PERSP_CORRECT || persp == PERSP_AFFINE) {
             for (int k = 0; k < n_var; k++)
                 var[k] = (ar4[k] + adx4[k] * X) * rq;
         } else {
             for (int k = 0; k < n_var; k++)
-                var[k] = f4_set(0);
+                var[k] = vf_set(0);
             for (int l = 0; l < n; l++) {
                 int xl = x + l, a = xl - xl % span_n; /* x >= 0 */
                 if (a != anchor) { /* a new span: exact varyings at both (clamped) ends */
@@ -314,7 +314,7 @@ static inline __attribute__((always_inline)) void run(struct span_ctx *s, int y,
         }
         const size_t off[SIMD_LANES] = {3 * (size_t)x}; /* side by side: lanes past the run
                                                            are never in pass */
-        shade_write4(s, mode, filter, lod, &lp, pow_k, var, rq, pass, rgb_buf, true, off);
+        shade_write_v(s, mode, filter, lod, &lp, pow_k, var, rq, pass, rgb_buf, true, off);
     }
     s->tested += (uint64_t)(xb - xa + 1);
     s->shaded += shaded;
@@ -322,9 +322,9 @@ static inline __attribute__((always_inline)) void run(struct span_ctx *s, int y,
 
 /* The triangle's constants a group of the default methods reads, in every lane. */
 struct pack_ctx {
-    f4 zc, z_c_lo, zdy, zdx, z_lo, z_hi; /* depth: c + ((c_lo + dy Y) + dx X) */
-    f4 qc, qdy, qdx;
-    const f4 *a_c, *a_dy, *a_dx;
+    vf zc, z_c_lo, zdy, zdx, z_lo, z_hi; /* depth: c + ((c_lo + dy Y) + dx X) */
+    vf qc, qdy, qdx;
+    const vf *a_c, *a_dy, *a_dx;
     int n_var, pow_k;
     bool lod;
     struct lod_planes lp;
@@ -339,26 +339,26 @@ struct pack_ctx {
  * same order, as run() gives these pixels. Returns how many passed the depth test. */
 static inline __attribute__((always_inline)) uint64_t
 pack_group(const struct span_ctx *s, const struct pack_ctx *k, const enum shade_mode mode,
-           const enum tex_filter filter, const bool contig, f4 X, f4 Y, const size_t idx[4], int n)
+           const enum tex_filter filter, const bool contig, vf X, vf Y, const size_t idx[4], int n)
 {
-    f4 z = k->zc + ((k->z_c_lo + k->zdy * Y) + k->zdx * X);
-    z = f4_max(k->z_lo, z);
-    z = f4_min(k->z_hi, z);
-    f4 old;
-    i4 pass;
+    vf z = k->zc + ((k->z_c_lo + k->zdy * Y) + k->zdx * X);
+    z = vf_max(k->z_lo, z);
+    z = vf_min(k->z_hi, z);
+    vf old;
+    vi pass;
     if (contig) {
         __builtin_memcpy(&old, k->depth + idx[0], sizeof old);
         pass = z < old;
     } else {
-        const f4 lane = {0, 1, 2, 3};
+        const vf lane = {0, 1, 2, 3};
         for (int l = 0; l < SIMD_LANES; l++)
             old[l] = l < n ? k->depth[idx[l]] : 0;
-        pass = (z < old) & (f4_set((float)n) > lane);
+        pass = (z < old) & (vf_set((float)n) > lane);
     }
-    if (!i4_any(pass))
+    if (!vi_any(pass))
         return 0;
     if (contig) {
-        f4 kept = f4_select(pass, z, old);
+        vf kept = vf_select(pass, z, old);
         __builtin_memcpy(k->depth + idx[0], &kept, sizeof kept);
     } else {
         for (int l = 0; l < SIMD_LANES; l++)
@@ -368,14 +368,14 @@ pack_group(const struct span_ctx *s, const struct pack_ctx *k, const enum shade_
     uint64_t shaded = (uint64_t)-(pass[0] + pass[1] + pass[2] + pass[3]); /* lanes are -1 */
     if (mode == SHADE_WIRE)
         return shaded;
-    const f4 rq = f4_set(1.0f) / ((k->qc + k->qdy * Y) + k->qdx * X);
-    f4 var[VARY_MAX];
+    const vf rq = vf_set(1.0f) / ((k->qc + k->qdy * Y) + k->qdx * X);
+    vf var[VARY_MAX];
     for (int v = 0; v < k->n_var; v++)
         var[v] = ((k->a_c[v] + k->a_dy[v] * Y) + k->a_dx[v] * X) * rq;
     size_t off[SIMD_LANES];
     for (int l = 0; l < SIMD_LANES; l++)
         off[l] = 3 * idx[l];
-    shade_write4(s, mode, filter, k->lod, &k->lp, k->pow_k, var, rq, pass, k->rgb, contig, off);
+    shade_write_v(s, mode, filter, k->lod, &k->lp, k->pow_k, var, rq, pass, k->rgb, contig, off);
     return shaded;
 }
 
@@ -388,9 +388,9 @@ static inline __attribute__((always_inline)) void packs(struct span_ctx *s,
     const struct setup_interp *in = &s->in;
     const struct setup_tri *t = s->tri;
     struct pack_ctx k = {
-        .zc = f4_set(in->z.c), .z_c_lo = f4_set(in->z_c_lo), .zdy = f4_set(in->z.dy),
-        .zdx = f4_set(in->z.dx), .z_lo = f4_set(in->z_lo), .z_hi = f4_set(in->z_hi),
-        .qc = f4_set(in->q.c), .qdy = f4_set(in->q.dy), .qdx = f4_set(in->q.dx),
+        .zc = vf_set(in->z.c), .z_c_lo = vf_set(in->z_c_lo), .zdy = vf_set(in->z.dy),
+        .zdx = vf_set(in->z.dx), .z_lo = vf_set(in->z_lo), .z_hi = vf_set(in->z_hi),
+        .qc = vf_set(in->q.c), .qdy = vf_set(in->q.dy), .qdx = vf_set(in->q.dx),
         .a_c = s->a_c, .a_dy = s->a_dy, .a_dx = s->a_dx,
         .n_var = span_n_var(s, mode),
         .pow_k = mode == SHADE_PHONG ? light_pow_int(s->st->mat->ns) : 0,
@@ -400,8 +400,8 @@ static inline __attribute__((always_inline)) void packs(struct span_ctx *s,
     };
     const int x_org = t->x0, y_org = t->y0;
     const size_t fb_w = (size_t)s->fb->w;
-    const f4 lane = {0, 1, 2, 3};
-    f4 lx = f4_set(0), ly = f4_set(0); /* the leftovers waiting: columns, rows, pixels */
+    const vf lane = {0, 1, 2, 3};
+    vf lx = vf_set(0), ly = vf_set(0); /* the leftovers waiting: columns, rows, pixels */
     size_t lidx[SIMD_LANES] = {0};
     int nl = 0;
     uint64_t tested = 0, shaded = 0;
@@ -410,10 +410,10 @@ static inline __attribute__((always_inline)) void packs(struct span_ctx *s,
         int x = s->runs[r].x0;
         tested += (uint64_t)(x1 - x + 1);
         const size_t row = (size_t)y * fb_w;
-        const f4 Y = f4_set((float)(y - y_org));
+        const vf Y = vf_set((float)(y - y_org));
         for (; x + SIMD_LANES - 1 <= x1; x += SIMD_LANES) {
             const size_t idx[SIMD_LANES] = {row + (size_t)x};
-            shaded += pack_group(s, &k, mode, filter, true, f4_set((float)(x - x_org)) + lane, Y,
+            shaded += pack_group(s, &k, mode, filter, true, vf_set((float)(x - x_org)) + lane, Y,
                                  idx, SIMD_LANES);
         }
         for (; x <= x1; x++) {
@@ -445,9 +445,9 @@ static void SPAN_FLUSH(struct span_ctx *s)
         setup_interp(s->tri, s->depth, &s->fb->proj, s->persp == PERSP_AFFINE, n_var, &s->in);
 #endif
         for (int k = 0; k < n_var; k++) {
-            s->a_c[k] = f4_set(s->in.a_c[k]);
-            s->a_dy[k] = f4_set(s->in.a_dy[k]);
-            s->a_dx[k] = f4_set(s->in.a_dx[k]);
+            s->a_c[k] = vf_set(s->in.a_c[k]);
+            s->a_dy[k] = vf_set(s->in.a_dy[k]);
+            s->a_dx[k] = vf_set(s->in.a_dx[k]);
         }
         s->in_ready = true;
         if (s->hit)

@@ -329,7 +329,7 @@ TEST(the_headlight_lights_a_model_from_every_side)
 
 TEST(four_lane_terms_equal_one_lane_terms_with_a_hemisphere)
 {
-    /* the span shader's light_terms4 gives, lane by lane, exactly light_terms: with the
+    /* the span shader's light_terms_v gives, lane by lane, exactly light_terms: with the
      * default single light (its own code path) and with the headlight's two lights and
      * hemisphere ambient, for exponents by squaring (a power of two or not) and by powf */
     struct camera c;
@@ -346,14 +346,14 @@ TEST(four_lane_terms_equal_one_lane_terms_with_a_hemisphere)
         uint32_t seed = 5;
         for (int i = 0; i < 600; i++) {
             float n[4][3], v[4][3], ns = exps[i % 3];
-            f4 n4[3], v4[3], d4[3], s4[3];
+            vf n4[3], v4[3], d4[3], s4[3];
             for (int l = 0; l < 4; l++) {
                 unit(n[l], &seed);
                 unit(v[l], &seed);
                 for (int k = 0; k < 3; k++)
                     n4[k][l] = n[l][k], v4[k][l] = v[l][k];
             }
-            light_terms4(&env, n4, v4, ns, d4, s4);
+            light_terms_v(&env, n4, v4, ns, d4, s4);
             for (int l = 0; l < 4; l++) {
                 float d[3], s[3];
                 light_terms(&env, n[l], v[l], ns, d, s);
@@ -376,8 +376,8 @@ TEST(specular_power_by_squaring_for_whole_exponents)
     const float ns[] = {1, 2, 5, 16, 32, 77, 1024, 2.5f, 0.5f, 1025};
     const float xs[] = {0, 0.25f, 0.5f, 0.9f, 0.999f, 1};
     for (size_t a = 0; a < sizeof ns / sizeof *ns; a++) {
-        f4 x4 = {xs[1], xs[2], xs[3], xs[4]};
-        f4 p4 = light_pow4(x4, ns[a]);
+        vf x4 = {xs[1], xs[2], xs[3], xs[4]};
+        vf p4 = light_pow_v(x4, ns[a]);
         for (size_t b = 0; b < sizeof xs / sizeof *xs; b++) {
             float got = light_pow(xs[b], ns[a]), want = powf(xs[b], ns[a]);
             CHECK(fabsf(got - want) <= ldexpf(ns[a] < 1 ? 1 : ns[a], -23) * want + 1e-38f);

@@ -85,15 +85,15 @@ TEST(four_lanes_sample_exactly_as_one)
     REQUIRE(checker64(&tx) == 0);
     srand(5);
     for (int n = 0; n < 2000; n++) {
-        f4 u, v, lam;
+        vf u, v, lam;
         int same = n % 2;
         for (int l = 0; l < SIMD_LANES; l++) {
             u[l] = (float)(rand() % 10000) / 3333.0f - 1;
             v[l] = (float)(rand() % 10000) / 4444.0f;
             lam[l] = same ? 2.3f + 0.001f * (float)l : (float)(rand() % 900) / 100.0f - 1;
         }
-        f4 c4[3];
-        texture_sample4(&tx, TEX_TRILINEAR, u, v, lam, c4);
+        vf c4[3];
+        texture_sample_v(&tx, TEX_TRILINEAR, u, v, lam, c4);
         for (int l = 0; l < SIMD_LANES; l++) {
             float c[3];
             texture_sample(&tx, TEX_TRILINEAR, u[l], v[l], lam[l], c);
