@@ -20,7 +20,7 @@ MAINOBJ := $(BUILD)/obj/main.o
 # x86-64: the span stage and interpolation setup a second time, for AVX2, chosen at run time
 # (include/span.h)
 ifneq ($(findstring x86_64,$(shell $(CC) -dumpmachine)),)
-LIBOBJS += $(BUILD)/obj/span_avx2.o $(BUILD)/obj/setup_avx2.o
+LIBOBJS += $(BUILD)/obj/span_avx2.o $(BUILD)/obj/span_avx2_4.o $(BUILD)/obj/setup_avx2.o
 CFLAGS  += -DRASTTY_SPAN_AVX2
 endif
 UNITSRC := $(wildcard tests/unit/*.c)
@@ -64,7 +64,11 @@ $(BUILD)/obj/%.o: src/%.c | $(BUILD)/obj
 
 $(BUILD)/obj/span_avx2.o: src/span.c | $(BUILD)/obj
 	@echo "  CC      $< (AVX2)"
-	$(Q)$(CC) $(CFLAGS) -mavx2 -mno-fma -DSPAN_AVX2_COPY -MMD -MP -c -o $@ $<
+	$(Q)$(CC) $(CFLAGS) -mavx2 -mno-fma -DSPAN_AVX2_COPY -DSIMD_LANES=8 -MMD -MP -c -o $@ $<
+
+$(BUILD)/obj/span_avx2_4.o: src/span.c | $(BUILD)/obj
+	@echo "  CC      $< (AVX2, four lanes)"
+	$(Q)$(CC) $(CFLAGS) -mavx2 -mno-fma -DSPAN_AVX2_COPY -DSIMD_LANES=4 -MMD -MP -c -o $@ $<
 
 $(BUILD)/obj/setup_avx2.o: src/setup.c | $(BUILD)/obj
 	@echo "  CC      $< (AVX2)"

@@ -1,44 +1,94 @@
-/* simd.h: four-lane float and int vectors for the per-pixel code (span.c, shade.h,
- * texture.h, fb.h).
+/* simd.h: float and int vectors of SIMD_LANES lanes for the per-pixel code (span.c,
+ * shade.h, texture.h, fb.h, skybox.c).
  *
- * GCC/Clang vector extensions: plain C operators on four lanes at once, compiled to SSE2 on
- * x86-64 (NEON on ARM, scalar code elsewhere). Every lane computes exactly what the scalar
- * code would, with the same IEEE operations in the same order (no fused multiply-add:
- * the build says -ffp-contract=off), so a pixel's value never depends on which lane or
- * which group of four it fell in. Comparisons give -1 (true) or 0 per lane. */
+ * GCC/Clang vector extensions: plain C operators on all lanes at once. Four lanes by
+ * default, compiled to SSE2 on x86-64 (NEON on ARM, scalar code elsewhere); the span stage's
+ * AVX2 copy is built with -DSIMD_LANES=8 and gets eight (one AVX register). Every lane
+ * computes exactly what the scalar code would, with the same IEEE operations in the same
+ * order (no fused multiply-add: the build says -ffp-contract=off), so a pixel's value never
+ * depends on which lane, which group or which width it fell in. Comparisons give -1 (true)
+ * or 0 per lane. A struct shared between files never holds these types: their width
+ * depends on the file. */
 #ifndef RASTTY_SIMD_H
 #define RASTTY_SIMD_H
 
 #include <stdint.h>
 
+#ifndef SIMD_LANES
+#define SIMD_LANES 4
+#endif
+
+/* the helpers are a few instructions each: never a call (GCC outlines some once a span
+ * stage copy grows large) */
+#define SIMD_INLINE static inline __attribute__((always_inline))
+
+#if SIMD_LANES == 8
+#if !defined(__AVX2__)
+#error "eight lanes need AVX2 (-mavx2)"
+#endif
+typedef float vf __attribute__((vector_size(32)));
+typedef int32_t vi __attribute__((vector_size(32)));
+#elif SIMD_LANES == 4
 typedef float vf __attribute__((vector_size(16)));
 typedef int32_t vi __attribute__((vector_size(16)));
+#else
+#error "SIMD_LANES is 4 or 8"
+#endif
 
-#define SIMD_LANES 4
-
-static inline vf vf_set(float a)
+SIMD_INLINE vf vf_set(float a)
 {
+#if SIMD_LANES == 8
+    return (vf){a, a, a, a, a, a, a, a};
+#else
     return (vf){a, a, a, a};
+#endif
 }
 
-static inline vi vi_set(int32_t a)
+SIMD_INLINE vi vi_set(int32_t a)
 {
+#if SIMD_LANES == 8
+    return (vi){a, a, a, a, a, a, a, a};
+#else
     return (vi){a, a, a, a};
+#endif
+}
+
+/* 0, 1, 2, ...: each lane's index */
+SIMD_INLINE vf vf_lanes(void)
+{
+#if SIMD_LANES == 8
+    return (vf){0, 1, 2, 3, 4, 5, 6, 7};
+#else
+    return (vf){0, 1, 2, 3};
+#endif
+}
+
+SIMD_INLINE vi vi_lanes(void)
+{
+#if SIMD_LANES == 8
+    return (vi){0, 1, 2, 3, 4, 5, 6, 7};
+#else
+    return (vi){0, 1, 2, 3};
+#endif
 }
 
 /* m ? a : b, lane by lane (m from a comparison: every lane 0 or -1) */
-static inline vf vf_select(vi m, vf a, vf b)
+SIMD_INLINE vf vf_select(vi m, vf a, vf b)
 {
-#if defined(__SSE4_1__)
+#if SIMD_LANES == 8
+    return __builtin_ia32_blendvps256(b, a, (vf)m);
+#elif defined(__SSE4_1__)
     return __builtin_ia32_blendvps(b, a, (vf)m);
 #else
     return (vf)((m & (vi)a) | (~m & (vi)b));
 #endif
 }
 
-static inline vi vi_select(vi m, vi a, vi b)
+SIMD_INLINE vi vi_select(vi m, vi a, vi b)
 {
-#if defined(__SSE4_1__)
+#if SIMD_LANES == 8
+    return (vi)__builtin_ia32_blendvps256((vf)b, (vf)a, (vf)m);
+#elif defined(__SSE4_1__)
     return (vi)__builtin_ia32_blendvps((vf)b, (vf)a, (vf)m);
 #else
     return (m & a) | (~m & b);
@@ -47,39 +97,45 @@ static inline vi vi_select(vi m, vi a, vi b)
 
 /* a > b ? a : b and a < b ? a : b, lane by lane: exactly that expression (b when either is
  * NaN or both are zeros), which is what SSE's maxps / minps compute */
-static inline vf vf_max(vf a, vf b)
+SIMD_INLINE vf vf_max(vf a, vf b)
 {
-#if defined(__SSE__)
+#if SIMD_LANES == 8
+    return __builtin_ia32_maxps256(a, b);
+#elif defined(__SSE__)
     return __builtin_ia32_maxps(a, b);
 #else
     return vf_select(a > b, a, b);
 #endif
 }
 
-static inline vf vf_min(vf a, vf b)
+SIMD_INLINE vf vf_min(vf a, vf b)
 {
-#if defined(__SSE__)
+#if SIMD_LANES == 8
+    return __builtin_ia32_minps256(a, b);
+#elif defined(__SSE__)
     return __builtin_ia32_minps(a, b);
 #else
     return vf_select(a < b, a, b);
 #endif
 }
 
-static inline vf vf_from_vi(vi a)
+SIMD_INLINE vf vf_from_vi(vi a)
 {
     return __builtin_convertvector(a, vf);
 }
 
 /* truncation toward zero; |a| must be below 2^31 (callers clamp first) */
-static inline vi vi_trunc(vf a)
+SIMD_INLINE vi vi_trunc(vf a)
 {
     return __builtin_convertvector(a, vi);
 }
 
 /* floor of each lane, as an integer; |a| must be below 2^31 (callers clamp first) */
-static inline vi vi_floor(vf a)
+SIMD_INLINE vi vi_floor(vf a)
 {
-#if defined(__SSE4_1__)
+#if SIMD_LANES == 8
+    return vi_trunc(__builtin_ia32_roundps256(a, 0x9)); /* toward -inf, no exception */
+#elif defined(__SSE4_1__)
     return vi_trunc(__builtin_ia32_roundps(a, 0x9)); /* toward -inf, no exception */
 #else
     vi i = vi_trunc(a);
@@ -88,9 +144,11 @@ static inline vi vi_floor(vf a)
 }
 
 /* square root of each lane: the same IEEE result as sqrtf */
-static inline vf vf_sqrt(vf a)
+SIMD_INLINE vf vf_sqrt(vf a)
 {
-#if defined(__SSE__)
+#if SIMD_LANES == 8
+    return __builtin_ia32_sqrtps256(a);
+#elif defined(__SSE__)
     return __builtin_ia32_sqrtps(a);
 #else
     return (vf){__builtin_sqrtf(a[0]), __builtin_sqrtf(a[1]), __builtin_sqrtf(a[2]),
@@ -101,7 +159,7 @@ static inline vf vf_sqrt(vf a)
 /* log2 of positive finite lanes, to about 0.0013 (exponent bits plus a cubic on the
  * mantissa): a texture's level of detail needs no more. Zero, negative or non-finite lanes
  * give garbage, which callers select away. */
-static inline vf vf_log2(vf x)
+SIMD_INLINE vf vf_log2(vf x)
 {
     vi b = (vi)x;
     vf e = vf_from_vi(((b >> 23) & vi_set(255)) - vi_set(127));
@@ -110,24 +168,35 @@ static inline vf vf_log2(vf x)
     return e + p;
 }
 
-/* any lane set? (m from a comparison) */
-static inline int vi_any(vi m)
+/* the lanes set in m (from a comparison) as bits, lane 0 lowest */
+SIMD_INLINE int vi_mask(vi m)
 {
-#if defined(__SSE__)
-    return __builtin_ia32_movmskps((vf)m) != 0;
+#if SIMD_LANES == 8
+    return __builtin_ia32_movmskps256((vf)m);
+#elif defined(__SSE__)
+    return __builtin_ia32_movmskps((vf)m);
 #else
-    return (m[0] | m[1] | m[2] | m[3]) != 0;
+    return (m[0] & 1) | (m[1] & 2) | (m[2] & 4) | (m[3] & 8);
 #endif
 }
 
-/* every lane set? (m from a comparison) */
-static inline int vi_all(vi m)
+/* any lane set? every lane set? how many? (m from a comparison) */
+SIMD_INLINE int vi_any(vi m)
 {
-#if defined(__SSE__)
-    return __builtin_ia32_movmskps((vf)m) == 15;
-#else
-    return (m[0] & m[1] & m[2] & m[3]) != 0;
-#endif
+    return vi_mask(m) != 0;
+}
+
+SIMD_INLINE int vi_all(vi m)
+{
+    return vi_mask(m) == (1 << SIMD_LANES) - 1;
+}
+
+SIMD_INLINE int vi_count(vi m)
+{
+    unsigned b = (unsigned)vi_mask(m); /* at most 8 bits: no popcount instruction needed */
+    b = b - ((b >> 1) & 0x55);
+    b = (b & 0x33) + ((b >> 2) & 0x33);
+    return (int)((b + (b >> 4)) & 0x0f);
 }
 
 #endif

@@ -68,13 +68,12 @@ struct span_ctx {
     const struct shade_tri *st;
     uint32_t tri_index;        /* its place in the batch */
     struct setup_interp in;
-    vf a_c[VARY_MAX], a_dy[VARY_MAX], a_dx[VARY_MAX]; /* in.a's planes, in every lane */
     bool in_ready;             /* setup_interp done for tri */
     /* results, added to the frame's stats by the caller */
     uint8_t *hit;              /* hit[tri_index] = 1 once a triangle has a run (or NULL) */
     uint64_t tested, shaded;
     /* the current triangle's runs not drawn yet */
-    int n_runs;
+    int n_runs, n_pixels;
     struct span_run {
         int16_t y, x0, x1;     /* FB_MAX_DIM fits */
     } runs[SPAN_QUEUE];
@@ -92,6 +91,7 @@ static inline void span_draw(struct span_ctx *s, int y, int x0, int x1)
     if (s->n_runs == SPAN_QUEUE)
         span_flush(s);
     s->runs[s->n_runs++] = (struct span_run){(int16_t)y, (int16_t)x0, (int16_t)x1};
+    s->n_pixels += x1 - x0 + 1;
 }
 /* The triangle's rasterization is done: draw what is queued. */
 static inline void span_end(struct span_ctx *s)
@@ -100,12 +100,15 @@ static inline void span_end(struct span_ctx *s)
         span_flush(s);
 }
 
-/* The instruction set span_draw runs on. On x86-64 the build makes a second copy of this
- * stage for AVX2 (the same C and the same bytes, fewer instructions: blends, rounding,
- * three-operand forms), used when the CPU has it. RASTTY_SIMD=sse2 (or avx2) in the
- * environment chooses at the first frame; span_isa_set chooses now ("auto", "sse2", "avx2";
- * -1 when this build or CPU cannot). span_isa_name: "sse2" or "avx2". */
-enum span_isa { SPAN_ISA_SSE2, SPAN_ISA_AVX2 };
+/* The instruction set the span stage runs on. On x86-64 the build makes two more copies of
+ * it for AVX2 (the same C and the same bytes, fewer instructions: blends, rounding,
+ * three-operand forms), one with eight lanes and one with four, used when the CPU has AVX2:
+ * a triangle of up to four pixels goes to the four-lane copy, any other to the eight-lane
+ * one. RASTTY_SIMD in the environment chooses at the first frame; span_isa_set chooses now:
+ * "auto" (AVX2 where possible), "sse2", "avx2" (both AVX2 copies), "avx2-4" or "avx2-8" (one
+ * of them for every triangle: for measuring and tests); -1 when this build or CPU cannot.
+ * span_isa_name: the one in use. */
+enum span_isa { SPAN_ISA_SSE2, SPAN_ISA_AVX2, SPAN_ISA_AVX2_4, SPAN_ISA_AVX2_8 };
 int span_isa_set(const char *name);
 const char *span_isa_name(void);
 

@@ -237,7 +237,8 @@ static inline __attribute__((always_inline)) void texture_fetch_v(const struct t
     uint32_t w[SIMD_LANES];
     for (int l = 0; l < SIMD_LANES; l++)
         __builtin_memcpy(&w[l], lv->rgba + (size_t)idx[l] * 4, 4);
-    vi v = {(int32_t)w[0], (int32_t)w[1], (int32_t)w[2], (int32_t)w[3]};
+    vi v;
+    __builtin_memcpy(&v, w, sizeof v);
     for (int c = 0; c < 3; c++)
         rgb_out[c] = texel_channel_v(v, c);
 }
@@ -297,16 +298,16 @@ static inline void texture_bilinear_v_levels(const struct texture *t, vi lv, vf 
     vi i1 = vi_select(i0 + 1 == W, vi_set(0), i0 + 1);
     vi j1 = vi_select(j0 + 1 == H, vi_set(0), j0 + 1);
     vi r0 = (H - 1 - j0) * W, r1 = (H - 1 - j1) * W; /* row starts, in texels */
-    vi w[4];
+    uint32_t tx[4][SIMD_LANES]; /* p00 p10 p01 p11 of each lane */
     for (int l = 0; l < SIMD_LANES; l++) {
         const uint8_t *p = px[l];
-        uint32_t a, b, c, d;
-        __builtin_memcpy(&a, p + (size_t)(r0[l] + i0[l]) * 4, 4);
-        __builtin_memcpy(&b, p + (size_t)(r0[l] + i1[l]) * 4, 4);
-        __builtin_memcpy(&c, p + (size_t)(r1[l] + i0[l]) * 4, 4);
-        __builtin_memcpy(&d, p + (size_t)(r1[l] + i1[l]) * 4, 4);
-        w[0][l] = (int32_t)a, w[1][l] = (int32_t)b, w[2][l] = (int32_t)c, w[3][l] = (int32_t)d;
+        __builtin_memcpy(&tx[0][l], p + (size_t)(r0[l] + i0[l]) * 4, 4);
+        __builtin_memcpy(&tx[1][l], p + (size_t)(r0[l] + i1[l]) * 4, 4);
+        __builtin_memcpy(&tx[2][l], p + (size_t)(r1[l] + i0[l]) * 4, 4);
+        __builtin_memcpy(&tx[3][l], p + (size_t)(r1[l] + i1[l]) * 4, 4);
     }
+    vi w[4];
+    __builtin_memcpy(w, tx, sizeof w);
     for (int ch = 0; ch < 3; ch++) {
         vf c00 = vf_from_vi(texel_channel_v(w[0], ch)), c10 = vf_from_vi(texel_channel_v(w[1], ch));
         vf c01 = vf_from_vi(texel_channel_v(w[2], ch)), c11 = vf_from_vi(texel_channel_v(w[3], ch));

@@ -536,8 +536,8 @@ int options_parse(int argc, char **argv, struct options *o, struct err *e)
     env = getenv("RASTTY_SIMD"); /* the span stage's instruction set (span.h) */
     if (env && *env && span_isa_set(env))
         return bad(e, "RASTTY_SIMD",
-                   strcmp(env, "avx2") ? "expected auto, sse2 or avx2"
-                                       : "avx2 is not available on this CPU or build",
+                   strncmp(env, "avx2", 4) ? "expected auto, sse2, avx2, avx2-4 or avx2-8"
+                                           : "avx2 is not available on this CPU or build",
                    env);
     int i = 1;
     if (argc > 1 && argv[1][0] != '-') {

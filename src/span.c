@@ -8,13 +8,19 @@
 
 #include "simd.h"
 
-/* This file is compiled twice on x86-64 (Makefile): once for the baseline (SSE2), once with
- * -mavx2 -DSPAN_AVX2_COPY, which makes only span_draw_avx2 — the same C, so the same IEEE
+/* This file is compiled three times on x86-64 (Makefile): once for the baseline (SSE2, four
+ * lanes), and twice with -mavx2 -DSPAN_AVX2_COPY, which makes only span_flush_avx2 (eight
+ * lanes, -DSIMD_LANES=8) or span_flush_avx2_4 (four) — the same C, so the same IEEE
  * operations in the same order (no fused multiply-add: -mno-fma, -ffp-contract=off) and the
- * same bytes, in VEX encoding with blends, rounding and 32-bit multiplies (simd.h). */
+ * same bytes, in VEX encoding with blends, rounding and 32-bit multiplies (simd.h). A
+ * triangle of at most four pixels fills one group of four: the four-lane copy draws it with
+ * half the per-lane loads and stores of a group of eight (span_flush). */
 void span_flush_avx2(struct span_ctx *s);
-#ifdef SPAN_AVX2_COPY
+void span_flush_avx2_4(struct span_ctx *s);
+#if defined(SPAN_AVX2_COPY) && SIMD_LANES == 8
 #define SPAN_FLUSH span_flush_avx2
+#elif defined(SPAN_AVX2_COPY)
+#define SPAN_FLUSH span_flush_avx2_4
 #else
 #define SPAN_FLUSH span_flush_base
 static void span_flush_base(struct span_ctx *s);
@@ -27,6 +33,7 @@ void span_begin(struct span_ctx *s, const struct setup_tri *t, const struct shad
     s->tri_index = tri_index;
     s->in_ready = false;
     s->n_runs = 0;
+    s->n_pixels = 0;
 }
 
 #ifdef RASTTY_SPAN_AVX2
@@ -53,6 +60,10 @@ int span_isa_set(const char *name)
         isa = SPAN_ISA_SSE2;
     else if (!strcmp(name, "avx2") && cpu_has_avx2())
         isa = SPAN_ISA_AVX2;
+    else if (!strcmp(name, "avx2-4") && cpu_has_avx2())
+        isa = SPAN_ISA_AVX2_4;
+    else if (!strcmp(name, "avx2-8") && cpu_has_avx2())
+        isa = SPAN_ISA_AVX2_8;
     else
         return -1;
     atomic_store_explicit(&isa_now, isa, memory_order_relaxed);
@@ -72,15 +83,23 @@ static int isa_get(void)
 
 const char *span_isa_name(void)
 {
-    return isa_get() == SPAN_ISA_AVX2 ? "avx2" : "sse2";
+    static const char *const names[] = {"sse2", "avx2", "avx2-4", "avx2-8"};
+    return names[isa_get()];
 }
 
 void span_flush(struct span_ctx *s)
 {
-    if (isa_get() == SPAN_ISA_AVX2)
-        span_flush_avx2(s);
-    else
-        span_flush_base(s);
+    switch (isa_get()) {
+    case SPAN_ISA_SSE2: span_flush_base(s); break;
+    case SPAN_ISA_AVX2_4: span_flush_avx2_4(s); break;
+    case SPAN_ISA_AVX2_8: span_flush_avx2(s); break;
+    default: /* a triangle of up to four pixels fills one group of four */
+        if (s->n_pixels <= 4)
+            span_flush_avx2_4(s);
+        else
+            span_flush_avx2(s);
+        break;
+    }
 }
 #endif
 
@@ -167,7 +186,7 @@ shade_write_v(const struct span_ctx *s, const enum shade_mode mode, const enum t
     shade_fragment_v(s->shade, mode, filter, st, pow_k, var, lambda, c);
     vi r8 = fb_quantize_v(c[0]), g8 = fb_quantize_v(c[1]), b8 = fb_quantize_v(c[2]);
     if (contig && vi_all(pass)) {
-        /* four pixels, twelve bytes: each lane's rgb0 as one 32-bit store, in order, so
+        /* every lane, three bytes each: each lane's rgb0 as one 32-bit store, in order, so
          * each overwrites the byte the one before wrote past its pixel; the last one
          * stops at its own three bytes */
         vi px = r8 | (g8 << 8) | (b8 << 16);
@@ -177,7 +196,9 @@ shade_write_v(const struct span_ctx *s, const enum shade_mode mode, const enum t
             uint8_t le[4] = {(uint8_t)w, (uint8_t)(w >> 8), (uint8_t)(w >> 16), 0};
             __builtin_memcpy(p + 3 * l, le, 4);
         }
-        p[9] = (uint8_t)r8[3], p[10] = (uint8_t)g8[3], p[11] = (uint8_t)b8[3];
+        const int last = SIMD_LANES - 1;
+        p[3 * last] = (uint8_t)r8[last], p[3 * last + 1] = (uint8_t)g8[last],
+        p[3 * last + 2] = (uint8_t)b8[last];
         return;
     }
     for (int l = 0; l < SIMD_LANES; l++)
@@ -212,11 +233,13 @@ static inline __attribute__((always_inline)) void run(struct span_ctx *s, int y,
     const vf z_lo = vf_set(in->z_lo), z_hi = vf_set(in->z_hi);
     float ar[VARY_MAX], adx[VARY_MAX];
     vf ar4[VARY_MAX]; /* the row bases in every lane: row_of, four at a time */
-    const vf Y4 = vf_set(Y), *adx4 = s->a_dx;
+    vf adx4[VARY_MAX];
+    const vf Y4 = vf_set(Y);
     for (int k = 0; k < n_var; k++) {
-        ar4[k] = s->a_c[k] + s->a_dy[k] * Y4;
+        ar4[k] = vf_set(in->a_c[k]) + vf_set(in->a_dy[k]) * Y4;
         ar[k] = ar4[k][0];
         adx[k] = in->a_dx[k];
+        adx4[k] = vf_set(adx[k]);
     }
     const bool lod = mode != SHADE_WIRE && filter == TEX_TRILINEAR && s->st->tex;
     const struct lod_planes lp = lod_planes_of(in);
@@ -232,7 +255,7 @@ static inline __attribute__((always_inline)) void run(struct span_ctx *s, int y,
     int anchor = -1, a0 = 0, row_lo = -1, row_hi = -1;
     float va[VARY_MAX] = {0}, vd[VARY_MAX] = {0};
     uint64_t shaded = 0;
-    const vf lane = {0, 1, 2, 3};
+    const vf lane = vf_lanes();
     for (int x = xa; x <= xb; x += SIMD_LANES) {
         const int n = xb - x + 1 < SIMD_LANES ? xb - x + 1 : SIMD_LANES;
         const vf X = vf_set((float)(x - x_org)) + lane;
@@ -261,7 +284,7 @@ static inline __attribute__((always_inline)) void run(struct span_ctx *s, int y,
         if (n == SIMD_LANES) { /* a whole group inside the run: one store */
             vf kept = vf_select(pass, z, old);
             __builtin_memcpy(depth_buf + x, &kept, sizeof kept);
-            shaded += (uint64_t)-(pass[0] + pass[1] + pass[2] + pass[3]); /* lanes are -1 */
+            shaded += (uint64_t)vi_count(pass);
         } else {
             for (int l = 0; l < n; l++)
                 if (pass[l]) {
@@ -324,7 +347,8 @@ static inline __attribute__((always_inline)) void run(struct span_ctx *s, int y,
 struct pack_ctx {
     vf zc, z_c_lo, zdy, zdx, z_lo, z_hi; /* depth: c + ((c_lo + dy Y) + dx X) */
     vf qc, qdy, qdx;
-    const vf *a_c, *a_dy, *a_dx;
+    const float *a_c, *a_dy, *a_dx; /* the varyings' planes (setup_interp's), broadcast where
+                                       used: one load each with AVX, and no copies to keep */
     int n_var, pow_k;
     bool lod;
     struct lod_planes lp;
@@ -333,76 +357,79 @@ struct pack_ctx {
 };
 
 /* One group of the default methods (depth z, perspective-correct, no overdraw count, no
- * normals view): four pixels at columns x_org + X, rows y_org + Y, at depth[idx[l]] and
- * rgb[3 idx[l]]; `contig`: idx[l] = idx[0] + l (four pixels of a run side by side), else
- * the first n lanes are pixels (leftovers of several runs). The same operations, in the
+ * normals view): pixels at columns x_org + X, rows y_org + Y. `contig`: SIMD_LANES pixels
+ * of a run side by side, the first at index `first` of the framebuffer; else the first n
+ * lanes are pixels (leftovers of several runs) at indices idx. The same operations, in the
  * same order, as run() gives these pixels. Returns how many passed the depth test. */
 static inline __attribute__((always_inline)) uint64_t
 pack_group(const struct span_ctx *s, const struct pack_ctx *k, const enum shade_mode mode,
-           const enum tex_filter filter, const bool contig, vf X, vf Y, const size_t idx[4], int n)
+           const enum tex_filter filter, const bool contig, vf X, vf Y, size_t first, vi idx,
+           int n)
 {
     vf z = k->zc + ((k->z_c_lo + k->zdy * Y) + k->zdx * X);
     z = vf_max(k->z_lo, z);
     z = vf_min(k->z_hi, z);
     vf old;
     vi pass;
+    int32_t at[SIMD_LANES]; /* leftovers: each lane's pixel (one vector store, lane loads) */
     if (contig) {
-        __builtin_memcpy(&old, k->depth + idx[0], sizeof old);
+        __builtin_memcpy(&old, k->depth + first, sizeof old);
         pass = z < old;
     } else {
-        const vf lane = {0, 1, 2, 3};
+        __builtin_memcpy(at, &idx, sizeof at);
         for (int l = 0; l < SIMD_LANES; l++)
-            old[l] = l < n ? k->depth[idx[l]] : 0;
-        pass = (z < old) & (vf_set((float)n) > lane);
+            old[l] = l < n ? k->depth[at[l]] : 0;
+        pass = (z < old) & (vf_set((float)n) > vf_lanes());
     }
     if (!vi_any(pass))
         return 0;
     if (contig) {
         vf kept = vf_select(pass, z, old);
-        __builtin_memcpy(k->depth + idx[0], &kept, sizeof kept);
+        __builtin_memcpy(k->depth + first, &kept, sizeof kept);
     } else {
         for (int l = 0; l < SIMD_LANES; l++)
             if (pass[l])
-                k->depth[idx[l]] = z[l];
+                k->depth[at[l]] = z[l];
     }
-    uint64_t shaded = (uint64_t)-(pass[0] + pass[1] + pass[2] + pass[3]); /* lanes are -1 */
+    uint64_t shaded = (uint64_t)vi_count(pass);
     if (mode == SHADE_WIRE)
         return shaded;
     const vf rq = vf_set(1.0f) / ((k->qc + k->qdy * Y) + k->qdx * X);
     vf var[VARY_MAX];
     for (int v = 0; v < k->n_var; v++)
-        var[v] = ((k->a_c[v] + k->a_dy[v] * Y) + k->a_dx[v] * X) * rq;
+        var[v] = ((vf_set(k->a_c[v]) + vf_set(k->a_dy[v]) * Y) + vf_set(k->a_dx[v]) * X) * rq;
     size_t off[SIMD_LANES];
     for (int l = 0; l < SIMD_LANES; l++)
-        off[l] = 3 * idx[l];
+        off[l] = contig ? 3 * first : 3 * (size_t)at[l];
     shade_write_v(s, mode, filter, k->lod, &k->lp, k->pow_k, var, rq, pass, k->rgb, contig, off);
     return shaded;
 }
 
-/* The queued runs in the default methods: four pixels side by side of one run are a group;
- * the pixels left at a run's end wait for the leftovers of the next runs (span.h). */
+/* The queued runs in the default methods: SIMD_LANES pixels side by side of one run are a
+ * group; the pixels left at a run's end wait, in lanes, for the leftovers of the next runs
+ * (span.h). Lanes are filled by selects, never one by one through memory. */
 static inline __attribute__((always_inline)) void packs(struct span_ctx *s,
                                                         const enum shade_mode mode,
                                                         const enum tex_filter filter)
 {
     const struct setup_interp *in = &s->in;
     const struct setup_tri *t = s->tri;
-    struct pack_ctx k = {
-        .zc = vf_set(in->z.c), .z_c_lo = vf_set(in->z_c_lo), .zdy = vf_set(in->z.dy),
-        .zdx = vf_set(in->z.dx), .z_lo = vf_set(in->z_lo), .z_hi = vf_set(in->z_hi),
-        .qc = vf_set(in->q.c), .qdy = vf_set(in->q.dy), .qdx = vf_set(in->q.dx),
-        .a_c = s->a_c, .a_dy = s->a_dy, .a_dx = s->a_dx,
-        .n_var = span_n_var(s, mode),
-        .pow_k = mode == SHADE_PHONG ? light_pow_int(s->st->mat->ns) : 0,
-        .lod = mode != SHADE_WIRE && filter == TEX_TRILINEAR && s->st->tex,
-        .lp = lod_planes_of(in),
-        .depth = s->fb->depth, .rgb = s->fb->rgb,
-    };
+    struct pack_ctx k; /* field by field: an initialiser would zero the unused planes */
+    k.zc = vf_set(in->z.c), k.z_c_lo = vf_set(in->z_c_lo), k.zdy = vf_set(in->z.dy);
+    k.zdx = vf_set(in->z.dx), k.z_lo = vf_set(in->z_lo), k.z_hi = vf_set(in->z_hi);
+    k.qc = vf_set(in->q.c), k.qdy = vf_set(in->q.dy), k.qdx = vf_set(in->q.dx);
+    k.n_var = span_n_var(s, mode);
+    k.pow_k = mode == SHADE_PHONG ? light_pow_int(s->st->mat->ns) : 0;
+    k.lod = mode != SHADE_WIRE && filter == TEX_TRILINEAR && s->st->tex;
+    k.lp = lod_planes_of(in);
+    k.depth = s->fb->depth, k.rgb = s->fb->rgb;
+    k.a_c = in->a_c, k.a_dy = in->a_dy, k.a_dx = in->a_dx;
     const int x_org = t->x0, y_org = t->y0;
     const size_t fb_w = (size_t)s->fb->w;
-    const vf lane = {0, 1, 2, 3};
+    const vf lane = vf_lanes();
+    const vi lane_i = vi_lanes();
     vf lx = vf_set(0), ly = vf_set(0); /* the leftovers waiting: columns, rows, pixels */
-    size_t lidx[SIMD_LANES] = {0};
+    vi li = vi_set(0);
     int nl = 0;
     uint64_t tested = 0, shaded = 0;
     for (int r = 0; r < s->n_runs; r++) {
@@ -411,21 +438,24 @@ static inline __attribute__((always_inline)) void packs(struct span_ctx *s,
         tested += (uint64_t)(x1 - x + 1);
         const size_t row = (size_t)y * fb_w;
         const vf Y = vf_set((float)(y - y_org));
-        for (; x + SIMD_LANES - 1 <= x1; x += SIMD_LANES) {
-            const size_t idx[SIMD_LANES] = {row + (size_t)x};
+        for (; x + SIMD_LANES - 1 <= x1; x += SIMD_LANES)
             shaded += pack_group(s, &k, mode, filter, true, vf_set((float)(x - x_org)) + lane, Y,
-                                 idx, SIMD_LANES);
-        }
-        for (; x <= x1; x++) {
-            lx[nl] = (float)(x - x_org), ly[nl] = (float)(y - y_org), lidx[nl] = row + (size_t)x;
-            if (++nl == SIMD_LANES) {
-                shaded += pack_group(s, &k, mode, filter, false, lx, ly, lidx, SIMD_LANES);
+                                 row + (size_t)x, li, SIMD_LANES);
+        while (x <= x1) { /* lanes nl .. nl + take - 1 get pixels x .. x + take - 1 */
+            int take = x1 - x + 1 < SIMD_LANES - nl ? x1 - x + 1 : SIMD_LANES - nl;
+            vi m = (lane_i >= vi_set(nl)) & (lane_i < vi_set(nl + take));
+            lx = vf_select(m, vf_set((float)(x - nl - x_org)) + lane, lx);
+            ly = vf_select(m, Y, ly);
+            li = vi_select(m, vi_set((int32_t)(row + (size_t)x) - nl) + lane_i, li);
+            x += take;
+            if ((nl += take) == SIMD_LANES) {
+                shaded += pack_group(s, &k, mode, filter, false, lx, ly, 0, li, SIMD_LANES);
                 nl = 0;
             }
         }
     }
     if (nl)
-        shaded += pack_group(s, &k, mode, filter, false, lx, ly, lidx, nl);
+        shaded += pack_group(s, &k, mode, filter, false, lx, ly, 0, li, nl);
     s->tested += tested;
     s->shaded += shaded;
 }
@@ -444,11 +474,6 @@ static void SPAN_FLUSH(struct span_ctx *s)
 #else
         setup_interp(s->tri, s->depth, &s->fb->proj, s->persp == PERSP_AFFINE, n_var, &s->in);
 #endif
-        for (int k = 0; k < n_var; k++) {
-            s->a_c[k] = vf_set(s->in.a_c[k]);
-            s->a_dy[k] = vf_set(s->in.a_dy[k]);
-            s->a_dx[k] = vf_set(s->in.a_dx[k]);
-        }
         s->in_ready = true;
         if (s->hit)
             s->hit[s->tri_index] = 1;
@@ -470,7 +495,7 @@ static void SPAN_FLUSH(struct span_ctx *s)
         default: packs(s, SHADE_WIRE, TEX_NEAREST); break;
         }
 #undef PACK_FILTERS
-        s->n_runs = 0;
+        s->n_runs = s->n_pixels = 0;
         return;
     }
     for (int r = 0; r < s->n_runs; r++) {
@@ -483,5 +508,5 @@ static void SPAN_FLUSH(struct span_ctx *s)
         default: run(s, y, x0, x1, SHADE_WIRE, s->depth, s->persp, f); break;
         }
     }
-    s->n_runs = 0;
+    s->n_runs = s->n_pixels = 0;
 }
