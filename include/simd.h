@@ -13,6 +13,9 @@
 #define RASTTY_SIMD_H
 
 #include <stdint.h>
+#if defined(__AVX2__)
+#include <immintrin.h>
+#endif
 
 #ifndef SIMD_LANES
 #define SIMD_LANES 4
@@ -166,6 +169,24 @@ SIMD_INLINE vf vf_log2(vf x)
     vf t = (vf)((b & vi_set(0x7fffff)) | vi_set(0x3f800000)) - vf_set(1.0f); /* [0,1) */
     vf p = t * (vf_set(1.4234853f) + t * (vf_set(-0.5877338f) + t * vf_set(0.1655588f)));
     return e + p;
+}
+
+/* the 32-bit words base[idx[l]] (idx[l] >= 0, any alignment): one gather instruction with
+ * AVX2, a load per lane without */
+SIMD_INLINE vi vi_gather(const void *base, vi idx)
+{
+#if SIMD_LANES == 8
+    return (vi)_mm256_i32gather_epi32((const int *)base, (__m256i)idx, 4);
+#elif defined(__AVX2__)
+    return (vi)_mm_i32gather_epi32((const int *)base, (__m128i)idx, 4);
+#else
+    uint32_t w[SIMD_LANES];
+    for (int l = 0; l < SIMD_LANES; l++)
+        __builtin_memcpy(&w[l], (const uint8_t *)base + (size_t)idx[l] * 4, 4);
+    vi v;
+    __builtin_memcpy(&v, w, sizeof v);
+    return v;
+#endif
 }
 
 /* the lanes set in m (from a comparison) as bits, lane 0 lowest */

@@ -229,16 +229,11 @@ static inline __attribute__((always_inline)) vi texel_channel_v(vi words, int c)
 }
 
 /* the rgb of the texels at (i, j), j counted from the bottom, one vector per channel: one
- * 32-bit load per texel, split into channels in vector registers */
+ * 32-bit load per texel (a gather), split into channels in vector registers */
 static inline __attribute__((always_inline)) void texture_fetch_v(const struct texture_level *lv, vi i, vi j,
                                                                   vi rgb_out[3])
 {
-    vi idx = (vi_set(lv->h - 1) - j) * vi_set(lv->w) + i;
-    uint32_t w[SIMD_LANES];
-    for (int l = 0; l < SIMD_LANES; l++)
-        __builtin_memcpy(&w[l], lv->rgba + (size_t)idx[l] * 4, 4);
-    vi v;
-    __builtin_memcpy(&v, w, sizeof v);
+    vi v = vi_gather(lv->rgba, (vi_set(lv->h - 1) - j) * vi_set(lv->w) + i);
     for (int c = 0; c < 3; c++)
         rgb_out[c] = texel_channel_v(v, c);
 }
