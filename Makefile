@@ -17,10 +17,11 @@ Q       := $(if $(V),,@)
 SRCS    := $(wildcard src/*.c)
 LIBOBJS := $(patsubst src/%.c,$(BUILD)/obj/%.o,$(filter-out src/main.c,$(SRCS)))
 MAINOBJ := $(BUILD)/obj/main.o
-# x86-64: the span stage and interpolation setup a second time, for AVX2, chosen at run time
-# (include/span.h)
+# x86-64: the span stage (twice: eight and four lanes), interpolation setup and the sky again,
+# for AVX2, chosen at run time (include/span.h)
 ifneq ($(findstring x86_64,$(shell $(CC) -dumpmachine)),)
-LIBOBJS += $(BUILD)/obj/span_avx2.o $(BUILD)/obj/span_avx2_4.o $(BUILD)/obj/setup_avx2.o
+LIBOBJS += $(BUILD)/obj/span_avx2.o $(BUILD)/obj/span_avx2_4.o $(BUILD)/obj/setup_avx2.o \
+           $(BUILD)/obj/skybox_avx2.o
 CFLAGS  += -DRASTTY_SPAN_AVX2
 endif
 UNITSRC := $(wildcard tests/unit/*.c)
@@ -73,6 +74,10 @@ $(BUILD)/obj/span_avx2_4.o: src/span.c | $(BUILD)/obj
 $(BUILD)/obj/setup_avx2.o: src/setup.c | $(BUILD)/obj
 	@echo "  CC      $< (AVX2)"
 	$(Q)$(CC) $(CFLAGS) -mavx2 -mno-fma -DSETUP_AVX2_COPY -MMD -MP -c -o $@ $<
+
+$(BUILD)/obj/skybox_avx2.o: src/skybox.c | $(BUILD)/obj
+	@echo "  CC      $< (AVX2)"
+	$(Q)$(CC) $(CFLAGS) -mavx2 -mno-fma -DSKYBOX_AVX2_COPY -DSIMD_LANES=8 -MMD -MP -c -o $@ $<
 
 $(BUILD)/tests/%.o: tests/unit/%.c | $(BUILD)/tests
 	@echo "  CC      $<"

@@ -109,7 +109,7 @@ static inline uint8_t fb_quantize(float c)
 }
 
 /* fb_quantize of four values (0..255 in each lane) */
-static inline __attribute__((always_inline)) vi fb_quantize_v(vf c)
+SIMD_INLINE vi fb_quantize_v(vf c)
 {
     c = vf_max(c, vf_set(0)); /* c > 0 ? c : 0 (NaN: 0) */
     c = vf_min(c, vf_set(1)); /* c < 1 ? c : 1 */

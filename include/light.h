@@ -140,7 +140,7 @@ static inline void light_normalize(float v[3])
 }
 
 /* light_normalize, four vectors at once (v[k] holds component k of the four) */
-static inline __attribute__((always_inline)) void light_normalize_v(vf v[3])
+SIMD_INLINE void light_normalize_v(vf v[3])
 {
     vf l = vf_sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
     vi pos = l > vf_set(0);
@@ -181,7 +181,7 @@ static inline vf light_pow_v(vf x, float n)
 
 /* One light's diffuse and specular factors for four points: max(0, N.L) and
  * max(0, N.H)^ns with H = normalize(L + V) (pow_k = light_pow_int(ns)) */
-static inline __attribute__((always_inline)) void
+SIMD_INLINE void
 light_one_v(const float l[3], const vf n[3], const vf v[3], float ns, int pow_k, vf *dd_out,
            vf *ss_out)
 {
@@ -204,7 +204,7 @@ static inline vf light_ambient_v(const struct light_env *env, vf up, int k)
 
 /* light_terms for four points (n, v: unit vectors, one component per vector): in every lane
  * exactly what light_terms gives */
-static inline __attribute__((always_inline)) void
+SIMD_INLINE void
 light_terms_v_k(const struct light_env *env, const vf n[3], const vf v[3], float ns, int pow_k,
               vf d_out[3], vf s_out[3])
 {

@@ -106,7 +106,7 @@ static inline void shade_fragment(const struct shade_ctx *c, enum shade_mode mod
  * their texture level of detail (texture_lod_v; trilinear only); filter is c->filter (an
  * argument so that a caller can make it a constant); pow_k is light_pow_int(t->mat->ns)
  * (phong only: computed once for many pixels). */
-static inline __attribute__((always_inline)) void
+SIMD_INLINE void
 shade_fragment_v(const struct shade_ctx *c, enum shade_mode mode, enum tex_filter filter,
                 const struct shade_tri *t, int pow_k, const vf *var, vf lambda, vf rgb_out[3])
 {

@@ -110,6 +110,9 @@ static inline void span_end(struct span_ctx *s)
  * span_isa_name: the one in use. */
 enum span_isa { SPAN_ISA_SSE2, SPAN_ISA_AVX2, SPAN_ISA_AVX2_4, SPAN_ISA_AVX2_8 };
 int span_isa_set(const char *name);
+/* the enum span_isa in use (chosen at the first call: RASTTY_SIMD, else auto); the sky's
+ * AVX2 copy follows it too (skybox.c) */
+int span_isa_get(void);
 const char *span_isa_name(void);
 
 #endif

@@ -201,7 +201,7 @@ static inline void texture_sample(const struct texture *t, enum tex_filter f, fl
 }
 
 /* texture_wrap for four coordinates */
-static inline __attribute__((always_inline)) vi texture_wrap_v(vf x, int n)
+SIMD_INLINE vi texture_wrap_v(vf x, int n)
 {
     vi ok = (x > vf_set(-1e9f)) & (x < vf_set(1e9f));
     x = vf_select(ok, x, vf_set(0));
@@ -219,7 +219,7 @@ static inline __attribute__((always_inline)) vi texture_wrap_v(vf x, int n)
 }
 
 /* byte c (0 r, 1 g, 2 b) of four texels loaded as 32-bit words (RGBA8 in memory order) */
-static inline __attribute__((always_inline)) vi texel_channel_v(vi words, int c)
+SIMD_INLINE vi texel_channel_v(vi words, int c)
 {
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
     return (words >> (24 - 8 * c)) & vi_set(255);
@@ -230,8 +230,7 @@ static inline __attribute__((always_inline)) vi texel_channel_v(vi words, int c)
 
 /* the rgb of the texels at (i, j), j counted from the bottom, one vector per channel: one
  * 32-bit load per texel (a gather), split into channels in vector registers */
-static inline __attribute__((always_inline)) void texture_fetch_v(const struct texture_level *lv, vi i, vi j,
-                                                                  vi rgb_out[3])
+SIMD_INLINE void texture_fetch_v(const struct texture_level *lv, vi i, vi j, vi rgb_out[3])
 {
     vi v = vi_gather(lv->rgba, (vi_set(lv->h - 1) - j) * vi_set(lv->w) + i);
     for (int c = 0; c < 3; c++)
@@ -328,7 +327,7 @@ static inline vf texture_lod_v(const struct texture *t, vf dudx, vf dvdx, vf dud
 }
 
 /* Four samples at once: in every lane exactly what texture_sample gives (lambda per lane). */
-static inline __attribute__((always_inline)) void
+SIMD_INLINE void
 texture_sample_v(const struct texture *t, enum tex_filter f, vf u, vf v, vf lambda, vf rgb_out[3])
 {
     struct texture_level base = texture_base(t);

@@ -15,6 +15,7 @@
 
 #include "decode.h"
 #include "encode.h"
+#include "light.h"
 #include "pipeline.h"
 #include "ssaa.h"
 #include "timing.h"
@@ -113,6 +114,8 @@ static int bench_scene(const struct options *o, const char *path, int cols, int 
     for (int k = 0; k <= frames; k++) {
         struct camera c = cam;
         camera_turn(&c, o->orbit_deg * (k < frames ? k : frames - 1), 0, 1);
+        if (o->light_camera) /* the headlight follows the camera, as in the viewer */
+            light_use_camera(&ro, &c);
         struct frame_stats st;
         if (ssaa_draw(&ss, p, scene.items, scene.n_items, scene.has_sky ? &scene.sky : NULL, &c,
                       &ro, &fb, &st, e))

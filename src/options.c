@@ -60,7 +60,7 @@ static const struct flag flags[] = {
     {"--far", F_FAR, ARG_VALUE, C_DRAW, "F", "far plane distance > near (default 100)", NULL, 0},
     {"--ortho", F_ORTHO, ARG_VALUE, C_DRAW, "H", "orthographic projection, view height H", NULL, 0},
     {"--frame", F_FRAME, ARG_NONE, C_RENDER | C_DUMP, NULL, "move the camera to fit the model (keeps the view direction)", NULL, 0},
-    {"--light", F_LIGHT, ARG_VALUE, C_DRAW, "X,Y,Z|camera", "fixed light toward X,Y,Z (default 1,1,1), or the headlight (viewer default)", NULL, 0},
+    {"--light", F_LIGHT, ARG_VALUE, C_DRAW | C_BENCH, "X,Y,Z|camera", "fixed light toward X,Y,Z (default 1,1,1), or the headlight (viewer default)", NULL, 0},
     ENUM_FLAG("--shade", C_DRAW | C_BENCH, "shading", render_shade_names, render.shade),
     {"--texture", F_TEXTURE, ARG_VALUE, C_DRAW, "FILE", "diffuse texture replacing the materials' (PNG, JPEG, TGA, BMP, GIF, PSD, PNM, HDR)", NULL, 0},
     {"--no-texture", F_NO_TEXTURE, ARG_NONE, C_DRAW, NULL, "ignore all textures (albedo = Kd)", NULL, 0},

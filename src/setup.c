@@ -169,7 +169,7 @@ void SETUP_INTERP(const struct setup_tri *t, enum depth_mode depth,
      * non-degenerate, or the planes extrapolate over the covered area: then snapped ones */
     double uarea = (ux[1] - ux[0]) * (uy[2] - uy[0]) - (uy[1] - uy[0]) * (ux[2] - ux[0]);
     double sarea_src = (sx[1] - sx[0]) * (sy[2] - sy[0]) - (sy[1] - sy[0]) * (sx[2] - sx[0]);
-    struct bary b = {{0}, {0}, {0}}; /* (setup_triangle has dropped triangles whose snapped area is 0) */
+    struct bary b = {{0}, {0}, {0}}; /* (setup dropped triangles of snapped area 0) */
     if (!(uarea != 0 && (uarea < 0) == (sarea_src < 0) && planes(&ux, &uy, ox, oy, &b) &&
           planes_bounded(t, &b)))
         planes(&sx, &sy, ox, oy, &b);

@@ -6,7 +6,18 @@
 #include <string.h>
 
 #include "simd.h"
+#include "span.h"
 #include "texture.h"
+
+/* This file is compiled twice on x86-64 (Makefile), as span.c is: the second copy, with
+ * -mavx2 -DSIMD_LANES=8 -DSKYBOX_AVX2_COPY, makes only skybox_draw_rows_avx2 (eight lanes,
+ * gathers), used when the span stage runs on AVX2 — the same C, so the same bytes. */
+void skybox_draw_rows_avx2(const struct skybox *s, const struct camera *cam, struct fb *fb,
+                           int y0, int y1);
+#ifdef SKYBOX_AVX2_COPY
+#define SKYBOX_DRAW_ROWS skybox_draw_rows_avx2
+#else
+#define SKYBOX_DRAW_ROWS sky_rows_base
 
 /* GL cube-map table: face of the major axis, its sc/tc coordinates */
 static int face_of(vec3 d, double *sc, double *tc, double *ma)
@@ -68,12 +79,16 @@ static void fill_border(struct skybox_level *l)
             }
 }
 
+/* the six faces in one block, one after another (the sky's gathers index all of them from
+ * rgb[0]) */
 static int alloc_level(struct skybox_level *l, int n)
 {
+    size_t face = (size_t)(n + 2) * (size_t)(n + 2) * 4;
     l->n = n;
-    for (int f = 0; f < 6; f++)
-        if (!(l->rgb[f] = calloc((size_t)(n + 2) * (size_t)(n + 2), 4)))
-            return -1;
+    if (!(l->rgb[0] = calloc(6, face)))
+        return -1;
+    for (int f = 1; f < 6; f++)
+        l->rgb[f] = l->rgb[0] + f * face;
     return 0;
 }
 
@@ -190,8 +205,7 @@ int skybox_procedural(struct skybox *s, vec3 sun_dir, struct err *e)
 void skybox_free(struct skybox *s)
 {
     for (int l = 0; l < SKYBOX_MAX_LEVELS; l++)
-        for (int f = 0; f < 6; f++)
-            free(s->level[l].rgb[f]);
+        free(s->level[l].rgb[0]); /* the block of all six faces */
     memset(s, 0, sizeof *s);
 }
 
@@ -227,8 +241,11 @@ void skybox_sample(const struct skybox *s, int level, vec3 d, float rgb_out[3])
     sample_face(&s->level[level], f, sc / ma, tc / ma, rgb_out);
 }
 
-/* sample_face in float, four lanes at once, each lane on its own face (the per-pixel loop of
- * skybox_draw_rows; sample_face stays the double-precision reference for skybox_sample) */
+#endif /* !SKYBOX_AVX2_COPY */
+
+/* sample_face in float, SIMD_LANES lanes at once, each lane on its own face (the per-pixel
+ * loop of skybox_draw_rows; sample_face stays the double-precision reference for
+ * skybox_sample): the four texels of each lane gathered from the level's block of faces */
 static inline void sample_face_v(const struct skybox_level *l, vi face, vf u, vf v, vf rgb_out[3])
 {
     const vf half = vf_set(0.5f * l->n), zero = vf_set(0), one = vf_set(1);
@@ -240,19 +257,10 @@ static inline void sample_face_v(const struct skybox_level *l, vi face, vf u, vf
     vf ax = x - vf_from_vi(i0), ay = y - vf_from_vi(j0);
     ax = vf_select(ax < zero, zero, vf_select(ax > one, one, ax));
     ay = vf_select(ay < zero, zero, vf_select(ay > one, one, ay));
-    const int stride = 4 * (l->n + 2);
-    vi off = ((j0 + 1) * vi_set(l->n + 2) + (i0 + 1)) * vi_set(4);
-    uint32_t w[4][SIMD_LANES]; /* p00 p10 p01 p11 of each lane, r g b 0 in memory order */
-    for (int k = 0; k < SIMD_LANES; k++) {
-        const uint8_t *p = l->rgb[face[k]] + off[k];
-        __builtin_memcpy(&w[0][k], p, 4);
-        __builtin_memcpy(&w[1][k], p + 4, 4);
-        __builtin_memcpy(&w[2][k], p + stride, 4);
-        __builtin_memcpy(&w[3][k], p + stride + 4, 4);
-    }
-    vi t[4];
-    for (int q = 0; q < 4; q++)
-        __builtin_memcpy(&t[q], w[q], sizeof t[q]);
+    const int row = l->n + 2; /* texels, r g b 0 in memory order */
+    vi at = face * vi_set(row * row) + (j0 + 1) * vi_set(row) + (i0 + 1);
+    vi t[4] = {vi_gather(l->rgb[0], at), vi_gather(l->rgb[0], at + 1),
+               vi_gather(l->rgb[0], at + row), vi_gather(l->rgb[0], at + row + 1)};
     for (int c = 0; c < 3; c++) {
         vf p00 = vf_from_vi(texel_channel_v(t[0], c)), p10 = vf_from_vi(texel_channel_v(t[1], c));
         vf p01 = vf_from_vi(texel_channel_v(t[2], c)), p11 = vf_from_vi(texel_channel_v(t[3], c));
@@ -261,8 +269,13 @@ static inline void sample_face_v(const struct skybox_level *l, vi face, vf u, vf
     }
 }
 
-void skybox_draw_rows(const struct skybox *s, const struct camera *cam, struct fb *fb, int y0,
+#ifdef SKYBOX_AVX2_COPY
+void SKYBOX_DRAW_ROWS(const struct skybox *s, const struct camera *cam, struct fb *fb, int y0,
                       int y1)
+#else
+static void SKYBOX_DRAW_ROWS(const struct skybox *s, const struct camera *cam, struct fb *fb,
+                             int y0, int y1)
+#endif
 {
     if (s->n_levels == 0)
         return;
@@ -283,13 +296,13 @@ void skybox_draw_rows(const struct skybox *s, const struct camera *cam, struct f
     const struct skybox_level *l0 = &s->level[level], *l1 = &s->level[level + (frac > 0)];
     y0 = y0 < 0 ? 0 : y0;
     y1 = y1 > fb->h ? fb->h : y1;
-    /* per pixel in float, as a GPU would, four pixels at a time (simd.h): the direction is a
-     * row vector plus a step along r, one reciprocal of the major axis gives both face
+    /* per pixel in float, as a GPU would, SIMD_LANES pixels at a time (simd.h): the direction
+     * is a row vector plus a step along r, one reciprocal of the major axis gives both face
      * coordinates; face_of's cube-map table as selects, lane by lane */
     const vf rx = vf_set((float)(r.x * tx)), ry = vf_set((float)(r.y * tx)),
              rz = vf_set((float)(r.z * tx));
     const vf sx = vf_set(2.0f / fb->w), zero = vf_set(0), fr = vf_set(frac);
-    const vf lane = {0, 1, 2, 3};
+    const vf lane = vf_lanes(), clear = vf_set(fb_depth_clear_value(fb->depth_mode));
     const vi abs_mask = vi_set(0x7fffffff);
     for (int y = y0; y < y1; y++) {
         double ny = 1 - 2 * (y + 0.5) / fb->h;
@@ -297,9 +310,16 @@ void skybox_draw_rows(const struct skybox *s, const struct camera *cam, struct f
         const vf ox = vf_set((float)row.x), oy = vf_set((float)row.y), oz = vf_set((float)row.z);
         for (int x = 0; x < fb->w; x += SIMD_LANES) {
             size_t i = (size_t)y * fb->w + x;
-            int n = fb->w - x < SIMD_LANES ? fb->w - x : SIMD_LANES, todo = 0;
-            for (int k = 0; k < n; k++)
-                todo |= !fb_covered(fb, i + k) << k;
+            int n = fb->w - x < SIMD_LANES ? fb->w - x : SIMD_LANES, todo;
+            if (n == SIMD_LANES) { /* the pixels nothing covered: depth still the clear value */
+                vf d;
+                __builtin_memcpy(&d, fb->depth + i, sizeof d);
+                todo = vi_mask(d == clear);
+            } else {
+                todo = 0;
+                for (int k = 0; k < n; k++)
+                    todo |= !fb_covered(fb, i + k) << k;
+            }
             if (!todo)
                 continue;
             vf nx = (vf_from_vi(vi_set(x)) + lane + vf_set(0.5f)) * sx - vf_set(1);
@@ -337,7 +357,21 @@ void skybox_draw_rows(const struct skybox *s, const struct camera *cam, struct f
     }
 }
 
+#ifndef SKYBOX_AVX2_COPY
+void skybox_draw_rows(const struct skybox *s, const struct camera *cam, struct fb *fb, int y0,
+                      int y1)
+{
+#ifdef RASTTY_SPAN_AVX2
+    if (span_isa_get() != SPAN_ISA_SSE2) {
+        skybox_draw_rows_avx2(s, cam, fb, y0, y1);
+        return;
+    }
+#endif
+    sky_rows_base(s, cam, fb, y0, y1);
+}
+
 void skybox_draw(const struct skybox *s, const struct camera *cam, struct fb *fb)
 {
     skybox_draw_rows(s, cam, fb, 0, fb->h);
 }
+#endif /* !SKYBOX_AVX2_COPY */

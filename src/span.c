@@ -70,7 +70,7 @@ int span_isa_set(const char *name)
     return 0;
 }
 
-static int isa_get(void)
+int span_isa_get(void)
 {
     int isa = atomic_load_explicit(&isa_now, memory_order_relaxed);
     if (isa >= 0)
@@ -84,12 +84,12 @@ static int isa_get(void)
 const char *span_isa_name(void)
 {
     static const char *const names[] = {"sse2", "avx2", "avx2-4", "avx2-8"};
-    return names[isa_get()];
+    return names[span_isa_get()];
 }
 
 void span_flush(struct span_ctx *s)
 {
-    switch (isa_get()) {
+    switch (span_isa_get()) {
     case SPAN_ISA_SSE2: span_flush_base(s); break;
     case SPAN_ISA_AVX2_4: span_flush_avx2_4(s); break;
     case SPAN_ISA_AVX2_8: span_flush_avx2(s); break;

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "skybox.h"
+#include "span.h"
 #include "test.h"
 
 /* a sky whose colour encodes the direction: faces are flat colours, so the face a direction
@@ -116,55 +117,63 @@ TEST(skybox_fills_only_empty_pixels)
 TEST(skybox_draw_matches_the_double_reference)
 {
     /* every drawn pixel against skybox_sample (double precision) along the pixel centre's
-     * ray, on a procedural sky, a framebuffer whose width is no multiple of four (the last
-     * group of lanes is partial), some pixels covered, cameras that see every face: within
-     * one level (float against double); a lane that took another lane's face or texel would
-     * be tens of levels off */
+     * ray, on a procedural sky, a framebuffer whose width is no multiple of four or eight
+     * (the last group of lanes is partial), some pixels covered, cameras that see every
+     * face, the baseline copy and the AVX2 one (eight lanes, gathers): within one level
+     * (float against double); a lane that took another lane's face or texel would be tens
+     * of levels off */
     struct skybox s;
     REQUIRE(skybox_procedural(&s, v3(0.3, 0.5, -1), NULL) == 0);
     struct fb fb;
     const int w = 37, h = 23;
     REQUIRE(fb_init(&fb, w, h, false, NULL) == 0);
     const vec3 eyes[4] = {{0, 0, 3}, {0.1, 3, 0.2}, {-2, -1, -2}, {3, 0.5, -0.4}};
-    int worst = 0, drawn = 0, kept = 0;
-    for (int e = 0; e < 4; e++) {
-        const uint8_t grey[3] = {7, 7, 7};
-        fb_clear(&fb, grey);
-        for (int i = 0; i < w * h; i += 5)
-            fb.depth[i] = 0.5f; /* covered: the sky must leave these */
-        struct camera c;
-        camera_default(&c);
-        c.eye = eyes[e];
-        c.fov_deg = 120;
-        skybox_draw(&s, &c, &fb);
-        vec3 f = v3_norm(v3_sub(c.target, c.eye)), r = v3_norm(v3_cross(f, c.up));
-        vec3 u = v3_cross(r, f);
-        double ty = tan(c.fov_deg * M_PI / 360), tx = ty * fb_aspect(&fb);
-        double tpp = (2 * ty / h) / (2.0 / s.level[0].n), lod = tpp > 1 ? log2(tpp) : 0;
-        int lvl = (int)floor(lod);
-        double frac = lod - lvl;
-        for (int y = 0; y < h; y++)
-            for (int x = 0; x < w; x++) {
-                int i = y * w + x;
-                if (i % 5 == 0) {
-                    kept += fb.rgb[3 * i] == 7 && fb.rgb[3 * i + 1] == 7 && fb.rgb[3 * i + 2] == 7;
-                    continue;
+    int worst = 0, drawn = 0, kept = 0, copies = 0;
+    for (int isa = 0; isa < 2; isa++) {
+        if (span_isa_set(isa ? "avx2" : "sse2") != 0)
+            continue;
+        copies++;
+        for (int e = 0; e < 4; e++) {
+            const uint8_t grey[3] = {7, 7, 7};
+            fb_clear(&fb, grey);
+            for (int i = 0; i < w * h; i += 5)
+                fb.depth[i] = 0.5f; /* covered: the sky must leave these */
+            struct camera c;
+            camera_default(&c);
+            c.eye = eyes[e];
+            c.fov_deg = 120;
+            skybox_draw(&s, &c, &fb);
+            vec3 f = v3_norm(v3_sub(c.target, c.eye)), r = v3_norm(v3_cross(f, c.up));
+            vec3 u = v3_cross(r, f);
+            double ty = tan(c.fov_deg * M_PI / 360), tx = ty * fb_aspect(&fb);
+            double tpp = (2 * ty / h) / (2.0 / s.level[0].n), lod = tpp > 1 ? log2(tpp) : 0;
+            int lvl = (int)floor(lod);
+            double frac = lod - lvl;
+            for (int y = 0; y < h; y++)
+                for (int x = 0; x < w; x++) {
+                    int i = y * w + x;
+                    if (i % 5 == 0) {
+                        kept += fb.rgb[3 * i] == 7 && fb.rgb[3 * i + 1] == 7 &&
+                                fb.rgb[3 * i + 2] == 7;
+                        continue;
+                    }
+                    double nx = 2 * (x + 0.5) / w - 1, ny = 1 - 2 * (y + 0.5) / h;
+                    vec3 d = v3_add(f, v3_add(v3_scale(r, nx * tx), v3_scale(u, ny * ty)));
+                    float a[3], b[3];
+                    skybox_sample(&s, lvl, d, a);
+                    skybox_sample(&s, lvl + (frac > 0), d, b);
+                    for (int k = 0; k < 3; k++) {
+                        int want = fb_quantize((float)(a[k] + frac * (b[k] - a[k])));
+                        int diff = abs(want - fb.rgb[3 * i + k]);
+                        worst = diff > worst ? diff : worst;
+                    }
+                    drawn++;
                 }
-                double nx = 2 * (x + 0.5) / w - 1, ny = 1 - 2 * (y + 0.5) / h;
-                vec3 d = v3_add(f, v3_add(v3_scale(r, nx * tx), v3_scale(u, ny * ty)));
-                float a[3], b[3];
-                skybox_sample(&s, lvl, d, a);
-                skybox_sample(&s, lvl + (frac > 0), d, b);
-                for (int k = 0; k < 3; k++) {
-                    int want = fb_quantize((float)(a[k] + frac * (b[k] - a[k])));
-                    int diff = abs(want - fb.rgb[3 * i + k]);
-                    worst = diff > worst ? diff : worst;
-                }
-                drawn++;
-            }
+        }
     }
-    CHECK_EQ_INT(drawn, 4 * (w * h - (w * h + 4) / 5));
-    CHECK_EQ_INT(kept, 4 * ((w * h + 4) / 5));
+    span_isa_set("auto");
+    CHECK_EQ_INT(drawn, copies * 4 * (w * h - (w * h + 4) / 5));
+    CHECK_EQ_INT(kept, copies * 4 * ((w * h + 4) / 5));
     if (worst > 1)
         fprintf(stderr, "    worst difference %d levels\n", worst);
     CHECK(worst <= 1);
