@@ -18,6 +18,7 @@
 #ifndef RASTTY_BATCH_H
 #define RASTTY_BATCH_H
 
+#include <stdatomic.h>
 #include <stdbool.h>
 #include <stdint.h>
 
@@ -41,10 +42,20 @@ struct batch {
     struct shade_tri *shades;
     struct vertex_out *verts; /* made by clipping; never moved while the batch lives */
     uint32_t n_tris, n_shades, n_verts, cap;
-    /* tile bins (batch_draw with threads): tile t's triangles are
+    /* tile bins (drawing with threads): tile t's triangles are
      * bin_tris[bin_start[t] .. bin_start[t + 1]) */
     uint32_t *bin_start, *bin_tris;
     size_t bin_start_cap, bin_tris_cap;
+    /* hit[k * cap + i] = 1 once thread k found a pixel of triangle i (zeroed again by
+     * batch_draw_finish) */
+    uint8_t *hit;
+    size_t hit_cap;
+    struct batch_job { /* the drawing in progress (batch_draw_start .. finish) */
+        raster_fn raster;
+        struct span_ctx *ctx;  /* one per thread */
+        int fb_w, fb_h, threads, tiles_x, n_tiles;
+        atomic_int next;       /* the next tile to hand out */
+    } job;
 };
 
 /* cap (>= BATCH_MIN_CAPACITY) triangles, shading records and clip vertices */
@@ -62,11 +73,14 @@ static inline bool batch_has_room(const struct batch *b)
 }
 
 /* Rasterize every triangle of the batch, in order, into the fb_w x fb_h framebuffer of the
- * span contexts: on the calling thread alone when w has no threads, else by tile on all of
- * them, thread k using ctx[k] (ctx[k].hit must hold cap entries, zeroed). Returns the
- * number of triangles no thread found a pixel for, and zeroes the hit arrays again; -1 if
- * the bins could not be allocated (e set). */
-long batch_draw(struct batch *b, raster_fn raster, int fb_w, int fb_h, struct workers *w,
-                struct span_ctx *ctx, struct err *e);
+ * span contexts (thread k uses ctx[k]): when w has no threads, on the calling thread, now;
+ * else binned by tile and started on the pool's threads, returning at once — the caller
+ * may set up another batch meanwhile, and joins with batch_draw_finish (nothing else may
+ * use the pool in between). -1 if memory ran out (e set). */
+int batch_draw_start(struct batch *b, raster_fn raster, int fb_w, int fb_h, struct workers *w,
+                     struct span_ctx *ctx, struct err *e);
+/* Take the tiles not taken yet on this thread (ctx[0]), wait for the pool, and return the
+ * number of triangles no thread found a pixel for. */
+long batch_draw_finish(struct batch *b, struct workers *w);
 
 #endif

@@ -4,7 +4,13 @@
  * and once on the calling thread (k = 0), and returns when all calls have returned. The
  * job divides its own work (the back end hands out screen tiles through an atomic counter),
  * so results never depend on which thread did what. Threads sleep between jobs. A pool of
- * zero threads is valid: the caller does everything. Not reentrant: one job at a time. */
+ * zero threads is valid: the caller does everything. Not reentrant: one job at a time.
+ *
+ * workers_start + workers_wait split workers_run for the caller that has other work
+ * meanwhile (the pipeline sets up the next batch of triangles while the pool draws this
+ * one): start calls fn(arg, k) on the pool's threads only and returns at once; the caller
+ * may join with fn(arg, 0) whenever it likes; wait returns when the pool's calls have
+ * returned. Nothing else may be given to the pool between the two. */
 #ifndef RASTTY_WORKERS_H
 #define RASTTY_WORKERS_H
 
@@ -21,6 +27,8 @@ struct workers *workers_new(int n, struct err *e);
 void workers_destroy(struct workers *w);
 int workers_count(const struct workers *w); /* extra threads, 0 for NULL */
 void workers_run(struct workers *w, workers_fn fn, void *arg);
+void workers_start(struct workers *w, workers_fn fn, void *arg);
+void workers_wait(struct workers *w);
 
 /* workers_for(pool, n, chunk, fn, arg) calls fn(arg, i0, i1) on ranges [i0, i1) that cover
  * 0 .. n-1 exactly once, chunk items each (the last may be shorter), handed out to every

@@ -27,6 +27,7 @@ void batch_free(struct batch *b)
     free(b->verts);
     free(b->bin_start);
     free(b->bin_tris);
+    free(b->hit);
     memset(b, 0, sizeof *b);
 }
 
@@ -78,65 +79,76 @@ static int bin(struct batch *b, int tiles_x, int n_tiles)
     return 0;
 }
 
-struct tile_job {
-    const struct batch *b;
-    raster_fn raster;
-    struct span_ctx *ctx;
-    int fb_w, fb_h, tiles_x, n_tiles;
-    atomic_int next; /* the next tile to hand out */
-};
-
 static void draw_tiles(void *arg, int k)
 {
-    struct tile_job *j = arg;
-    const struct batch *b = j->b;
-    struct span_ctx *s = &j->ctx[k];
+    struct batch *b = arg;
+    struct span_ctx *s = &b->job.ctx[k];
+    s->hit = b->hit + (size_t)k * b->cap;
     for (;;) {
-        int t = atomic_fetch_add_explicit(&j->next, 1, memory_order_relaxed);
-        if (t >= j->n_tiles)
+        int t = atomic_fetch_add_explicit(&b->job.next, 1, memory_order_relaxed);
+        if (t >= b->job.n_tiles)
             return;
-        int tx = t % j->tiles_x, ty = t / j->tiles_x;
+        int tx = t % b->job.tiles_x, ty = t / b->job.tiles_x;
         struct raster_rect r = {tx * BATCH_TILE, ty * BATCH_TILE,
                                 tx * BATCH_TILE + BATCH_TILE - 1, ty * BATCH_TILE + BATCH_TILE - 1};
-        r.x1 = r.x1 < j->fb_w - 1 ? r.x1 : j->fb_w - 1;
-        r.y1 = r.y1 < j->fb_h - 1 ? r.y1 : j->fb_h - 1;
+        r.x1 = r.x1 < b->job.fb_w - 1 ? r.x1 : b->job.fb_w - 1;
+        r.y1 = r.y1 < b->job.fb_h - 1 ? r.y1 : b->job.fb_h - 1;
         for (uint32_t n = b->bin_start[t]; n < b->bin_start[t + 1]; n++) {
             uint32_t i = b->bin_tris[n];
             const struct setup_tri *tri = &b->tris[i];
             span_begin(s, tri, &b->shades[tri->shade], i);
-            j->raster(tri, r, s);
+            b->job.raster(tri, r, s);
             span_end(s);
         }
     }
 }
 
-long batch_draw(struct batch *b, raster_fn raster, int fb_w, int fb_h, struct workers *w,
-                struct span_ctx *ctx, struct err *e)
+int batch_draw_start(struct batch *b, raster_fn raster, int fb_w, int fb_h, struct workers *w,
+                     struct span_ctx *ctx, struct err *e)
 {
     int threads = workers_count(w) + 1;
-    if (threads == 1) {
+    size_t n_hit = (size_t)threads * b->cap;
+    if (n_hit > b->hit_cap) { /* zeroed once; batch_draw_finish zeroes what it reads */
+        free(b->hit);
+        b->hit_cap = 0;
+        if (!(b->hit = calloc(n_hit, 1)))
+            return err_set(e, "out of memory for the batch's hit flags");
+        b->hit_cap = n_hit;
+    }
+    b->job = (struct batch_job){.raster = raster, .ctx = ctx, .fb_w = fb_w, .fb_h = fb_h,
+                                .threads = threads};
+    if (threads == 1) { /* in submission order, on this thread, now */
         struct raster_rect all = {0, 0, fb_w - 1, fb_h - 1};
+        ctx[0].hit = b->hit;
         for (uint32_t i = 0; i < b->n_tris; i++) {
             const struct setup_tri *t = &b->tris[i];
             span_begin(ctx, t, &b->shades[t->shade], i);
             raster(t, all, ctx);
             span_end(ctx);
         }
-    } else {
-        struct tile_job j = {.b = b, .raster = raster, .ctx = ctx, .fb_w = fb_w, .fb_h = fb_h};
-        j.tiles_x = (fb_w + BATCH_TILE - 1) / BATCH_TILE;
-        j.n_tiles = j.tiles_x * ((fb_h + BATCH_TILE - 1) / BATCH_TILE);
-        atomic_init(&j.next, 0);
-        if (bin(b, j.tiles_x, j.n_tiles))
-            return err_set(e, "out of memory for the tile bins"), -1;
-        workers_run(w, draw_tiles, &j);
+        return 0;
+    }
+    b->job.tiles_x = (fb_w + BATCH_TILE - 1) / BATCH_TILE;
+    b->job.n_tiles = b->job.tiles_x * ((fb_h + BATCH_TILE - 1) / BATCH_TILE);
+    atomic_init(&b->job.next, 0);
+    if (bin(b, b->job.tiles_x, b->job.n_tiles))
+        return err_set(e, "out of memory for the tile bins");
+    workers_start(w, draw_tiles, b);
+    return 0;
+}
+
+long batch_draw_finish(struct batch *b, struct workers *w)
+{
+    if (b->job.threads > 1) {
+        draw_tiles(b, 0); /* the tiles nobody has taken yet */
+        workers_wait(w);
     }
     long empty = 0;
     for (uint32_t i = 0; i < b->n_tris; i++) {
         int hit = 0;
-        for (int k = 0; k < threads; k++) {
-            hit |= ctx[k].hit[i];
-            ctx[k].hit[i] = 0;
+        for (int k = 0; k < b->job.threads; k++) {
+            hit |= b->hit[(size_t)k * b->cap + i];
+            b->hit[(size_t)k * b->cap + i] = 0;
         }
         empty += !hit;
     }

@@ -17,6 +17,7 @@
 #include "workers.h"
 
 #define PIPELINE_FLUSH_ONE_THREAD 1024
+#define PIPELINE_FLUSH_THREADS 512
 /* One thread runs the vertex stage in chunks of at least this many vertices just before the
  * first triangle that uses them: the front end then reads vertex records still in the
  * caches (a mesh whose triangles come in the order of their vertices, as exporters write
@@ -32,11 +33,15 @@ struct item_verts {
 struct pipeline {
     struct item_verts *items; /* vertex-stage output per draw item, reused across frames */
     int n_items;
-    struct batch batch;       /* set-up triangles: front end -> back end */
+    /* set-up triangles: front end -> back end. With threads, the pool draws one batch
+     * while the front end fills the other: batch[cur] is being filled, batch[!cur] is
+     * being drawn when in_flight */
+    struct batch batch[2];
+    int cur;
+    bool in_flight;
     int n_threads;            /* the back end's threads, the caller's included */
     struct workers *workers;  /* n_threads - 1 of them */
     struct span_ctx *ctx;     /* one per thread */
-    uint8_t *hit;             /* n_threads x batch.cap: which triangles found a pixel */
     uint32_t flush_at;        /* set-up triangles that make the back end run (see use_threads) */
 };
 
@@ -53,7 +58,9 @@ struct frame {
 struct pipeline *pipeline_new_batch(uint32_t batch_capacity)
 {
     struct pipeline *p = calloc(1, sizeof *p);
-    if (p && batch_init(&p->batch, batch_capacity, NULL)) {
+    if (p && (batch_init(&p->batch[0], batch_capacity, NULL) ||
+              batch_init(&p->batch[1], batch_capacity, NULL))) {
+        batch_free(&p->batch[0]);
         free(p);
         return NULL;
     }
@@ -72,10 +79,10 @@ void pipeline_destroy(struct pipeline *p)
     for (int i = 0; i < p->n_items; i++)
         free(p->items[i].v);
     free(p->items);
-    batch_free(&p->batch);
+    batch_free(&p->batch[0]);
+    batch_free(&p->batch[1]);
     workers_destroy(p->workers);
     free(p->ctx);
-    free(p->hit);
     free(p);
 }
 
@@ -86,12 +93,10 @@ static int use_threads(struct pipeline *p, int n, struct err *e)
         return 0;
     workers_destroy(p->workers);
     free(p->ctx);
-    free(p->hit);
     p->n_threads = 0;
     p->workers = NULL;
     p->ctx = calloc((size_t)n, sizeof *p->ctx);
-    p->hit = calloc((size_t)n * p->batch.cap, 1);
-    if (!p->ctx || !p->hit)
+    if (!p->ctx)
         return err_set(e, "out of memory for %d threads", n);
     if (!(p->workers = workers_new(n - 1, e)))
         return -1;
@@ -99,9 +104,9 @@ static int use_threads(struct pipeline *p, int n, struct err *e)
     /* One thread draws a batch right after setting it up: a smaller batch finds the vertex
      * records its interpolation setup reads still in the caches (lost_empire at 160x96: a
      * drawn triangle for every 16 set up, 8192 drawn ones span ~16 MB of vertex records;
-     * 16.8 -> 13.8 ms with 1024). Several threads keep the whole batch: every flush is a
-     * hand-over to the workers, and their caches are another core's. */
-    p->flush_at = n == 1 ? PIPELINE_FLUSH_ONE_THREAD : p->batch.cap;
+     * 16.8 -> 13.8 ms with 1024). Several threads draw one batch while the front end sets
+     * up the next: batches small enough that the first is handed over early. */
+    p->flush_at = n == 1 ? PIPELINE_FLUSH_ONE_THREAD : PIPELINE_FLUSH_THREADS;
     return 0;
 }
 
@@ -151,15 +156,34 @@ static void flat_terms(const struct vertex_uniforms *u, const struct vertex_out 
     vertex_light(u, n, cw, ns, st->flat_d, st->flat_s);
 }
 
-/* the back end: rasterize what the front end has set up, then start a new batch */
+/* the batch the pool is drawing, if any: join it, count its triangles, empty it */
+static void drain(struct pipeline *p, struct frame *f)
+{
+    if (!p->in_flight)
+        return;
+    struct batch *b = &p->batch[!p->cur];
+    f->stats->tris_empty += (uint64_t)batch_draw_finish(b, p->workers);
+    batch_reset(b);
+    p->in_flight = false;
+}
+
+/* the back end for what the front end has set up: one thread draws it now; with threads
+ * the pool starts on it (after the batch before it) and the front end goes on with the
+ * other batch */
 static int flush(struct pipeline *p, struct frame *f, struct err *e)
 {
-    long empty = batch_draw(&p->batch, raster_methods[f->o->raster], f->fb->w, f->fb->h,
-                            p->workers, p->ctx, e);
-    if (empty < 0)
+    drain(p, f);
+    struct batch *b = &p->batch[p->cur];
+    if (batch_draw_start(b, raster_methods[f->o->raster], f->fb->w, f->fb->h, p->workers,
+                         p->ctx, e))
         return -1;
-    f->stats->tris_empty += (uint64_t)empty;
-    batch_reset(&p->batch);
+    if (p->n_threads == 1) {
+        f->stats->tris_empty += (uint64_t)batch_draw_finish(b, p->workers);
+        batch_reset(b);
+    } else {
+        p->in_flight = true;
+        p->cur = !p->cur;
+    }
     return 0;
 }
 
@@ -167,11 +191,12 @@ static int flush(struct pipeline *p, struct frame *f, struct err *e)
 static void add_setup(struct pipeline *p, struct frame *f, const struct vertex_out *a,
                       const struct vertex_out *b, const struct vertex_out *c, uint32_t shade)
 {
-    struct setup_tri *t = &p->batch.tris[p->batch.n_tris];
+    struct batch *bt = &p->batch[p->cur];
+    struct setup_tri *t = &bt->tris[bt->n_tris];
     if (setup_triangle(a, b, c, f->fb->w, f->fb->h, t) != SETUP_DRAW)
         return;
     t->shade = shade;
-    p->batch.n_tris++;
+    bt->n_tris++;
     f->stats->tris_drawn++;
 }
 
@@ -227,7 +252,7 @@ static int front_end(struct pipeline *p, struct frame *f, const struct draw_item
 {
     const struct render_opts *o = f->o;
     struct frame_stats *stats = f->stats;
-    struct batch *bt = &p->batch;
+    struct batch *bt = &p->batch[p->cur];
     int n_var = depth_only ? 0 : m->colors ? VARY_COLOR + 3 : vertex_varying_count(o->shade, o->view);
     struct shade_proto proto = {.mat = -1};
     /* counted in locals, added once: through the stats pointer every count would be a
@@ -270,8 +295,11 @@ static int front_end(struct pipeline *p, struct frame *f, const struct draw_item
             n_culled++;
             continue;
         }
-        if ((!batch_has_room(bt) || bt->n_tris >= p->flush_at) && flush(p, f, e))
-            return -1;
+        if (!batch_has_room(bt) || bt->n_tris >= p->flush_at) {
+            if (flush(p, f, e))
+                return -1;
+            bt = &p->batch[p->cur]; /* with threads, the other one */
+        }
         if (unclipped) {
             /* set up first: most triangles of a dense mesh hold no pixel centre, and their
              * vertices need no lighting and the triangle no shading record */
@@ -474,11 +502,9 @@ int pipeline_draw(struct pipeline *p, const struct draw_item *items, int n_items
     mat4 pv = m4_mul(camera_proj(cam, fb_aspect(fb)), camera_view(cam));
     struct frame f;
     frame_init(&f, cam, o, fb, stats);
-    batch_reset(&p->batch);
-    for (int k = 0; k < p->n_threads; k++) {
+    batch_reset(&p->batch[p->cur]);
+    for (int k = 0; k < p->n_threads; k++)
         p->ctx[k] = f.span;
-        p->ctx[k].hit = p->hit + (size_t)k * p->batch.cap;
-    }
 
     bool show_sky = sky && (o->view == VIEW_COLOR || o->view == VIEW_WIRE_OVERLAY);
     bool wire = f.span.mode == SHADE_WIRE;
@@ -522,6 +548,9 @@ int pipeline_draw(struct pipeline *p, const struct draw_item *items, int n_items
                 }
                 continue;
             }
+            /* the pool is about to run this item's vertex stage: the batch it may still be
+             * drawing is finished first */
+            drain(p, &f);
             /* room for the mesh in full: changing levels never allocates */
             struct vertex_out *vo = item_verts(p, it, m->n_verts, e);
             if (!vo)
@@ -536,14 +565,15 @@ int pipeline_draw(struct pipeline *p, const struct draw_item *items, int n_items
                 vertex_stage(p, m, &f.u, vo);
             if (pass == 1) {
                 if (front_end(p, &f, item, m, vo, wire, lazy ? 0 : m->n_verts, e))
-                    return -1;
+                    goto fail;
             } else {
                 draw_edges(m, vo, o, !wire || o->hidden_lines, !wire, fb, stats);
             }
         }
         if (pass == 1) {
             if (flush(p, &f, e)) /* the surfaces are complete */
-                return -1;
+                goto fail;
+            drain(p, &f);
             if (!wire)
                 for (int k = 0; k < p->n_threads; k++) {
                     stats->pixels_tested += p->ctx[k].tested;
@@ -559,4 +589,7 @@ int pipeline_draw(struct pipeline *p, const struct draw_item *items, int n_items
         fb_show_overdraw(fb);
     stats->render_ms = timing_now_ms() - t0;
     return 0;
+fail: /* nothing may be left drawing once the caller has the frame back */
+    drain(p, &f);
+    return -1;
 }

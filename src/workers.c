@@ -155,12 +155,10 @@ int workers_count(const struct workers *w)
     return w ? w->n : 0;
 }
 
-void workers_run(struct workers *w, workers_fn fn, void *arg)
+void workers_start(struct workers *w, workers_fn fn, void *arg)
 {
-    if (!w || w->n == 0) {
-        fn(arg, 0);
+    if (!w || w->n == 0)
         return;
-    }
     w->fn = fn;
     w->arg = arg;
     atomic_store_explicit(&w->busy, w->n, memory_order_relaxed);
@@ -168,13 +166,25 @@ void workers_run(struct workers *w, workers_fn fn, void *arg)
     atomic_fetch_add_explicit(&w->gen, 1, memory_order_release);
     pthread_cond_broadcast(&w->go);
     pthread_mutex_unlock(&w->mu);
-    fn(arg, 0);
+}
+
+void workers_wait(struct workers *w)
+{
+    if (!w || w->n == 0)
+        return;
     if (!spin_until(w, all_done, 0)) {
         pthread_mutex_lock(&w->mu);
         while (!all_done(w, 0))
             pthread_cond_wait(&w->done, &w->mu);
         pthread_mutex_unlock(&w->mu);
     }
+}
+
+void workers_run(struct workers *w, workers_fn fn, void *arg)
+{
+    workers_start(w, fn, arg);
+    fn(arg, 0);
+    workers_wait(w);
 }
 
 int workers_cores(void)
