@@ -189,6 +189,25 @@ SIMD_INLINE vi vi_gather(const void *base, vi idx)
 #endif
 }
 
+/* base[idx[l]] for the first n lanes (n <= SIMD_LANES), 0 in the others: a masked gather
+ * with AVX2 (the other lanes are never read), a load per lane without */
+SIMD_INLINE vf vf_gather_first(const float *base, vi idx, int n)
+{
+#if defined(__AVX2__)
+    vi live = vi_lanes() < vi_set(n);
+#if SIMD_LANES == 8
+    return (vf)_mm256_mask_i32gather_ps((__m256)vf_set(0), base, (__m256i)idx, (__m256)live, 4);
+#else
+    return (vf)_mm_mask_i32gather_ps((__m128)vf_set(0), base, (__m128i)idx, (__m128)live, 4);
+#endif
+#else
+    vf v;
+    for (int l = 0; l < SIMD_LANES; l++)
+        v[l] = l < n ? base[idx[l]] : 0;
+    return v;
+#endif
+}
+
 /* the lanes set in m (from a comparison) as bits, lane 0 lowest */
 SIMD_INLINE int vi_mask(vi m)
 {

@@ -315,7 +315,7 @@ static inline void texture_bilinear_v_levels(const struct texture *t, vi lv, vf 
  * derivatives of u and v: log2 of the longer side of the pixel's footprint in level-0
  * texels, rho = max(|(du/dx, dv/dx)|, |(du/dy, dv/dy)|) (GL's formula, without its
  * approximations). A zero or non-finite footprint gives -1: magnification. */
-static inline vf texture_lod_v(const struct texture *t, vf dudx, vf dvdx, vf dudy, vf dvdy)
+SIMD_INLINE vf texture_lod_v(const struct texture *t, vf dudx, vf dvdx, vf dudy, vf dvdy)
 {
     vf w = vf_set((float)t->w), h = vf_set((float)t->h);
     vf ax = dudx * w, bx = dvdx * h, ay = dudy * w, by = dvdy * h;

@@ -377,8 +377,7 @@ pack_group(const struct span_ctx *s, const struct pack_ctx *k, const enum shade_
         pass = z < old;
     } else {
         __builtin_memcpy(at, &idx, sizeof at);
-        for (int l = 0; l < SIMD_LANES; l++)
-            old[l] = l < n ? k->depth[at[l]] : 0;
+        old = vf_gather_first(k->depth, idx, n);
         pass = (z < old) & (vf_set((float)n) > vf_lanes());
     }
     if (!vi_any(pass))
