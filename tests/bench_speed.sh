@@ -6,8 +6,10 @@
 # Workloads (the speed issue's): the textured african_head, Gouraud and per-pixel Phong,
 # nearest texture, back faces culled, camera (0,0,3), fov 40, clear + draw, at 160x96,
 # 320x200 and 640x480; the shared bunny, sports car and lost_empire framed at 160x96; the
-# demo scene's whole viewer frame (render + encode, `rastty bench`); OBJ load speed of the
-# largest shared model. rastty: `render --repeat N --stats` (median of N frames);
+# demo scene's whole viewer frame as the viewer draws it (level of detail auto, the
+# headlight; render + encode, `rastty bench`); OBJ load speed of the largest shared model.
+# Then the ratios the speed issue's targets are about: Phong / Gouraud per size, and what
+# every core gives over one at 640x480. rastty: `render --repeat N --stats` (median of N frames);
 # Mesa: build/bench/glbench (ordinary OpenGL: RGBA8, GLSL; median of N frames after 10 of
 # warm-up). Each pair runs --rounds times, alternating rastty and Mesa so that other load on
 # the machine hits both alike; the table shows the median over rounds and the ratio
@@ -58,6 +60,19 @@ row() {
     r=$(printf '%s\n' "${rt[@]}" | med) m=$(printf '%s\n' "${mt[@]}" | med)
     printf '  %-34s %-7s %9.3f %9.3f %7.2fx\n' "$label" "$threads" "$r" "$m" \
         "$(awk -v a="$r" -v b="$m" 'BEGIN { print a / b }')"
+    results+=("$label|$threads|$r|$m")
+}
+results=()
+# the median of a row already printed: field 3 (rastty) or 4 (mesa) of LABEL THREADS
+got() {
+    local e
+    for e in "${results[@]}"; do
+        IFS='|' read -r l t r m <<<"$e"
+        if [ "$l" = "$1" ] && [ "$t" = "$2" ]; then
+            [ "$3" = 3 ] && echo "$r" || echo "$m"
+            return
+        fi
+    done
 }
 mkdir -p build/bench
 echo "-- speed: rastty against Mesa llvmpipe, median ms/frame over $rounds alternating rounds of $frames frames ($cores cores)"
@@ -83,9 +98,11 @@ for m in bunny/bunny.obj sports_car/sportsCar.obj lost_empire/lost_empire.obj; d
             --shade gouraud --cull back -- "$S/$m" "${camv[@]}" --size 160x96 --cull back
     done
 done
-echo "-- the demo scene's whole viewer frame, 160x48 cells (render + encode, truecolor diff)"
+echo "-- the demo scene's whole viewer frame, 160x48 cells, as the viewer draws it (--lod auto,"
+echo "   --light camera; render + encode, truecolor diff; median of 120 frames orbiting 2 deg)"
 for th in 1 $cores; do
-    "$BIN" bench assets/demo.rsc --cols 160 --rows 48 --frames 120 --orbit 2 --threads $th |
+    "$BIN" bench assets/demo.rsc --cols 160 --rows 48 --frames 120 --orbit 2 --threads $th \
+        --lod auto --light camera |
         awk -v th=$th '/render median/ { r = $0; sub(/.*render median /, "", r); sub(/ ms.*/, "", r) }
                        /diff truecolor/ { e = $6 }
                        END { printf "  threads %-3s render %.3f ms + encode %.3f ms = %.3f ms\n", th, r, e, r + e }'
@@ -104,3 +121,14 @@ if [ -n "$big" ]; then
         "$(awk -v b="$bytes" 'BEGIN { print b / 1e6 }')" "$l" \
         "$(awk -v b="$bytes" -v l="$l" 'BEGIN { print b / 1e6 / (l / 1e3) }')"
 fi
+echo "-- the targets' ratios, from the medians above"
+for size in 160x96 320x200 640x480; do
+    g=$(got "head gouraud $size" 1 3) p=$(got "head phong $size" 1 3)
+    printf '  Phong / Gouraud, one thread, %-8s %.2fx\n' "$size" "$(awk -v a="$p" -v b="$g" 'BEGIN { print a / b }')"
+done
+for shade in gouraud phong; do
+    r1=$(got "head $shade 640x480" 1 3) ra=$(got "head $shade 640x480" all 3)
+    m1=$(got "head $shade 640x480" 1 4) ma=$(got "head $shade 640x480" all 4)
+    printf '  %s cores over one, head %-8s 640x480: rastty %.2fx, Mesa %.2fx\n' "$cores" "$shade" \
+        "$(awk -v a="$r1" -v b="$ra" 'BEGIN { print a / b }')" "$(awk -v a="$m1" -v b="$ma" 'BEGIN { print a / b }')"
+done
