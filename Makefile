@@ -21,7 +21,7 @@ MAINOBJ := $(BUILD)/obj/main.o
 # for AVX2, chosen at run time (include/span.h)
 ifneq ($(findstring x86_64,$(shell $(CC) -dumpmachine)),)
 LIBOBJS += $(BUILD)/obj/span_avx2.o $(BUILD)/obj/span_avx2_4.o $(BUILD)/obj/setup_avx2.o \
-           $(BUILD)/obj/skybox_avx2.o
+           $(BUILD)/obj/skybox_avx2.o $(BUILD)/obj/vertex_avx2.o
 CFLAGS  += -DRASTTY_SPAN_AVX2
 endif
 UNITSRC := $(wildcard tests/unit/*.c)
@@ -78,6 +78,10 @@ $(BUILD)/obj/setup_avx2.o: src/setup.c | $(BUILD)/obj
 $(BUILD)/obj/skybox_avx2.o: src/skybox.c | $(BUILD)/obj
 	@echo "  CC      $< (AVX2)"
 	$(Q)$(CC) $(CFLAGS) -mavx2 -mno-fma -DSKYBOX_AVX2_COPY -DSIMD_LANES=8 -MMD -MP -c -o $@ $<
+
+$(BUILD)/obj/vertex_avx2.o: src/vertex.c | $(BUILD)/obj
+	@echo "  CC      $< (AVX2)"
+	$(Q)$(CC) $(CFLAGS) -mavx2 -mno-fma -DVERTEX_AVX2_COPY -MMD -MP -c -o $@ $<
 
 $(BUILD)/tests/%.o: tests/unit/%.c | $(BUILD)/tests
 	@echo "  CC      $<"

@@ -26,6 +26,7 @@
 #include "mesh.h"
 #include "render.h"
 #include "vecmath.h"
+#include "viewport.h"
 
 #define VARY_MAX 12
 #define VARY_COLOR 8 /* var[8..10]: the vertex colour (0..1), for meshes that have one */
@@ -122,7 +123,15 @@ static inline uint32_t vertex_outcode(const double c[4], double gx, double gy)
 }
 /* Perspective divide, viewport and the 1/256-pixel snap (viewport.h) of a vertex inside the
  * guard band with w > 0. Sets win, fx, fy, projected (depth: see struct vertex_out). */
-void vertex_project(struct vertex_out *v, int fb_w, int fb_h);
+static inline void vertex_project(struct vertex_out *v, int fb_w, int fb_h)
+{
+    double win[3];
+    viewport_window(v->clip, fb_w, fb_h, win);
+    v->win[0] = win[0], v->win[1] = win[1];
+    v->fx = (int32_t)viewport_snap(win[0]);
+    v->fy = (int32_t)viewport_snap(win[1]);
+    v->projected = 1;
+}
 /* light.h's D and S at a world-space point with unit normal n (Gouraud per vertex, flat per
  * face): V toward the eye from p, or view_back for orthographic cameras. */
 void vertex_light(const struct vertex_uniforms *u, const float n[3], const float p[3], float ns,

@@ -1,7 +1,21 @@
 /* vertex.c: per-vertex transform and lighting (see vertex.h). */
 #include "vertex.h"
 
+#include "span.h"
 #include "viewport.h"
+
+/* vertex_run is compiled a second time on x86-64 (Makefile), as span.c is: the copy with
+ * -mavx2 -DVERTEX_AVX2_COPY makes only vertex_run_avx2 (the clip position's four rows in
+ * one AVX register instead of two), used when the span stage runs on AVX2 — the same C,
+ * the same doubles. */
+void vertex_run_avx2(const struct mesh *m, const struct vertex_uniforms *u,
+                     struct vertex_out *out, uint32_t i0, uint32_t i1);
+#ifdef VERTEX_AVX2_COPY
+#define VERTEX_RUN vertex_run_avx2
+#else
+#define VERTEX_RUN vertex_run_base
+static void vertex_run_base(const struct mesh *m, const struct vertex_uniforms *u,
+                            struct vertex_out *out, uint32_t i0, uint32_t i1);
 
 int vertex_varying_count(enum shade_mode shade, enum debug_view view)
 {
@@ -10,16 +24,6 @@ int vertex_varying_count(enum shade_mode shade, enum debug_view view)
     if (shade == SHADE_GOURAUD)
         return 8;
     return 2;
-}
-
-void vertex_project(struct vertex_out *v, int fb_w, int fb_h)
-{
-    double win[3];
-    viewport_window(v->clip, fb_w, fb_h, win);
-    v->win[0] = win[0], v->win[1] = win[1];
-    v->fx = (int32_t)viewport_snap(win[0]);
-    v->fy = (int32_t)viewport_snap(win[1]);
-    v->projected = 1;
 }
 
 void vertex_light(const struct vertex_uniforms *u, const float n[3], const float p[3], float ns,
@@ -31,34 +35,6 @@ void vertex_light(const struct vertex_uniforms *u, const float n[3], const float
         light_normalize(v);
     }
     light_terms(&u->lights, n, v, ns, d_out, s_out);
-}
-
-void vertex_run(const struct mesh *m, const struct vertex_uniforms *u, struct vertex_out *out,
-                uint32_t i0, uint32_t i1)
-{
-    /* the matrix in locals: the stores below may alias it otherwise (same sums, same order
-     * as m4_mul_v4, so the same bits) */
-    const mat4 a = u->mvp;
-    const double gx = u->guard_x, gy = u->guard_y;
-    const int w = u->fb_w, h = u->fb_h;
-    /* the matrix by columns, four rows at once (two SSE2 or one AVX operation per column):
-     * each row's sum in the same order as m4_mul_v4, so the same bits */
-    typedef double d4 __attribute__((vector_size(32)));
-    d4 col[4];
-    for (int c = 0; c < 4; c++)
-        col[c] = (d4){a.m[0][c], a.m[1][c], a.m[2][c], a.m[3][c]};
-    for (uint32_t i = i0; i < i1; i++) {
-        const float *p = m->verts[i].pos;
-        const double x = p[0], y = p[1], z = p[2];
-        struct vertex_out *o = &out[i];
-        d4 cl = col[0] * x + col[1] * y + col[2] * z + col[3] * 1.0;
-        __builtin_memcpy(o->clip, &cl, sizeof cl);
-        o->outcode = vertex_outcode(o->clip, gx, gy);
-        o->projected = 0;
-        o->shaded = 0;
-        if (!(o->outcode & VERTEX_NEEDS_CLIP))
-            vertex_project(o, w, h);
-    }
 }
 
 void vertex_shade(const struct mesh *m, const struct vertex_uniforms *u, uint32_t i,
@@ -94,3 +70,50 @@ void vertex_shade(const struct mesh *m, const struct vertex_uniforms *u, uint32_
         vertex_light(u, n, o->wpos, ns, &o->var[2], &o->var[5]);
     }
 }
+
+void vertex_run(const struct mesh *m, const struct vertex_uniforms *u, struct vertex_out *out,
+                uint32_t i0, uint32_t i1)
+{
+#ifdef RASTTY_SPAN_AVX2
+    if (span_isa_get() != SPAN_ISA_SSE2) {
+        vertex_run_avx2(m, u, out, i0, i1);
+        return;
+    }
+#endif
+    vertex_run_base(m, u, out, i0, i1);
+}
+#endif /* !VERTEX_AVX2_COPY */
+
+#ifdef VERTEX_AVX2_COPY
+void VERTEX_RUN(const struct mesh *m, const struct vertex_uniforms *u, struct vertex_out *out,
+                uint32_t i0, uint32_t i1)
+#else
+static void VERTEX_RUN(const struct mesh *m, const struct vertex_uniforms *u,
+                       struct vertex_out *out, uint32_t i0, uint32_t i1)
+#endif
+{
+    /* the matrix in locals: the stores below may alias it otherwise (same sums, same order
+     * as m4_mul_v4, so the same bits) */
+    const mat4 a = u->mvp;
+    const double gx = u->guard_x, gy = u->guard_y;
+    const int w = u->fb_w, h = u->fb_h;
+    /* the matrix by columns, four rows at once (two SSE2 or one AVX operation per column):
+     * each row's sum in the same order as m4_mul_v4, so the same bits */
+    typedef double d4 __attribute__((vector_size(32)));
+    d4 col[4];
+    for (int c = 0; c < 4; c++)
+        col[c] = (d4){a.m[0][c], a.m[1][c], a.m[2][c], a.m[3][c]};
+    for (uint32_t i = i0; i < i1; i++) {
+        const float *p = m->verts[i].pos;
+        const double x = p[0], y = p[1], z = p[2];
+        struct vertex_out *o = &out[i];
+        d4 cl = col[0] * x + col[1] * y + col[2] * z + col[3] * 1.0;
+        __builtin_memcpy(o->clip, &cl, sizeof cl);
+        o->outcode = vertex_outcode(o->clip, gx, gy);
+        o->projected = 0;
+        o->shaded = 0;
+        if (!(o->outcode & VERTEX_NEEDS_CLIP))
+            vertex_project(o, w, h);
+    }
+}
+
