@@ -346,6 +346,7 @@ static inline __attribute__((always_inline)) void run(struct span_ctx *s, int y,
 /* The triangle's constants a group of the default methods reads, in every lane. */
 struct pack_ctx {
     vf zc, z_c_lo, zdy, zdx, z_lo, z_hi; /* depth: c + ((c_lo + dy Y) + dx X) */
+    vf zqc, zqdy, zqdx;                  /* DEPTH_W: its denominator */
     vf qc, qdy, qdx;
     const float *a_c, *a_dy, *a_dx; /* the varyings' planes (setup_interp's), broadcast where
                                        used: one load each with AVX, and no copies to keep */
@@ -356,29 +357,33 @@ struct pack_ctx {
     uint8_t *restrict rgb;
 };
 
-/* One group of the default methods (depth z, perspective-correct, no overdraw count, no
- * normals view): pixels at columns x_org + X, rows y_org + Y. `contig`: SIMD_LANES pixels
+/* One group of the methods that go in packs (any depth method, perspective-correct or
+ * affine; no overdraw count, no normals view): pixels at columns x_org + X, rows y_org + Y. `contig`: SIMD_LANES pixels
  * of a run side by side, the first at index `first` of the framebuffer; else the first n
  * lanes are pixels (leftovers of several runs) at indices idx. The same operations, in the
  * same order, as run() gives these pixels. Returns how many passed the depth test. */
 static inline __attribute__((always_inline)) uint64_t
 pack_group(const struct span_ctx *s, const struct pack_ctx *k, const enum shade_mode mode,
-           const enum tex_filter filter, const bool contig, vf X, vf Y, size_t first, vi idx,
-           int n)
+           const enum tex_filter filter, const enum depth_mode depth, const bool contig, vf X,
+           vf Y, size_t first, vi idx, int n)
 {
     vf z = k->zc + ((k->z_c_lo + k->zdy * Y) + k->zdx * X);
+    if (depth == DEPTH_W)
+        z = z / ((k->zqc + k->zqdy * Y) + k->zqdx * X);
     z = vf_max(k->z_lo, z);
     z = vf_min(k->z_hi, z);
+    if (depth == DEPTH_Z16) /* floor(z * 65535 + 0.5); z is in [0, 1] */
+        z = vf_from_vi(vi_trunc(z * vf_set(65535.0f) + vf_set(0.5f)));
     vf old;
     vi pass;
     int32_t at[SIMD_LANES]; /* leftovers: each lane's pixel (one vector store, lane loads) */
     if (contig) {
         __builtin_memcpy(&old, k->depth + first, sizeof old);
-        pass = z < old;
+        pass = depth == DEPTH_RZ ? z > old : z < old;
     } else {
         __builtin_memcpy(at, &idx, sizeof at);
         old = vf_gather_first(k->depth, idx, n);
-        pass = (z < old) & (vf_set((float)n) > vf_lanes());
+        pass = (depth == DEPTH_RZ ? z > old : z < old) & (vf_set((float)n) > vf_lanes());
     }
     if (!vi_any(pass))
         return 0;
@@ -404,18 +409,20 @@ pack_group(const struct span_ctx *s, const struct pack_ctx *k, const enum shade_
     return shaded;
 }
 
-/* The queued runs in the default methods: SIMD_LANES pixels side by side of one run are a
- * group; the pixels left at a run's end wait, in lanes, for the leftovers of the next runs
- * (span.h). Lanes are filled by selects, never one by one through memory. */
+/* The queued runs in packs: SIMD_LANES pixels side by side of one run are a group; the
+ * pixels left at a run's end wait, in lanes, for the leftovers of the next runs (span.h).
+ * Lanes are filled by selects, never one by one through memory. */
 static inline __attribute__((always_inline)) void packs(struct span_ctx *s,
                                                         const enum shade_mode mode,
-                                                        const enum tex_filter filter)
+                                                        const enum tex_filter filter,
+                                                        const enum depth_mode depth)
 {
     const struct setup_interp *in = &s->in;
     const struct setup_tri *t = s->tri;
     struct pack_ctx k; /* field by field: an initialiser would zero the unused planes */
     k.zc = vf_set(in->z.c), k.z_c_lo = vf_set(in->z_c_lo), k.zdy = vf_set(in->z.dy);
     k.zdx = vf_set(in->z.dx), k.z_lo = vf_set(in->z_lo), k.z_hi = vf_set(in->z_hi);
+    k.zqc = vf_set(in->zq.c), k.zqdy = vf_set(in->zq.dy), k.zqdx = vf_set(in->zq.dx);
     k.qc = vf_set(in->q.c), k.qdy = vf_set(in->q.dy), k.qdx = vf_set(in->q.dx);
     k.n_var = span_n_var(s, mode);
     k.pow_k = mode == SHADE_PHONG ? light_pow_int(s->st->mat->ns) : 0;
@@ -438,8 +445,9 @@ static inline __attribute__((always_inline)) void packs(struct span_ctx *s,
         const size_t row = (size_t)y * fb_w;
         const vf Y = vf_set((float)(y - y_org));
         for (; x + SIMD_LANES - 1 <= x1; x += SIMD_LANES)
-            shaded += pack_group(s, &k, mode, filter, true, vf_set((float)(x - x_org)) + lane, Y,
-                                 row + (size_t)x, li, SIMD_LANES);
+            shaded += pack_group(s, &k, mode, filter, depth, true,
+                                 vf_set((float)(x - x_org)) + lane, Y, row + (size_t)x, li,
+                                 SIMD_LANES);
         while (x <= x1) { /* lanes nl .. nl + take - 1 get pixels x .. x + take - 1 */
             int take = x1 - x + 1 < SIMD_LANES - nl ? x1 - x + 1 : SIMD_LANES - nl;
             vi m = (lane_i >= vi_set(nl)) & (lane_i < vi_set(nl + take));
@@ -448,13 +456,14 @@ static inline __attribute__((always_inline)) void packs(struct span_ctx *s,
             li = vi_select(m, vi_set((int32_t)(row + (size_t)x) - nl) + lane_i, li);
             x += take;
             if ((nl += take) == SIMD_LANES) {
-                shaded += pack_group(s, &k, mode, filter, false, lx, ly, 0, li, SIMD_LANES);
+                shaded += pack_group(s, &k, mode, filter, depth, false, lx, ly, 0, li,
+                                     SIMD_LANES);
                 nl = 0;
             }
         }
     }
     if (nl)
-        shaded += pack_group(s, &k, mode, filter, false, lx, ly, 0, li, nl);
+        shaded += pack_group(s, &k, mode, filter, depth, false, lx, ly, 0, li, nl);
     s->tested += tested;
     s->shaded += shaded;
 }
@@ -477,23 +486,35 @@ static void SPAN_FLUSH(struct span_ctx *s)
         if (s->hit)
             s->hit[s->tri_index] = 1;
     }
-    /* the default methods go in packs, with copies of their own per filter (every test
-     * folds away); any other combination run by run, one copy per shading mode */
+    /* perspective-correct or affine, without the overdraw count or the normals view, in
+     * packs: the default methods (depth z, perspective-correct) with copies of their own
+     * per filter (every test folds away), the others one copy per shading mode; the span
+     * methods, the overdraw count and the normals view run by run */
     const enum tex_filter f = s->shade ? s->shade->filter : TEX_NEAREST;
-    if (s->depth == DEPTH_Z && s->persp == PERSP_CORRECT && !s->fb->overdraw &&
+    if ((s->persp == PERSP_CORRECT || s->persp == PERSP_AFFINE) && !s->fb->overdraw &&
         (!s->shade || s->shade->view != VIEW_NORMALS)) {
+        if (s->depth == DEPTH_Z && s->persp == PERSP_CORRECT) {
 #define PACK_FILTERS(MODE)                                                                     \
-    f == TEX_NEAREST    ? packs(s, MODE, TEX_NEAREST)                                          \
-    : f == TEX_BILINEAR ? packs(s, MODE, TEX_BILINEAR)                                         \
-                        : packs(s, MODE, TEX_TRILINEAR)
-        switch (s->mode) {
-        case SHADE_UNLIT: PACK_FILTERS(SHADE_UNLIT); break;
-        case SHADE_FLAT: PACK_FILTERS(SHADE_FLAT); break;
-        case SHADE_GOURAUD: PACK_FILTERS(SHADE_GOURAUD); break;
-        case SHADE_PHONG: PACK_FILTERS(SHADE_PHONG); break;
-        default: packs(s, SHADE_WIRE, TEX_NEAREST); break;
-        }
+    f == TEX_NEAREST    ? packs(s, MODE, TEX_NEAREST, DEPTH_Z)                                 \
+    : f == TEX_BILINEAR ? packs(s, MODE, TEX_BILINEAR, DEPTH_Z)                                \
+                        : packs(s, MODE, TEX_TRILINEAR, DEPTH_Z)
+            switch (s->mode) {
+            case SHADE_UNLIT: PACK_FILTERS(SHADE_UNLIT); break;
+            case SHADE_FLAT: PACK_FILTERS(SHADE_FLAT); break;
+            case SHADE_GOURAUD: PACK_FILTERS(SHADE_GOURAUD); break;
+            case SHADE_PHONG: PACK_FILTERS(SHADE_PHONG); break;
+            default: packs(s, SHADE_WIRE, TEX_NEAREST, DEPTH_Z); break;
+            }
 #undef PACK_FILTERS
+        } else {
+            switch (s->mode) {
+            case SHADE_UNLIT: packs(s, SHADE_UNLIT, f, s->depth); break;
+            case SHADE_FLAT: packs(s, SHADE_FLAT, f, s->depth); break;
+            case SHADE_GOURAUD: packs(s, SHADE_GOURAUD, f, s->depth); break;
+            case SHADE_PHONG: packs(s, SHADE_PHONG, f, s->depth); break;
+            default: packs(s, SHADE_WIRE, TEX_NEAREST, s->depth); break;
+            }
+        }
         s->n_runs = s->n_pixels = 0;
         return;
     }

@@ -422,11 +422,12 @@ TEST(simd_copy_never_changes_the_picture)
 
 TEST(packed_groups_draw_what_runs_draw)
 {
-    /* the default methods draw a triangle's pixels in packs of four gathered from several
-     * runs (span.h); counting overdraw sends the same frame run by run. A grid of small
-     * triangles (most runs one to three pixels) and a large one through the near plane, in
-     * every shading mode and filter, on one and three threads (triangles cut by tiles):
-     * the same bytes and depths either way */
+    /* perspective-correct and affine interpolation draw a triangle's pixels in packs
+     * gathered from several runs (span.h); counting overdraw sends the same frame run by
+     * run. A grid of small triangles (most runs one to three pixels) and a large one
+     * through the near plane, in every shading mode, filter and depth method, correct and
+     * affine, on one and three threads (triangles cut by tiles): the same bytes and depths
+     * either way */
     const int sizes[] = {60, 6};
     int compared = 0, differ = 0;
     for (int gi = 0; gi < 2; gi++) {
@@ -445,26 +446,35 @@ TEST(packed_groups_draw_what_runs_draw)
         cam.target = v3(0, 0, -2);
         cam.fov_deg = 100;
         size_t n = 203 * 117;
-        for (enum shade_mode m = SHADE_UNLIT; m <= SHADE_PHONG; m++)
-            for (enum tex_filter f = 0; f < TEX_FILTER_COUNT; f++)
-                for (int th = 1; th <= 3; th += 2) {
-                    struct render_opts o;
-                    render_opts_default(&o);
-                    o.shade = m, o.filter = f, o.threads = th;
-                    struct frame_stats a, b;
-                    REQUIRE(pipeline_draw(s.p, &s.item, 1, NULL, &cam, &o, &s.fb, &a, NULL) == 0);
-                    REQUIRE(pipeline_draw(r.p, &r.item, 1, NULL, &cam, &o, &r.fb, &b, NULL) == 0);
-                    CHECK(a.pixels_shaded > 5000);
-                    CHECK_EQ_INT(a.pixels_tested, b.pixels_tested);
-                    CHECK_EQ_INT(a.pixels_shaded, b.pixels_shaded);
-                    compared++;
-                    differ += memcmp(s.fb.rgb, r.fb.rgb, n * 3) != 0 ||
-                              memcmp(s.fb.depth, r.fb.depth, n * sizeof *s.fb.depth) != 0;
-                }
+        for (int c = 0; c < 4 * 3 * 2 * 2 + 2 * 4; c++) {
+            /* every mode x filter x thread count x {correct, affine} in depth z, then every
+             * depth method with Gouraud and Phong */
+            struct render_opts o;
+            render_opts_default(&o);
+            if (c < 48) {
+                o.shade = (enum shade_mode)(SHADE_UNLIT + c % 4);
+                o.filter = (enum tex_filter)(c / 4 % 3);
+                o.threads = c / 12 % 2 ? 3 : 1;
+                o.persp = c / 24 ? PERSP_AFFINE : PERSP_CORRECT;
+            } else {
+                o.shade = c % 2 ? SHADE_PHONG : SHADE_GOURAUD;
+                o.depth = (enum depth_mode)((c - 48) / 2);
+                o.threads = 2;
+            }
+            struct frame_stats a, b;
+            REQUIRE(pipeline_draw(s.p, &s.item, 1, NULL, &cam, &o, &s.fb, &a, NULL) == 0);
+            REQUIRE(pipeline_draw(r.p, &r.item, 1, NULL, &cam, &o, &r.fb, &b, NULL) == 0);
+            CHECK(a.pixels_shaded > 5000);
+            CHECK_EQ_INT(a.pixels_tested, b.pixels_tested);
+            CHECK_EQ_INT(a.pixels_shaded, b.pixels_shaded);
+            compared++;
+            differ += memcmp(s.fb.rgb, r.fb.rgb, n * 3) != 0 ||
+                      memcmp(s.fb.depth, r.fb.depth, n * sizeof *s.fb.depth) != 0;
+        }
         scene1_free(&s);
         scene1_free(&r);
     }
-    CHECK_EQ_INT(compared, 2 * 4 * 3 * 2);
+    CHECK_EQ_INT(compared, 2 * (48 + 8));
     CHECK_EQ_INT(differ, 0);
 }
 
