@@ -108,7 +108,7 @@ static inline uint8_t fb_quantize(float c)
     return (uint8_t)(int)(c * 255.0f + 0.5f);
 }
 
-/* fb_quantize of four values (0..255 in each lane) */
+/* fb_quantize of every lane (0..255 in each) */
 SIMD_INLINE vi fb_quantize_v(vf c)
 {
     c = vf_max(c, vf_set(0)); /* c > 0 ? c : 0 (NaN: 0) */

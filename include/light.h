@@ -139,7 +139,7 @@ static inline void light_normalize(float v[3])
     v[0] *= il, v[1] *= il, v[2] *= il;
 }
 
-/* light_normalize, four vectors at once (v[k] holds component k of the four) */
+/* light_normalize, a vector of vectors at once (v[k] holds component k of each lane's) */
 SIMD_INLINE void light_normalize_v(vf v[3])
 {
     vf l = vf_sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
@@ -179,11 +179,11 @@ static inline vf light_pow_v(vf x, float n)
     return light_pow_v_k(x, light_pow_int(n), n);
 }
 
-/* One light's diffuse and specular factors for four points: max(0, N.L) and
+/* One light's diffuse and specular factors for every lane's point: max(0, N.L) and
  * max(0, N.H)^ns with H = normalize(L + V) (pow_k = light_pow_int(ns)) */
 SIMD_INLINE void
 light_one_v(const float l[3], const vf n[3], const vf v[3], float ns, int pow_k, vf *dd_out,
-           vf *ss_out)
+            vf *ss_out)
 {
     vf h[3] = {vf_set(l[0]) + v[0], vf_set(l[1]) + v[1], vf_set(l[2]) + v[2]};
     vf hl = vf_sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
@@ -202,11 +202,11 @@ static inline vf light_ambient_v(const struct light_env *env, vf up, int k)
     return sky == ground ? vf_set(sky) : vf_set(ground) + up * vf_set(sky - ground);
 }
 
-/* light_terms for four points (n, v: unit vectors, one component per vector): in every lane
- * exactly what light_terms gives */
+/* light_terms for every lane's point (n, v: unit vectors, one component per vector): in
+ * every lane exactly what light_terms gives */
 SIMD_INLINE void
 light_terms_v_k(const struct light_env *env, const vf n[3], const vf v[3], float ns, int pow_k,
-              vf d_out[3], vf s_out[3])
+                vf d_out[3], vf s_out[3])
 {
     vf up = vf_set(0.5f) + vf_set(0.5f) * n[1], dd, ss;
     if (env->n == 1) { /* one light (the default): no sums to keep, fewer registers */
@@ -235,7 +235,7 @@ light_terms_v_k(const struct light_env *env, const vf n[3], const vf v[3], float
 
 /* light_terms_v_k with pow_k = light_pow_int(ns) */
 static inline void light_terms_v(const struct light_env *env, const vf n[3], const vf v[3],
-                                float ns, vf d_out[3], vf s_out[3])
+                                 float ns, vf d_out[3], vf s_out[3])
 {
     light_terms_v_k(env, n, v, ns, light_pow_int(ns), d_out, s_out);
 }

@@ -101,14 +101,15 @@ static inline void shade_fragment(const struct shade_ctx *c, enum shade_mode mod
     }
 }
 
-/* Four pixels at once (the normals view goes pixel by pixel through shade_fragment): in every
- * lane exactly what shade_fragment gives. var[k] holds varying k of the four pixels; lambda
+/* A vector of pixels at once (SIMD_LANES; the normals view goes pixel by pixel through
+ * shade_fragment): in every lane exactly what shade_fragment gives. var[k] holds varying k of
+ * the pixels; lambda
  * their texture level of detail (texture_lod_v; trilinear only); filter is c->filter (an
  * argument so that a caller can make it a constant); pow_k is light_pow_int(t->mat->ns)
  * (phong only: computed once for many pixels). */
 SIMD_INLINE void
 shade_fragment_v(const struct shade_ctx *c, enum shade_mode mode, enum tex_filter filter,
-                const struct shade_tri *t, int pow_k, const vf *var, vf lambda, vf rgb_out[3])
+                 const struct shade_tri *t, int pow_k, const vf *var, vf lambda, vf rgb_out[3])
 {
     vf albedo[3];
     if (t->tex) {

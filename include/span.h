@@ -11,11 +11,12 @@
  * (setup_interp) runs when a triangle's first runs are drawn: triangles that cover nothing
  * never pay for it.
  *
- * Pixels go four at a time (simd.h). In the default methods (span.c's "packs"), four
- * pixels of one run side by side are one group; what is left at a run's end (at terminal
- * sizes most runs are one to three pixels) is packed with the leftovers of the triangle's
- * other rows, so a group of four lanes is full whatever the triangle's shape. The other
- * methods go run by run.
+ * Pixels go SIMD_LANES at a time (simd.h: four; eight in one AVX2 copy). Perspective-correct
+ * and affine interpolation, in any depth method, go in packs (span.c): SIMD_LANES pixels of
+ * one run side by side are one group; what is left at a run's end (at terminal sizes most
+ * runs are one to three pixels) is packed with the leftovers of the triangle's other rows,
+ * so a group's lanes are full whatever the triangle's shape. The span methods, the overdraw
+ * count and the normals view go run by run.
  *
  * Per pixel, in order: depth d in the depth method's measure (fb.h) from the screen-linear
  * l_k (DEPTH_W: perspective-correct), clamped to the corners' range; overdraw count; the

@@ -218,7 +218,7 @@ SIMD_INLINE vi texture_wrap_v(vf x, int n)
     return i;
 }
 
-/* byte c (0 r, 1 g, 2 b) of four texels loaded as 32-bit words (RGBA8 in memory order) */
+/* byte c (0 r, 1 g, 2 b) of the texels loaded as 32-bit words (RGBA8 in memory order) */
 SIMD_INLINE vi texel_channel_v(vi words, int c)
 {
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
@@ -237,7 +237,7 @@ SIMD_INLINE void texture_fetch_v(const struct texture_level *lv, vi i, vi j, vi 
         rgb_out[c] = texel_channel_v(v, c);
 }
 
-/* texture_bilinear, four samples of one level at once */
+/* texture_bilinear, a sample per lane, all of one level */
 static inline void texture_bilinear_v(const struct texture_level *lv, vf u, vf v, vf rgb_out[3])
 {
     const vf k = vf_set(1.0f / 255.0f);
@@ -265,7 +265,7 @@ static inline void texture_bilinear_v(const struct texture_level *lv, vf u, vf v
 /* texture_bilinear_v with a level of t per lane (lane l samples level lv[l]): the same
  * operations lane by lane, with that level's size */
 static inline void texture_bilinear_v_levels(const struct texture *t, vi lv, vf u, vf v,
-                                            vf rgb_out[3])
+                                             vf rgb_out[3])
 {
     const vf k = vf_set(1.0f / 255.0f);
     vi W, H;
@@ -311,7 +311,7 @@ static inline void texture_bilinear_v_levels(const struct texture *t, vi lv, vf 
     }
 }
 
-/* The level of detail (texture_sample's lambda) of four pixels from the screen-space
+/* The level of detail (texture_sample's lambda) of every lane's pixel from the screen-space
  * derivatives of u and v: log2 of the longer side of the pixel's footprint in level-0
  * texels, rho = max(|(du/dx, dv/dx)|, |(du/dy, dv/dy)|) (GL's formula, without its
  * approximations). A zero or non-finite footprint gives -1: magnification. */
@@ -326,7 +326,7 @@ SIMD_INLINE vf texture_lod_v(const struct texture *t, vf dudx, vf dvdx, vf dudy,
     return vf_select(ok, lambda, vf_set(-1));
 }
 
-/* Four samples at once: in every lane exactly what texture_sample gives (lambda per lane). */
+/* A sample per lane: in every lane exactly what texture_sample gives (lambda per lane). */
 SIMD_INLINE void
 texture_sample_v(const struct texture *t, enum tex_filter f, vf u, vf v, vf lambda, vf rgb_out[3])
 {
@@ -335,7 +335,7 @@ texture_sample_v(const struct texture *t, enum tex_filter f, vf u, vf v, vf lamb
         const vf k = vf_set(1.0f / 255.0f);
         vi c[3];
         texture_fetch_v(&base, texture_wrap_v(u * vf_set((float)base.w), base.w),
-                       texture_wrap_v(v * vf_set((float)base.h), base.h), c);
+                        texture_wrap_v(v * vf_set((float)base.h), base.h), c);
         for (int ch = 0; ch < 3; ch++)
             rgb_out[ch] = vf_from_vi(c[ch]) * k;
         return;
@@ -348,7 +348,7 @@ texture_sample_v(const struct texture *t, enum tex_filter f, vf u, vf v, vf lamb
         texture_bilinear_v(&base, u, v, rgb_out);
         return;
     }
-    /* texture_levels in four lanes */
+    /* texture_levels in every lane */
     const int top = t->n_levels - 1;
     vi in = (lambda > vf_set(0)) & (lambda < vf_set((float)top)); /* between two levels */
     vi beyond = (lambda > vf_set(0)) & ~in;                        /* the last level */

@@ -166,22 +166,23 @@ static inline struct lod_planes lod_planes_of(const struct setup_interp *in)
                                vf_set(in->a_dy[0]), vf_set(in->a_dy[1]), vf_set(in->q.dy)};
 }
 
-/* The rest of a group of four pixels once its depth test is done: the colour of the lanes
- * in `pass` from their varyings, quantised and written. rq: 1 / q at the four pixels (the
+/* The rest of a group of pixels once its depth test is done: the colour of the lanes in
+ * `pass` from their varyings, quantised and written. rq: 1 / q at the group's pixels (the
  * level of detail's d(a/q) = (da - (a/q) dq) / q, exactly, from the planes). The pixels'
  * colours are at rgb + off[l]; `contig`: at rgb + off[0] + 3 l instead (side by side; when
  * every lane passed, one wide store). */
 static inline __attribute__((always_inline)) void
 shade_write_v(const struct span_ctx *s, const enum shade_mode mode, const enum tex_filter filter,
-             const bool lod, const struct lod_planes *lp, int pow_k, const vf *var, vf rq,
-             vi pass, uint8_t *restrict rgb, const bool contig, const size_t off[SIMD_LANES])
+              const bool lod, const struct lod_planes *lp, int pow_k, const vf *var, vf rq,
+              vi pass, uint8_t *restrict rgb, const bool contig, const size_t off[SIMD_LANES])
 {
     const struct shade_tri *st = s->st;
     vf lambda = vf_set(0);
     if (lod)
         lambda = texture_lod_v(st->tex, (lp->udx - var[0] * lp->qdx) * rq,
-                              (lp->vdx - var[1] * lp->qdx) * rq, (lp->udy - var[0] * lp->qdy) * rq,
-                              (lp->vdy - var[1] * lp->qdy) * rq);
+                               (lp->vdx - var[1] * lp->qdx) * rq,
+                               (lp->udy - var[0] * lp->qdy) * rq,
+                               (lp->vdy - var[1] * lp->qdy) * rq);
     vf c[3];
     shade_fragment_v(s->shade, mode, filter, st, pow_k, var, lambda, c);
     vi r8 = fb_quantize_v(c[0]), g8 = fb_quantize_v(c[1]), b8 = fb_quantize_v(c[2]);
@@ -209,11 +210,11 @@ shade_write_v(const struct span_ctx *s, const enum shade_mode mode, const enum t
 }
 
 /* One run in any method, instantiated per shading mode by span_flush's switch: `mode` is a
- * compile-time constant in each copy, so the shading's switches fold away. Pixels go four
- * at a time (simd.h): depth, the test and the varyings of four pixels in a few vector
- * operations, then the shading four at a time too (shade_write_v; the normals view lane by
+ * compile-time constant in each copy, so the shading's switches fold away. Pixels go
+ * SIMD_LANES at a time (simd.h): depth, the test and the varyings of a group in a few vector
+ * operations, then the shading a group at a time too (shade_write_v; the normals view lane by
  * lane). A lane's arithmetic is the scalar formula, so a pixel's bytes never depend on
- * where its group of four started. Every plane coefficient is copied into a local first:
+ * where its group started. Every plane coefficient is copied into a local first:
  * the framebuffer's byte stores may alias anything and would otherwise force reloads. */
 static inline __attribute__((always_inline)) void run(struct span_ctx *s, int y, int xa, int xb,
                                                       const enum shade_mode mode,
@@ -232,7 +233,7 @@ static inline __attribute__((always_inline)) void run(struct span_ctx *s, int y,
     const vf zdx = vf_set(in->z.dx), zqdx = vf_set(in->zq.dx), qdx = vf_set(in->q.dx);
     const vf z_lo = vf_set(in->z_lo), z_hi = vf_set(in->z_hi);
     float ar[VARY_MAX], adx[VARY_MAX];
-    vf ar4[VARY_MAX]; /* the row bases in every lane: row_of, four at a time */
+    vf ar4[VARY_MAX]; /* the row bases in every lane: row_of, a group at a time */
     vf adx4[VARY_MAX];
     const vf Y4 = vf_set(Y);
     for (int k = 0; k < n_var; k++) {
@@ -358,9 +359,10 @@ struct pack_ctx {
 };
 
 /* One group of the methods that go in packs (any depth method, perspective-correct or
- * affine; no overdraw count, no normals view): pixels at columns x_org + X, rows y_org + Y. `contig`: SIMD_LANES pixels
- * of a run side by side, the first at index `first` of the framebuffer; else the first n
- * lanes are pixels (leftovers of several runs) at indices idx. The same operations, in the
+ * affine; no overdraw count, no normals view): pixels at columns x_org + X, rows y_org + Y.
+ * `contig`: SIMD_LANES pixels of a run side by side, the first at index `first` of the
+ * framebuffer; else the first n lanes are pixels (leftovers of several runs) at indices
+ * idx. The same operations, in the
  * same order, as run() gives these pixels. Returns how many passed the depth test. */
 static inline __attribute__((always_inline)) uint64_t
 pack_group(const struct span_ctx *s, const struct pack_ctx *k, const enum shade_mode mode,
