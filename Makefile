@@ -17,11 +17,12 @@ Q       := $(if $(V),,@)
 SRCS    := $(wildcard src/*.c)
 LIBOBJS := $(patsubst src/%.c,$(BUILD)/obj/%.o,$(filter-out src/main.c,$(SRCS)))
 MAINOBJ := $(BUILD)/obj/main.o
-# x86-64: the span stage (twice: eight and four lanes), interpolation setup and the sky again,
-# for AVX2, chosen at run time (include/span.h)
+# x86-64: the hot stages compiled again for AVX2 and chosen at run time (include/span.h): the
+# span stage twice (eight and four lanes), interpolation setup, the vertex stage, the sky.
+# Each copy is its source file with -mavx2 and its COPY flags, defining only its hot function.
+AVX2_COPIES := span_avx2 span_avx2_4 setup_avx2 vertex_avx2 skybox_avx2
 ifneq ($(findstring x86_64,$(shell $(CC) -dumpmachine)),)
-LIBOBJS += $(BUILD)/obj/span_avx2.o $(BUILD)/obj/span_avx2_4.o $(BUILD)/obj/setup_avx2.o \
-           $(BUILD)/obj/skybox_avx2.o $(BUILD)/obj/vertex_avx2.o
+LIBOBJS += $(AVX2_COPIES:%=$(BUILD)/obj/%.o)
 CFLAGS  += -DRASTTY_SPAN_AVX2
 endif
 UNITSRC := $(wildcard tests/unit/*.c)
@@ -63,25 +64,19 @@ $(BUILD)/obj/%.o: src/%.c | $(BUILD)/obj
 	@echo "  CC      $<"
 	$(Q)$(CC) $(CFLAGS) -MMD -MP -c -o $@ $<
 
-$(BUILD)/obj/span_avx2.o: src/span.c | $(BUILD)/obj
-	@echo "  CC      $< (AVX2)"
-	$(Q)$(CC) $(CFLAGS) -mavx2 -mno-fma -DSPAN_AVX2_COPY -DSIMD_LANES=8 -MMD -MP -c -o $@ $<
-
-$(BUILD)/obj/span_avx2_4.o: src/span.c | $(BUILD)/obj
-	@echo "  CC      $< (AVX2, four lanes)"
-	$(Q)$(CC) $(CFLAGS) -mavx2 -mno-fma -DSPAN_AVX2_COPY -DSIMD_LANES=4 -MMD -MP -c -o $@ $<
-
-$(BUILD)/obj/setup_avx2.o: src/setup.c | $(BUILD)/obj
-	@echo "  CC      $< (AVX2)"
-	$(Q)$(CC) $(CFLAGS) -mavx2 -mno-fma -DSETUP_AVX2_COPY -MMD -MP -c -o $@ $<
-
-$(BUILD)/obj/skybox_avx2.o: src/skybox.c | $(BUILD)/obj
-	@echo "  CC      $< (AVX2)"
-	$(Q)$(CC) $(CFLAGS) -mavx2 -mno-fma -DSKYBOX_AVX2_COPY -DSIMD_LANES=8 -MMD -MP -c -o $@ $<
-
-$(BUILD)/obj/vertex_avx2.o: src/vertex.c | $(BUILD)/obj
-	@echo "  CC      $< (AVX2)"
-	$(Q)$(CC) $(CFLAGS) -mavx2 -mno-fma -DVERTEX_AVX2_COPY -MMD -MP -c -o $@ $<
+$(BUILD)/obj/span_avx2.o: src/span.c
+$(BUILD)/obj/span_avx2.o: COPY := -DSPAN_AVX2_COPY -DSIMD_LANES=8
+$(BUILD)/obj/span_avx2_4.o: src/span.c
+$(BUILD)/obj/span_avx2_4.o: COPY := -DSPAN_AVX2_COPY -DSIMD_LANES=4
+$(BUILD)/obj/setup_avx2.o: src/setup.c
+$(BUILD)/obj/setup_avx2.o: COPY := -DSETUP_AVX2_COPY
+$(BUILD)/obj/vertex_avx2.o: src/vertex.c
+$(BUILD)/obj/vertex_avx2.o: COPY := -DVERTEX_AVX2_COPY
+$(BUILD)/obj/skybox_avx2.o: src/skybox.c
+$(BUILD)/obj/skybox_avx2.o: COPY := -DSKYBOX_AVX2_COPY -DSIMD_LANES=8
+$(AVX2_COPIES:%=$(BUILD)/obj/%.o): | $(BUILD)/obj
+	@echo "  CC      $< (AVX2 $(COPY))"
+	$(Q)$(CC) $(CFLAGS) -mavx2 -mno-fma $(COPY) -MMD -MP -c -o $@ $<
 
 $(BUILD)/tests/%.o: tests/unit/%.c | $(BUILD)/tests
 	@echo "  CC      $<"

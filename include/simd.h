@@ -68,11 +68,7 @@ SIMD_INLINE vf vf_lanes(void)
 
 SIMD_INLINE vi vi_lanes(void)
 {
-#if SIMD_LANES == 8
-    return (vi){0, 1, 2, 3, 4, 5, 6, 7};
-#else
-    return (vi){0, 1, 2, 3};
-#endif
+    return __builtin_convertvector(vf_lanes(), vi);
 }
 
 /* m ? a : b, lane by lane (m from a comparison: every lane 0 or -1) */

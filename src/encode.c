@@ -525,7 +525,7 @@ static void move_to(struct emitter *em, int r, int c, const struct encode_cell *
         break;
     case VIA_CRLF:
         for (int i = 0; i < down; i++) {
-            memcpy(p, "\r\n" + 2 - em->newline, (size_t)em->newline);
+            memcpy(p, &"\r\n"[2 - em->newline], (size_t)em->newline);
             p += em->newline;
         }
         em->st->moves++;

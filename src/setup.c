@@ -101,8 +101,8 @@ typedef int64_t l4 __attribute__((vector_size(32)));
 /* lane k <- lane (k + 1) % 3, and lane (k + 2) % 3: the corners edge k runs between; |v| of
  * each lane (the sign bit cleared). Macros: a function returning a d4 would have an
  * AVX-only calling convention in the baseline build. */
-#define NEXT1(v) __builtin_shuffle((v), (l4){1, 2, 0, 3})
-#define NEXT2(v) __builtin_shuffle((v), (l4){2, 0, 1, 3})
+#define NEXT1(v) __builtin_shufflevector((v), (v), 1, 2, 0, 3)
+#define NEXT2(v) __builtin_shufflevector((v), (v), 2, 0, 1, 3)
 #define FABS4(v) ((d4)((l4)(v) & (l4){INT64_MAX, INT64_MAX, INT64_MAX, INT64_MAX}))
 
 /* barycentric planes l_k of the triangle (px[k], py[k]) at pixel centre (ox, oy): value and

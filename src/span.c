@@ -90,15 +90,17 @@ const char *span_isa_name(void)
 void span_flush(struct span_ctx *s)
 {
     switch (span_isa_get()) {
-    case SPAN_ISA_SSE2: span_flush_base(s); break;
+#ifdef RASTTY_SPAN_AVX2 /* (span_isa_set refuses AVX2 in builds without the copies) */
     case SPAN_ISA_AVX2_4: span_flush_avx2_4(s); break;
     case SPAN_ISA_AVX2_8: span_flush_avx2(s); break;
-    default: /* a triangle of up to four pixels fills one group of four */
+    case SPAN_ISA_AVX2: /* a triangle of up to four pixels fills one group of four */
         if (s->n_pixels <= 4)
             span_flush_avx2_4(s);
         else
             span_flush_avx2(s);
         break;
+#endif
+    default: span_flush_base(s); break;
     }
 }
 #endif

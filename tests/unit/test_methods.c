@@ -83,6 +83,18 @@ static int scene1_init(struct scene1 *s, const char *obj, int w, int h, uint32_t
     return s->p ? 0 : -1;
 }
 
+/* a camera low over the grid, looking into it through the near plane (fov 100): the near
+ * triangles are clipped and large, the far ones small */
+static struct camera grid_camera(double eye_y)
+{
+    struct camera c;
+    camera_default(&c);
+    c.eye = v3(0.3, eye_y, 2);
+    c.target = v3(0, 0, -2);
+    c.fov_deg = 100;
+    return c;
+}
+
 static void scene1_free(struct scene1 *s)
 {
     pipeline_destroy(s->p);
@@ -100,11 +112,7 @@ TEST(batch_capacity_never_changes_the_picture)
     REQUIRE(scene1_init(&a, obj, 96, 64, 9) == 0);
     REQUIRE(scene1_init(&b, obj, 96, 64, 0) == 0);
     free(obj);
-    struct camera cam; /* low and wide: the grid passes under the eye, through near */
-    camera_default(&cam);
-    cam.eye = v3(0.3, 0.2, 2);
-    cam.target = v3(0, 0, -2);
-    cam.fov_deg = 100;
+    struct camera cam = grid_camera(0.2); /* the grid passes under the eye, through near */
     struct render_opts o;
     render_opts_default(&o);
     for (enum raster_method r = 0; r < RASTER_COUNT; r++) {
@@ -305,11 +313,7 @@ TEST(thread_count_never_changes_the_picture)
     free(obj);
     fb_free(&s.fb);
     REQUIRE(fb_init(&s.fb, 203, 117, true, NULL) == 0);
-    struct camera cam;
-    camera_default(&cam);
-    cam.eye = v3(0.3, 0.2, 2);
-    cam.target = v3(0, 0, -2);
-    cam.fov_deg = 100;
+    struct camera cam = grid_camera(0.2);
     size_t n = 203 * 117;
     uint8_t *rgb = malloc(n * 3);
     float *depth = malloc(n * sizeof *depth);
@@ -376,11 +380,7 @@ TEST(simd_copy_never_changes_the_picture)
         px[i] = (uint8_t)(i * 37 + (i / 4) * 11);
     REQUIRE(texture_from_rgba(6, 5, px, &s.tex, NULL) == 0);
     REQUIRE(texture_build_mips(&s.tex, NULL) >= 0);
-    struct camera cam;
-    camera_default(&cam);
-    cam.eye = v3(0.3, 0.4, 2);
-    cam.target = v3(0, 0, -2);
-    cam.fov_deg = 100;
+    struct camera cam = grid_camera(0.4);
     size_t n = 203 * 117;
     uint8_t *rgb = malloc(n * 3);
     float *depth = malloc(n * sizeof *depth);
@@ -440,11 +440,7 @@ TEST(packed_groups_draw_what_runs_draw)
         REQUIRE(texture_build_mips(&r.tex, NULL) >= 0);
         fb_free(&r.fb);
         REQUIRE(fb_init(&r.fb, 203, 117, true, NULL) == 0); /* overdraw: run by run */
-        struct camera cam;
-        camera_default(&cam);
-        cam.eye = v3(0.3, 0.4, 2);
-        cam.target = v3(0, 0, -2);
-        cam.fov_deg = 100;
+        struct camera cam = grid_camera(0.4);
         size_t n = 203 * 117;
         for (int c = 0; c < 4 * 3 * 2 * 2 + 2 * 4; c++) {
             /* every mode x filter x thread count x {correct, affine} in depth z, then every
