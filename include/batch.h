@@ -3,18 +3,21 @@
  * The front end (pipeline.c: vertex -> clip -> setup) appends, in submission order, one
  * struct setup_tri per triangle that reaches the rasterizer, one struct shade_tri per source
  * triangle (material, texture, flat-shading terms; the pieces of a clipped triangle share
- * it) and the new vertices clipping made. The back end (batch_draw) then rasterizes the
- * triangles in the same order into a rectangle of the framebuffer. The arrays have a fixed
- * capacity, allocated once: when the next source triangle might not fit, the pipeline draws
- * the batch and starts a new one (as llvmpipe flushes a full scene), so memory stays bounded
- * on any mesh and the picture never depends on the capacity (a test checks it).
+ * it) and the new vertices clipping made. The back end (batch_draw_start, _finish) then
+ * rasterizes the triangles in the same order into a rectangle of the framebuffer. The arrays
+ * have a fixed capacity, allocated once: when the next source triangle might not fit (or the
+ * pipeline's smaller batch size is reached), the pipeline draws the batch and starts a new
+ * one (as llvmpipe flushes a full scene), so memory stays bounded on any mesh and the
+ * picture never depends on the capacity (a test checks it).
  *
- * With several threads the back end works by screen tile, as llvmpipe does: batch_draw bins
- * the triangles into BATCH_TILE x BATCH_TILE tiles (each tile's list in submission order),
- * and the threads take tiles from a shared counter; a thread draws all of a tile's triangles
- * with its own span_ctx, clipped to the tile. A pixel belongs to one tile and every pixel's
- * value depends only on its position and the triangles before it, so the frame is the same
- * bytes whatever the thread count (a test checks it). No lock is taken in the pixel path. */
+ * With several threads the back end works by screen tile, as llvmpipe does: the batch's
+ * triangles are binned into BATCH_TILE x BATCH_TILE tiles (each tile's list in submission
+ * order), and the threads take tiles from a shared counter; a thread draws all of a tile's
+ * triangles with its own span_ctx, clipped to the tile. The pool's threads start at once
+ * and the caller joins when it is done with other work (the pipeline sets up the next batch
+ * meanwhile). A pixel belongs to one tile and every pixel's value depends only on its
+ * position and the triangles before it, so the frame is the same bytes whatever the thread
+ * count (a test checks it). No lock is taken in the pixel path. */
 #ifndef RASTTY_BATCH_H
 #define RASTTY_BATCH_H
 

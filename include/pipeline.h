@@ -3,7 +3,9 @@
  *   front end, for each draw item (a mesh placed by a model matrix):
  *       whole-mesh frustum cull by bounding sphere
  *       vertex.c  : each unique vertex once -> clip position, outcode, window position
- *                   snapped to 1/256 px (viewport.h), varyings
+ *                   snapped to 1/256 px (viewport.h), in chunks just before the first
+ *                   triangle that uses them; varyings (and Gouraud's lighting) once a
+ *                   triangle using the vertex passes setup
  *       for each triangle:
  *           trivial reject (all corners outside one frustum plane)
  *           setup.c  : facing and culling, once per source triangle
@@ -11,10 +13,13 @@
  *                      near/far planes or the x/y guard band
  *           setup.c  : edge equations and the tie rule, per triangle or clipped piece
  *           -> batch.h: the array of set-up triangles
- *   back end, when the batch is full and at the end of the surfaces (batch_draw):
+ *   back end, every 1024 set-up triangles on one thread (512 with threads, drawn by the
+ *   pool while the front end fills the other of two batches) and at the end of the
+ *   surfaces (batch_draw_start / batch_draw_finish):
  *       raster*.c : the chosen rasterizer finds each triangle's covered pixels as runs
- *       span.c    : per run — interpolation setup on a triangle's first run, then per pixel
- *                   depth test, interpolation (perspective method), shade.h colour, write
+ *       span.c    : per triangle, its queued runs — interpolation setup once it has any,
+ *                   then per pixel depth test, interpolation (perspective method), shade.h
+ *                   colour, write
  *   skybox.c: the sky fills the pixels no triangle covered (cheaper than drawing it first)
  *   wire mode, and the wire-overlay view: line.c draws the edges after the surfaces.
  *
