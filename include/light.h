@@ -26,6 +26,7 @@
 #define RASTTY_LIGHT_H
 
 #include <math.h>
+#include <stdbool.h>
 
 #include "camera.h"
 #include "mesh.h"
@@ -57,6 +58,9 @@ struct light_env {
     float dir[RENDER_MAX_LIGHTS][3]; /* unit, toward the light */
     float col[RENDER_MAX_LIGHTS][3];
     float sky[3], ground[3];         /* hemisphere ambient */
+    bool grey; /* every light, the sky and the ground are grey (r = g = b; the default light
+                  and the headlight): D and S are then the same in every channel, so they are
+                  computed once (the same floats) and Gouraud carries one of each */
 };
 
 void light_env_init(struct light_env *env, const struct render_opts *o);
@@ -109,18 +113,20 @@ static inline void light_terms(const struct light_env *env, const float n[3], co
         float ndh = (n[0] * h[0] + n[1] * h[1] + n[2] * h[2]) * ih;
         float dd = ndl > 0 ? ndl : 0;
         float ss = light_pow(ndh > 0 ? ndh : 0, ns);
-        for (int k = 0; k < 3; k++) {
+        for (int k = 0; k < (env->grey ? 1 : 3); k++) {
             d[k] += dd * col[k];
             s[k] += ss * col[k];
         }
     }
     float up = 0.5f + 0.5f * n[1];
-    for (int k = 0; k < 3; k++) {
+    for (int k = 0; k < (env->grey ? 1 : 3); k++) {
         float sky = env->sky[k], ground = env->ground[k];
         float a = sky == ground ? sky : ground + up * (sky - ground); /* exact when constant */
         d_out[k] = a + LIGHT_DIFFUSE * d[k];
         s_out[k] = s[k];
     }
+    if (env->grey) /* channel 0's floats are the others' */
+        d_out[1] = d_out[2] = d_out[0], s_out[1] = s_out[2] = s_out[0];
 }
 
 /* c = albedo * D + ks * S (unclamped) */
@@ -209,28 +215,31 @@ light_terms_v_k(const struct light_env *env, const vf n[3], const vf v[3], float
                 vf d_out[3], vf s_out[3])
 {
     vf up = vf_set(0.5f) + vf_set(0.5f) * n[1], dd, ss;
+    const int nc = env->grey ? 1 : 3; /* grey: channel 0's floats are the others' */
     if (env->n == 1) { /* one light (the default): no sums to keep, fewer registers */
         const float *col = env->col[0];
         light_one_v(env->dir[0], n, v, ns, pow_k, &dd, &ss);
-        for (int k = 0; k < 3; k++) { /* as below with d = 0 + dd col, s = 0 + ss col */
+        for (int k = 0; k < nc; k++) { /* as below with d = 0 + dd col, s = 0 + ss col */
             d_out[k] = light_ambient_v(env, up, k) + vf_set(LIGHT_DIFFUSE) * (dd * vf_set(col[k]));
             s_out[k] = ss * vf_set(col[k]);
         }
-        return;
-    }
-    vf d[3] = {vf_set(0), vf_set(0), vf_set(0)}, s[3] = {vf_set(0), vf_set(0), vf_set(0)};
-    for (int i = 0; i < env->n; i++) {
-        const float *col = env->col[i];
-        light_one_v(env->dir[i], n, v, ns, pow_k, &dd, &ss);
-        for (int k = 0; k < 3; k++) {
-            d[k] += dd * vf_set(col[k]);
-            s[k] += ss * vf_set(col[k]);
+    } else {
+        vf d[3] = {vf_set(0), vf_set(0), vf_set(0)}, s[3] = {vf_set(0), vf_set(0), vf_set(0)};
+        for (int i = 0; i < env->n; i++) {
+            const float *col = env->col[i];
+            light_one_v(env->dir[i], n, v, ns, pow_k, &dd, &ss);
+            for (int k = 0; k < nc; k++) {
+                d[k] += dd * vf_set(col[k]);
+                s[k] += ss * vf_set(col[k]);
+            }
+        }
+        for (int k = 0; k < nc; k++) {
+            d_out[k] = light_ambient_v(env, up, k) + vf_set(LIGHT_DIFFUSE) * d[k];
+            s_out[k] = s[k];
         }
     }
-    for (int k = 0; k < 3; k++) {
-        d_out[k] = light_ambient_v(env, up, k) + vf_set(LIGHT_DIFFUSE) * d[k];
-        s_out[k] = s[k];
-    }
+    if (env->grey)
+        d_out[1] = d_out[2] = d_out[0], s_out[1] = s_out[2] = s_out[0];
 }
 
 /* light_terms_v_k with pow_k = light_pow_int(ns) */

@@ -89,7 +89,14 @@ static inline void shade_fragment(const struct shade_ctx *c, enum shade_mode mod
         light_combine(albedo, t->flat_d, t->flat_s, t->mat->ks, rgb_out);
         return;
     case SHADE_GOURAUD:
-        light_combine(albedo, var + 2, var + 5, t->mat->ks, rgb_out);
+        if (c->lights.grey) {
+            const float *ks = t->mat->ks, dg = var[VARY_GOURAUD_D], sg = var[VARY_GOURAUD_S(true)];
+            for (int k = 0; k < 3; k++) /* light_combine's sums, one D and one S */
+                rgb_out[k] = albedo[k] * dg + ks[k] * sg;
+        } else {
+            light_combine(albedo, var + VARY_GOURAUD_D, var + VARY_GOURAUD_S(false), t->mat->ks,
+                          rgb_out);
+        }
         return;
     case SHADE_PHONG:
         shade_phong(c, t, var, d, s);
@@ -144,8 +151,11 @@ shade_fragment_v(const struct shade_ctx *c, enum shade_mode mode, enum tex_filte
             rgb_out[k] = albedo[k] * d[k] + vf_set(ks[k]) * sp[k];
         else if (mode == SHADE_FLAT)
             rgb_out[k] = albedo[k] * vf_set(t->flat_d[k]) + vf_set(ks[k]) * vf_set(t->flat_s[k]);
+        else if (mode == SHADE_GOURAUD && c->lights.grey)
+            rgb_out[k] = albedo[k] * var[VARY_GOURAUD_D] + vf_set(ks[k]) * var[VARY_GOURAUD_S(true)];
         else if (mode == SHADE_GOURAUD)
-            rgb_out[k] = albedo[k] * var[2 + k] + vf_set(ks[k]) * var[5 + k];
+            rgb_out[k] = albedo[k] * var[VARY_GOURAUD_D + k] +
+                         vf_set(ks[k]) * var[VARY_GOURAUD_S(false) + k];
         else
             rgb_out[k] = albedo[k];
     }

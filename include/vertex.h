@@ -5,7 +5,9 @@
  *      outcode, snapped window position (vertex_run, every vertex); world position and the
  *      varyings the shading mode needs (vertex_shade, on demand):
  *        unlit, flat, wire : u v
- *        gouraud           : u v, light.h's D rgb, S rgb (per-vertex lighting)
+ *        gouraud           : u v, light.h's D rgb, S rgb (per-vertex lighting); with grey
+ *                            lights (light_env.grey) u v D S: the channels are equal
+ *                            (VARY_GOURAUD_D, VARY_GOURAUD_S say where they are)
  *        phong, normals    : u v, world position xyz, world normal xyz
  *        + for a mesh with vertex colours (PLY): rgb in var[VARY_COLOR..+2] (2..7 zero where
  *          the mode leaves them unused), which multiplies the albedo
@@ -30,6 +32,9 @@
 
 #define VARY_MAX 12
 #define VARY_COLOR 8 /* var[8..10]: the vertex colour (0..1), for meshes that have one */
+/* where Gouraud's D and S start: rgb at 2 and 5, or with grey lights one float each at 2, 3 */
+#define VARY_GOURAUD_D 2
+#define VARY_GOURAUD_S(grey) ((grey) ? 3 : 5)
 
 enum {
     VERTEX_OUT_LEFT = 1 << 0,
@@ -84,8 +89,8 @@ struct vertex_uniforms {
     struct light_env lights;
 };
 
-/* Number of varyings written for a shading mode / debug view. */
-int vertex_varying_count(enum shade_mode shade, enum debug_view view);
+/* Number of varyings written for a shading mode / debug view (grey: light_env.grey). */
+int vertex_varying_count(enum shade_mode shade, enum debug_view view, bool grey);
 /* Position vertices i0 .. i1-1 of m into out[i0 .. i1): clip position, outcode, window
  * position and snap; wpos and var wait for vertex_shade. Ranges may run on different
  * threads. */

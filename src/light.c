@@ -21,6 +21,11 @@ void light_env_init(struct light_env *env, const struct render_opts *o)
     env->ground[0] = (float)o->ambient_ground.x;
     env->ground[1] = (float)o->ambient_ground.y;
     env->ground[2] = (float)o->ambient_ground.z;
+    bool grey = env->sky[0] == env->sky[1] && env->sky[1] == env->sky[2] &&
+                env->ground[0] == env->ground[1] && env->ground[1] == env->ground[2];
+    for (int i = 0; i < env->n; i++)
+        grey = grey && env->col[i][0] == env->col[i][1] && env->col[i][1] == env->col[i][2];
+    env->grey = grey;
 }
 
 void light_use_camera(struct render_opts *o, const struct camera *c)

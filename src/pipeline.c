@@ -256,7 +256,7 @@ static int front_end(struct pipeline *p, struct frame *f, const struct draw_item
     const struct render_opts *o = f->o;
     struct frame_stats *stats = f->stats;
     struct batch *bt = &p->batch[p->cur];
-    int n_var = depth_only ? 0 : m->colors ? VARY_COLOR + 3 : vertex_varying_count(o->shade, o->view);
+    int n_var = depth_only ? 0 : m->colors ? VARY_COLOR + 3 : vertex_varying_count(o->shade, o->view, f->u.lights.grey);
     struct shade_proto proto = {.mat = -1};
     /* counted in locals, added once: through the stats pointer every count would be a
      * memory update the compiler must keep in order with the batch's stores */

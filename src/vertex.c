@@ -17,12 +17,12 @@ void vertex_run_avx2(const struct mesh *m, const struct vertex_uniforms *u,
 static void vertex_run_base(const struct mesh *m, const struct vertex_uniforms *u,
                             struct vertex_out *out, uint32_t i0, uint32_t i1);
 
-int vertex_varying_count(enum shade_mode shade, enum debug_view view)
+int vertex_varying_count(enum shade_mode shade, enum debug_view view, bool grey)
 {
     if (view == VIEW_NORMALS || shade == SHADE_PHONG)
         return 8;
     if (shade == SHADE_GOURAUD)
-        return 8;
+        return grey ? 4 : 8;
     return 2;
 }
 
@@ -66,8 +66,14 @@ void vertex_shade(const struct mesh *m, const struct vertex_uniforms *u, uint32_
         o->var[2] = o->wpos[0], o->var[3] = o->wpos[1], o->var[4] = o->wpos[2];
         o->var[5] = n[0], o->var[6] = n[1], o->var[7] = n[2];
     } else {
-        float ns = m->materials[m->vert_material ? m->vert_material[i] : 0].ns;
-        vertex_light(u, n, o->wpos, ns, &o->var[2], &o->var[5]);
+        float ns = m->materials[m->vert_material ? m->vert_material[i] : 0].ns, d[3], s[3];
+        vertex_light(u, n, o->wpos, ns, d, s);
+        if (u->lights.grey) {
+            o->var[VARY_GOURAUD_D] = d[0], o->var[VARY_GOURAUD_S(true)] = s[0];
+        } else {
+            for (int k = 0; k < 3; k++)
+                o->var[VARY_GOURAUD_D + k] = d[k], o->var[VARY_GOURAUD_S(false) + k] = s[k];
+        }
     }
 }
 

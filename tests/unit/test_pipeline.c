@@ -2,6 +2,7 @@
  * near-plane crossing, and that a failed depth test changes nothing. */
 #include <string.h>
 
+#include "light.h"
 #include "obj.h"
 #include "pipeline.h"
 #include "test.h"
@@ -233,5 +234,49 @@ TEST(triangles_without_a_pixel_centre_are_not_lit)
         CHECK_EQ_INT(f.st.verts_lit, 4);
         CHECK_EQ_INT(covered(&f.fb), 16);
     }
+    frame_free(&f);
+}
+
+TEST(grey_lights_carry_one_channel_and_draw_the_same)
+{
+    /* Grey lights (r = g = b: the default light, the headlight) make light.h's D and S the
+     * same in every channel, so Gouraud carries one D and one S instead of two rgb triples.
+     * A second light of colour (0, 0, 1e-30) makes the same lighting non-grey without
+     * changing a float that reaches a pixel: both frames must be the same bytes, drawn
+     * once through the four-varying path and once through the eight-varying one — also with
+     * the eye close enough that the near plane cuts triangles (clipping carries varyings). */
+    const char *obj = "v 0 0 0.6\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n"
+                      "f 1 2 3\nf 1 3 4\nf 1 4 5\nf 1 5 2\n";
+    struct frame f;
+    REQUIRE(frame_init(&f, obj, 48, 40) == 0);
+    f.ro.shade = SHADE_GOURAUD;
+    struct fb grey = {0};
+    REQUIRE(fb_init(&grey, 48, 40, true, NULL) == 0);
+    const vec3 eyes[2] = {{0.2, 0.1, 3}, {0.05, 0.02, 0.68}}; /* the second: apex too near */
+    for (int e = 0; e < 2; e++) {
+        f.cam.eye = eyes[e];
+        f.ro.n_lights = 1;
+        struct light_env env;
+        light_env_init(&env, &f.ro);
+        CHECK(env.grey);
+        REQUIRE(draw(&f) == 0);
+        CHECK(covered(&f.fb) > 200);
+        if (e == 1)
+            CHECK(f.st.tris_clipped > 0);
+        memcpy(grey.rgb, f.fb.rgb, (size_t)48 * 40 * 3);
+        f.ro.n_lights = 2;
+        f.ro.lights[1].dir = v3(-1, 0.5, 1);
+        f.ro.lights[1].color = v3(0, 0, 1e-30);
+        light_env_init(&env, &f.ro);
+        CHECK(!env.grey);
+        REQUIRE(draw(&f) == 0);
+        CHECK(memcmp(grey.rgb, f.fb.rgb, (size_t)48 * 40 * 3) == 0);
+        /* and from afar the highlight is in the picture (S reaches the pixels) */
+        int bright = 0;
+        for (int i = 0; i < 48 * 40 * 3; i++)
+            bright += f.fb.rgb[i] > 230;
+        CHECK(e == 1 || bright > 0);
+    }
+    fb_free(&grey);
     frame_free(&f);
 }
