@@ -224,10 +224,15 @@ shade_write_v(const struct span_ctx *s, const enum shade_mode mode, const enum t
         p[3 * last + 2] = (uint8_t)b8[last];
         return;
     }
+    /* lane by lane: each lane's rgb0 taken out once, stored as 2 + 1 bytes */
+    const vi px = r8 | (g8 << 8) | (b8 << 16);
     for (int l = 0; l < SIMD_LANES; l++)
         if (pass[l]) {
             uint8_t *p = rgb + (contig ? off[0] + 3 * (size_t)l : off[l]);
-            p[0] = (uint8_t)r8[l], p[1] = (uint8_t)g8[l], p[2] = (uint8_t)b8[l];
+            uint32_t w = (uint32_t)px[l];
+            uint8_t rg[2] = {(uint8_t)w, (uint8_t)(w >> 8)};
+            __builtin_memcpy(p, rg, 2);
+            p[2] = (uint8_t)(w >> 16);
         }
 }
 
