@@ -116,4 +116,46 @@ SIMD_INLINE vi fb_quantize_v(vf c)
     return vi_trunc(c * vf_set(255.0f) + vf_set(0.5f));
 }
 
+/* The colours of SIMD_LANES pixels side by side from p on, each lane's r | g << 8 | b << 16
+ * (fb_quantize_v's). AVX2: each 128-bit half's four pixels as 12 bytes side by side (one
+ * byte shuffle), stored as 16 bytes whose last 4 the next store overwrites, then 8 + 4;
+ * else each lane's 4 bytes in order, each overwriting the byte the one before wrote past
+ * its pixel, and the last lane's 3. Never writes past the group's pixels. */
+SIMD_INLINE void fb_store_rgb_v(uint8_t *p, vi px)
+{
+#ifdef __AVX2__
+    typedef char v16c __attribute__((vector_size(16)));
+    const v16c pick = {0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1};
+#if SIMD_LANES == 8
+    v16c lo = (v16c)__builtin_ia32_pshufb128((v16c)_mm256_castsi256_si128((__m256i)px), pick);
+    v16c hi = (v16c)__builtin_ia32_pshufb128((v16c)_mm256_extracti128_si256((__m256i)px, 1),
+                                             pick);
+    __builtin_memcpy(p, &lo, 16);
+    __builtin_memcpy(p + 12, &hi, 8);
+    __builtin_memcpy(p + 20, (const char *)&hi + 8, 4);
+#else
+    v16c lo = (v16c)__builtin_ia32_pshufb128((v16c)px, pick);
+    __builtin_memcpy(p, &lo, 8);
+    __builtin_memcpy(p + 8, (const char *)&lo + 8, 4);
+#endif
+#else
+    for (int l = 0; l < SIMD_LANES - 1; l++) {
+        uint32_t w = (uint32_t)px[l];
+        uint8_t le[4] = {(uint8_t)w, (uint8_t)(w >> 8), (uint8_t)(w >> 16), 0};
+        __builtin_memcpy(p + 3 * l, le, 4);
+    }
+    const uint32_t w = (uint32_t)px[SIMD_LANES - 1];
+    p[3 * SIMD_LANES - 3] = (uint8_t)w, p[3 * SIMD_LANES - 2] = (uint8_t)(w >> 8),
+                      p[3 * SIMD_LANES - 1] = (uint8_t)(w >> 16);
+#endif
+}
+
+/* One lane's colour (r | g << 8 | b << 16) at p: 2 + 1 bytes */
+static inline void fb_store_rgb(uint8_t *p, uint32_t w)
+{
+    uint8_t rg[2] = {(uint8_t)w, (uint8_t)(w >> 8)};
+    __builtin_memcpy(p, rg, 2);
+    p[2] = (uint8_t)(w >> 16);
+}
+
 #endif

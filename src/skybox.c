@@ -348,11 +348,14 @@ static void SKYBOX_DRAW_ROWS(const struct skybox *s, const struct camera *cam, s
             vi q[3];
             for (int k = 0; k < 3; k++)
                 q[k] = fb_quantize_v(vf_select(seen, c[k], zero));
+            const vi px = q[0] | (q[1] << 8) | (q[2] << 16);
+            if (todo == (1 << SIMD_LANES) - 1) {
+                fb_store_rgb_v(fb->rgb + 3 * i, px);
+                continue;
+            }
             for (int k = 0; k < n; k++)
-                if (todo >> k & 1) {
-                    uint8_t *p = fb->rgb + 3 * (i + k);
-                    p[0] = (uint8_t)q[0][k], p[1] = (uint8_t)q[1][k], p[2] = (uint8_t)q[2][k];
-                }
+                if (todo >> k & 1)
+                    fb_store_rgb(fb->rgb + 3 * (i + k), (uint32_t)px[k]);
         }
     }
 }

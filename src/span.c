@@ -189,51 +189,14 @@ shade_write_v(const struct span_ctx *s, const enum shade_mode mode, const enum t
     vf c[3];
     shade_fragment_v(s->shade, mode, filter, st, pow_k, var, lambda, c);
     vi r8 = fb_quantize_v(c[0]), g8 = fb_quantize_v(c[1]), b8 = fb_quantize_v(c[2]);
+    const vi px = r8 | (g8 << 8) | (b8 << 16);
     if (contig && vi_all(pass)) {
-        /* every lane, three bytes each: each lane's rgb0 as one 32-bit store, in order, so
-         * each overwrites the byte the one before wrote past its pixel; the last one
-         * stops at its own three bytes */
-        vi px = r8 | (g8 << 8) | (b8 << 16);
-        uint8_t *p = rgb + off[0];
-#ifdef __AVX2__
-        /* each 128-bit half's four pixels as 12 bytes side by side (a byte shuffle), then
-         * stored: 16 bytes whose last 4 the next store overwrites, 8 + 4 for the end */
-        typedef char v16c __attribute__((vector_size(16)));
-        const v16c pick = {0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1};
-#if SIMD_LANES == 8
-        v16c lo = (v16c)__builtin_ia32_pshufb128((v16c)_mm256_castsi256_si128((__m256i)px), pick);
-        v16c hi = (v16c)__builtin_ia32_pshufb128((v16c)_mm256_extracti128_si256((__m256i)px, 1),
-                                                 pick);
-        __builtin_memcpy(p, &lo, 16);
-        __builtin_memcpy(p + 12, &hi, 8);
-        __builtin_memcpy(p + 20, (const char *)&hi + 8, 4);
-#else
-        v16c lo = (v16c)__builtin_ia32_pshufb128((v16c)px, pick);
-        __builtin_memcpy(p, &lo, 8);
-        __builtin_memcpy(p + 8, (const char *)&lo + 8, 4);
-#endif
-        return;
-#endif
-        for (int l = 0; l < SIMD_LANES - 1; l++) {
-            uint32_t w = (uint32_t)px[l];
-            uint8_t le[4] = {(uint8_t)w, (uint8_t)(w >> 8), (uint8_t)(w >> 16), 0};
-            __builtin_memcpy(p + 3 * l, le, 4);
-        }
-        const int last = SIMD_LANES - 1;
-        p[3 * last] = (uint8_t)r8[last], p[3 * last + 1] = (uint8_t)g8[last],
-        p[3 * last + 2] = (uint8_t)b8[last];
+        fb_store_rgb_v(rgb + off[0], px);
         return;
     }
-    /* lane by lane: each lane's rgb0 taken out once, stored as 2 + 1 bytes */
-    const vi px = r8 | (g8 << 8) | (b8 << 16);
-    for (int l = 0; l < SIMD_LANES; l++)
-        if (pass[l]) {
-            uint8_t *p = rgb + (contig ? off[0] + 3 * (size_t)l : off[l]);
-            uint32_t w = (uint32_t)px[l];
-            uint8_t rg[2] = {(uint8_t)w, (uint8_t)(w >> 8)};
-            __builtin_memcpy(p, rg, 2);
-            p[2] = (uint8_t)(w >> 16);
-        }
+    for (int l = 0; l < SIMD_LANES; l++) /* lane by lane */
+        if (pass[l])
+            fb_store_rgb(rgb + (contig ? off[0] + 3 * (size_t)l : off[l]), (uint32_t)px[l]);
 }
 
 /* One run in any method, instantiated per shading mode by span_flush's switch: `mode` is a
