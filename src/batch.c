@@ -55,10 +55,17 @@ static int bin(struct batch *b, int tiles_x, int n_tiles)
     uint32_t *start = b->bin_start;
     memset(start, 0, ((size_t)n_tiles + 1) * sizeof *start);
     size_t total = 0;
+    /* (box corners are inside the framebuffer: unsigned division is a shift) */
+#define TILE_OF(c) (int)((unsigned)(c) / BATCH_TILE)
     for (uint32_t i = 0; i < b->n_tris; i++) {
         const struct setup_tri *t = &b->tris[i];
-        for (int ty = t->y0 / BATCH_TILE; ty <= t->y1 / BATCH_TILE; ty++)
-            for (int tx = t->x0 / BATCH_TILE; tx <= t->x1 / BATCH_TILE; tx++)
+        const int tx0 = TILE_OF(t->x0), tx1 = TILE_OF(t->x1), ty1 = TILE_OF(t->y1);
+        if (tx0 == tx1 && TILE_OF(t->y0) == ty1) { /* most triangles: one tile */
+            start[ty1 * tiles_x + tx0 + 1]++;
+            continue;
+        }
+        for (int ty = TILE_OF(t->y0); ty <= ty1; ty++)
+            for (int tx = tx0; tx <= tx1; tx++)
                 start[ty * tiles_x + tx + 1]++;
     }
     for (int k = 0; k < n_tiles; k++)
@@ -69,10 +76,16 @@ static int bin(struct batch *b, int tiles_x, int n_tiles)
     /* fill, using start[t] as tile t's write position, then shift the offsets back */
     for (uint32_t i = 0; i < b->n_tris; i++) {
         const struct setup_tri *t = &b->tris[i];
-        for (int ty = t->y0 / BATCH_TILE; ty <= t->y1 / BATCH_TILE; ty++)
-            for (int tx = t->x0 / BATCH_TILE; tx <= t->x1 / BATCH_TILE; tx++)
+        const int tx0 = TILE_OF(t->x0), tx1 = TILE_OF(t->x1), ty1 = TILE_OF(t->y1);
+        if (tx0 == tx1 && TILE_OF(t->y0) == ty1) {
+            b->bin_tris[start[ty1 * tiles_x + tx0]++] = i;
+            continue;
+        }
+        for (int ty = TILE_OF(t->y0); ty <= ty1; ty++)
+            for (int tx = tx0; tx <= tx1; tx++)
                 b->bin_tris[start[ty * tiles_x + tx]++] = i;
     }
+#undef TILE_OF
     for (int k = n_tiles; k > 0; k--)
         start[k] = start[k - 1];
     start[0] = 0;
