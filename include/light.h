@@ -159,6 +159,10 @@ SIMD_INLINE void light_normalize_v(vf v[3])
  * a final 1 * x, which is exact). */
 static inline vf light_pow_v_k(vf x, int k, float n)
 {
+    if (k == 32) { /* the default Ns: five squarings, no loop */
+        x *= x, x *= x, x *= x, x *= x;
+        return x * x;
+    }
     if (k && (k & (k - 1)) == 0) {
         for (; k > 1; k >>= 1)
             x *= x;
