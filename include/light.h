@@ -212,14 +212,12 @@ static inline vf light_ambient_v(const struct light_env *env, vf up, int k)
     return sky == ground ? vf_set(sky) : vf_set(ground) + up * vf_set(sky - ground);
 }
 
-/* light_terms for every lane's point (n, v: unit vectors, one component per vector): in
- * every lane exactly what light_terms gives */
+/* light_terms_v_k's sums for the first nc channels (1 with grey lights, else 3) */
 SIMD_INLINE void
-light_terms_v_k(const struct light_env *env, const vf n[3], const vf v[3], float ns, int pow_k,
-                vf d_out[3], vf s_out[3])
+light_terms_v_nc(const struct light_env *env, const vf n[3], const vf v[3], float ns, int pow_k,
+                 const int nc, vf d_out[3], vf s_out[3])
 {
     vf up = vf_set(0.5f) + vf_set(0.5f) * n[1], dd, ss;
-    const int nc = env->grey ? 1 : 3; /* grey: channel 0's floats are the others' */
     if (env->n == 1) { /* one light (the default): no sums to keep, fewer registers */
         const float *col = env->col[0];
         light_one_v(env->dir[0], n, v, ns, pow_k, &dd, &ss);
@@ -242,8 +240,21 @@ light_terms_v_k(const struct light_env *env, const vf n[3], const vf v[3], float
             s_out[k] = s[k];
         }
     }
+    for (int k = nc; k < 3; k++) /* grey: channel 0's floats are the others' */
+        d_out[k] = d_out[0], s_out[k] = s_out[0];
+}
+
+/* light_terms for every lane's point (n, v: unit vectors, one component per vector): in
+ * every lane exactly what light_terms gives. Grey lights compute one channel (each copy
+ * with a loop of known length: the terms stay in registers). */
+SIMD_INLINE void
+light_terms_v_k(const struct light_env *env, const vf n[3], const vf v[3], float ns, int pow_k,
+                vf d_out[3], vf s_out[3])
+{
     if (env->grey)
-        d_out[1] = d_out[2] = d_out[0], s_out[1] = s_out[2] = s_out[0];
+        light_terms_v_nc(env, n, v, ns, pow_k, 1, d_out, s_out);
+    else
+        light_terms_v_nc(env, n, v, ns, pow_k, 3, d_out, s_out);
 }
 
 /* light_terms_v_k with pow_k = light_pow_int(ns) */
