@@ -99,9 +99,10 @@ static inline float light_pow(float x, float n)
     return x > 0 || n <= 0 ? powf(x, n) : 0; /* 0^n = 0 exactly (n > 0): skip the call */
 }
 
-/* D and S (see above) at one point; n and v unit length. */
-static inline void light_terms(const struct light_env *env, const float n[3], const float v[3],
-                               float ns, float d_out[3], float s_out[3])
+/* light_terms' sums for the first nc channels (1 with grey lights, else 3); the others
+ * copy channel 0 */
+static inline void light_terms_nc(const struct light_env *env, const float n[3], const float v[3],
+                                  float ns, const int nc, float d_out[3], float s_out[3])
 {
     float d[3] = {0, 0, 0}, s[3] = {0, 0, 0};
     for (int i = 0; i < env->n; i++) {
@@ -113,20 +114,31 @@ static inline void light_terms(const struct light_env *env, const float n[3], co
         float ndh = (n[0] * h[0] + n[1] * h[1] + n[2] * h[2]) * ih;
         float dd = ndl > 0 ? ndl : 0;
         float ss = light_pow(ndh > 0 ? ndh : 0, ns);
-        for (int k = 0; k < (env->grey ? 1 : 3); k++) {
+        for (int k = 0; k < nc; k++) {
             d[k] += dd * col[k];
             s[k] += ss * col[k];
         }
     }
     float up = 0.5f + 0.5f * n[1];
-    for (int k = 0; k < (env->grey ? 1 : 3); k++) {
+    for (int k = 0; k < nc; k++) {
         float sky = env->sky[k], ground = env->ground[k];
         float a = sky == ground ? sky : ground + up * (sky - ground); /* exact when constant */
         d_out[k] = a + LIGHT_DIFFUSE * d[k];
         s_out[k] = s[k];
     }
-    if (env->grey) /* channel 0's floats are the others' */
-        d_out[1] = d_out[2] = d_out[0], s_out[1] = s_out[2] = s_out[0];
+    for (int k = nc; k < 3; k++)
+        d_out[k] = d_out[0], s_out[k] = s_out[0];
+}
+
+/* D and S (see above) at one point; n and v unit length. Grey lights: one channel computed
+ * (the same floats as the others'). */
+static inline void light_terms(const struct light_env *env, const float n[3], const float v[3],
+                               float ns, float d_out[3], float s_out[3])
+{
+    if (env->grey)
+        light_terms_nc(env, n, v, ns, 1, d_out, s_out);
+    else
+        light_terms_nc(env, n, v, ns, 3, d_out, s_out);
 }
 
 /* c = albedo * D + ks * S (unclamped) */
