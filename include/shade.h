@@ -146,13 +146,17 @@ shade_fragment_v(const struct shade_ctx *c, enum shade_mode mode, enum tex_filte
         light_normalize_v(n);
         light_terms_v_k(&c->lights, n, vv, t->mat->ns, pow_k, d, sp);
     }
+    if (mode == SHADE_GOURAUD && c->lights.grey) { /* the test outside the loop: unrolled */
+        const vf dg = var[VARY_GOURAUD_D], sg = var[VARY_GOURAUD_S(true)];
+        for (int k = 0; k < 3; k++)
+            rgb_out[k] = albedo[k] * dg + vf_set(ks[k]) * sg;
+        return;
+    }
     for (int k = 0; k < 3; k++) {
         if (mode == SHADE_PHONG)
             rgb_out[k] = albedo[k] * d[k] + vf_set(ks[k]) * sp[k];
         else if (mode == SHADE_FLAT)
             rgb_out[k] = albedo[k] * vf_set(t->flat_d[k]) + vf_set(ks[k]) * vf_set(t->flat_s[k]);
-        else if (mode == SHADE_GOURAUD && c->lights.grey)
-            rgb_out[k] = albedo[k] * var[VARY_GOURAUD_D] + vf_set(ks[k]) * var[VARY_GOURAUD_S(true)];
         else if (mode == SHADE_GOURAUD)
             rgb_out[k] = albedo[k] * var[VARY_GOURAUD_D + k] +
                          vf_set(ks[k]) * var[VARY_GOURAUD_S(false) + k];
