@@ -89,10 +89,10 @@ static inline void shade_fragment(const struct shade_ctx *c, enum shade_mode mod
         light_combine(albedo, t->flat_d, t->flat_s, t->mat->ks, rgb_out);
         return;
     case SHADE_GOURAUD:
-        if (c->lights.grey) {
-            const float *ks = t->mat->ks, dg = var[VARY_GOURAUD_D], sg = var[VARY_GOURAUD_S(true)];
-            for (int k = 0; k < 3; k++) /* light_combine's sums, one D and one S */
-                rgb_out[k] = albedo[k] * dg + ks[k] * sg;
+        if (c->lights.grey) { /* one D and one S for the three channels */
+            const float dg = var[VARY_GOURAUD_D], sg = var[VARY_GOURAUD_S(true)];
+            light_combine(albedo, (const float[3]){dg, dg, dg}, (const float[3]){sg, sg, sg},
+                          t->mat->ks, rgb_out);
         } else {
             light_combine(albedo, var + VARY_GOURAUD_D, var + VARY_GOURAUD_S(false), t->mat->ks,
                           rgb_out);

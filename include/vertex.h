@@ -89,8 +89,16 @@ struct vertex_uniforms {
     struct light_env lights;
 };
 
-/* Number of varyings written for a shading mode / debug view (grey: light_env.grey). */
-int vertex_varying_count(enum shade_mode shade, enum debug_view view, bool grey);
+/* Number of varyings written for a shading mode / debug view (grey: light_env.grey). Inline:
+ * the span stage asks for every triangle. */
+static inline int vertex_varying_count(enum shade_mode shade, enum debug_view view, bool grey)
+{
+    if (view == VIEW_NORMALS || shade == SHADE_PHONG)
+        return 8;
+    if (shade == SHADE_GOURAUD)
+        return grey ? 4 : 8;
+    return 2;
+}
 /* Position vertices i0 .. i1-1 of m into out[i0 .. i1): clip position, outcode, window
  * position and snap; wpos and var wait for vertex_shade. Ranges may run on different
  * threads. */

@@ -152,9 +152,7 @@ static inline int span_n_var(const struct span_ctx *s, enum shade_mode mode)
     /* (the depth-only pass has no shading record: never look at s->st there) */
     return mode == SHADE_WIRE        ? 0
            : s->st->vcolor           ? VARY_COLOR + 3
-           : mode == SHADE_PHONG   ? 8
-           : mode == SHADE_GOURAUD ? (s->shade->lights.grey ? 4 : 8) /* vertex_varying_count */
-                                   : 2;
+           : vertex_varying_count(mode, VIEW_COLOR, s->shade->lights.grey);
 }
 
 /* What the texture's level of detail needs (trilinear): the planes of u, v and q per pixel

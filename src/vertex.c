@@ -17,15 +17,6 @@ void vertex_run_avx2(const struct mesh *m, const struct vertex_uniforms *u,
 static void vertex_run_base(const struct mesh *m, const struct vertex_uniforms *u,
                             struct vertex_out *out, uint32_t i0, uint32_t i1);
 
-int vertex_varying_count(enum shade_mode shade, enum debug_view view, bool grey)
-{
-    if (view == VIEW_NORMALS || shade == SHADE_PHONG)
-        return 8;
-    if (shade == SHADE_GOURAUD)
-        return grey ? 4 : 8;
-    return 2;
-}
-
 void vertex_light(const struct vertex_uniforms *u, const float n[3], const float p[3], float ns,
                   float d_out[3], float s_out[3])
 {
