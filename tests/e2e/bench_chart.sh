@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
-# bench_chart.sh: `rastty bench --chart` and `--sweep NAME` from the command line, at tiny
-# sizes (the full chart is a benchmark: `make chart`). The CSV headers are exact, every row
-# is there, methods that draw the same pixels get the same error, the ideal's own methods
-# score infinity, the SVG is well formed, the terminal chart comes out through the encoder,
-# and bad combinations of flags are one-line errors with exit status 2.
+# bench_chart.sh: `rastty bench` (the viewer frame, the encodings), `--chart` and `--sweep NAME`
+# from the command line, at tiny sizes (the full chart is a benchmark: `make chart`). The CSV
+# headers are exact, every row is there, methods that draw the same pixels get the same error,
+# the ideal's own methods score infinity, the SVG is well formed, the terminal chart comes out
+# through the encoder, and bad combinations of flags are one-line errors with exit status 2.
 source "$(dirname "$0")/lib/common.sh"
 
 CSV=$OUT/chart.csv SVG=$OUT/chart.svg
@@ -96,6 +96,18 @@ for s in grazing depthrange magnitude sliver nearplane minification; do
 done
 z16_fails() { grep -q "^failure point z16 *177.828 (theory: 177.828)" $OUT/depthrange.txt; }
 check depthrange_z16_fails_where_theory_says z16_fails
+
+# the plain bench: the viewer's frame first (render + encode: positive times, the whole frame
+# at least either part), then the table of encodings (lossless ones decode to the exact frame)
+bench_scene() {
+    "$BIN" bench assets/cube.obj --cols 40 --rows 12 --frames 4 > $OUT/scene.txt || return 1
+    awk '/cube.obj: viewer frame .*median/ { f = $0; sub(/.*median /, "", f); split(f, w, " ")
+                                             r = w[4]; e = w[7]; sub(/\)/, "", e)
+                                             if (r > 0 && e > 0 && w[1] >= r && w[1] >= e) ok = 1 }
+         /^  diff truecolor .* inf +inf +0$/ { lossless = 1 }
+         END { exit !(ok && lossless) }' $OUT/scene.txt || { cat $OUT/scene.txt; return 1; }
+}
+check bench_viewer_frame_then_encodings bench_scene
 
 expect2() { # STATUS 2, one line on stderr matching PATTERN
     local pat=$1; shift
