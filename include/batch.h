@@ -12,7 +12,9 @@
  *
  * With several threads the back end works by screen tile, as llvmpipe does: the batch's
  * triangles are binned into BATCH_TILE x BATCH_TILE tiles (each tile's list in submission
- * order), and the threads take tiles from a shared counter; a thread draws all of a tile's
+ * order), and the threads take tiles from a shared counter, the tiles with the most
+ * triangles first (the longest jobs first: the last tiles, which one thread may finish
+ * while the others wait, are the short ones); a thread draws all of a tile's
  * triangles with its own span_ctx, clipped to the tile. The pool's threads start at once
  * and the caller joins when it is done with other work (the pipeline sets up the next batch
  * meanwhile). A pixel belongs to one tile and every pixel's value depends only on its
@@ -49,6 +51,10 @@ struct batch {
      * bin_tris[bin_start[t] .. bin_start[t + 1]) */
     uint32_t *bin_start, *bin_tris;
     size_t bin_start_cap, bin_tris_cap;
+    /* the tiles that hold a triangle, most triangles first (the order threads take them;
+     * low 32 bits: the tile) */
+    uint64_t *tile_order;
+    size_t tile_order_cap;
     /* hit[k * cap + i] = 1 once thread k found a pixel of triangle i (zeroed again by
      * batch_draw_finish) */
     uint8_t *hit;
@@ -57,7 +63,8 @@ struct batch {
         raster_fn raster;
         struct span_ctx *ctx;  /* one per thread */
         int fb_w, fb_h, threads, tiles_x, n_tiles;
-        atomic_int next;       /* the next tile to hand out */
+        int n_order;           /* tiles in tile_order */
+        atomic_int next;       /* the next tile_order entry to hand out */
     } job;
 };
 

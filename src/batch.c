@@ -27,6 +27,7 @@ void batch_free(struct batch *b)
     free(b->verts);
     free(b->bin_start);
     free(b->bin_tris);
+    free(b->tile_order);
     free(b->hit);
     memset(b, 0, sizeof *b);
 }
@@ -45,6 +46,12 @@ static int reserve(void **p, size_t *cap, size_t n, size_t sz)
     *p = q;
     *cap = c;
     return 0;
+}
+
+static int key_cmp(const void *a, const void *b)
+{
+    uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
+    return (x > y) - (x < y);
 }
 
 /* each triangle into the tiles its box overlaps, in submission order (count, offsets, fill) */
@@ -68,6 +75,17 @@ static int bin(struct batch *b, int tiles_x, int n_tiles)
             for (int tx = tx0; tx <= tx1; tx++)
                 start[ty * tiles_x + tx + 1]++;
     }
+    /* the order threads take tiles in: the non-empty ones, most triangles first (keys
+     * (~count, tile): ascending keys are descending counts, ties by tile) */
+    if (reserve((void **)&b->tile_order, &b->tile_order_cap, (size_t)n_tiles, sizeof(uint64_t)))
+        return -1;
+    uint64_t *key = b->tile_order;
+    int n_order = 0;
+    for (int k = 0; k < n_tiles; k++)
+        if (start[k + 1])
+            key[n_order++] = (uint64_t)(uint32_t)~start[k + 1] << 32 | (uint32_t)k;
+    qsort(key, (size_t)n_order, sizeof *key, key_cmp);
+    b->job.n_order = n_order;
     for (int k = 0; k < n_tiles; k++)
         start[k + 1] += start[k];
     total = start[n_tiles];
@@ -98,9 +116,10 @@ static void draw_tiles(void *arg, int k)
     struct span_ctx *s = &b->job.ctx[k];
     s->hit = b->hit + (size_t)k * b->cap;
     for (;;) {
-        int t = atomic_fetch_add_explicit(&b->job.next, 1, memory_order_relaxed);
-        if (t >= b->job.n_tiles)
+        int o = atomic_fetch_add_explicit(&b->job.next, 1, memory_order_relaxed);
+        if (o >= b->job.n_order)
             return;
+        int t = (int)(uint32_t)b->tile_order[o]; /* the key's low half */
         int tx = t % b->job.tiles_x, ty = t / b->job.tiles_x;
         struct raster_rect r = {tx * BATCH_TILE, ty * BATCH_TILE,
                                 tx * BATCH_TILE + BATCH_TILE - 1, ty * BATCH_TILE + BATCH_TILE - 1};
