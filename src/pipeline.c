@@ -202,6 +202,24 @@ static void add_setup(struct pipeline *p, struct frame *f, const struct vertex_o
     f->stats->tris_drawn++;
 }
 
+/* a triangle through a clipping plane: its pieces, set up and appended (rare: out of the
+ * front end's loop, which keeps its registers for the common path) */
+static __attribute__((noinline)) void clip_and_add(struct pipeline *p, struct frame *f,
+                                                   struct vertex_out *v[3], uint32_t planes,
+                                                   int n_var, uint32_t shade)
+{
+    struct batch *bt = &p->batch[p->cur];
+    struct vertex_out *poly = &bt->verts[bt->n_verts];
+    const struct vertex_out *cv[3] = {v[0], v[1], v[2]};
+    int n = clip_triangle(cv, planes, n_var, f->u.guard_x, f->u.guard_y, poly);
+    for (int k = 0; k < n; k++)
+        if (!poly[k].projected) /* a vertex made by clipping */
+            vertex_project(&poly[k], f->fb->w, f->fb->h);
+    bt->n_verts += (uint32_t)n;
+    for (int k = 1; k + 1 < n; k++)
+        add_setup(p, f, &poly[0], &poly[k], &poly[k + 1], shade);
+}
+
 /* world position and varyings, once per vertex a drawn triangle uses */
 static void shade_vertices(const struct mesh *m, const struct frame *f, uint32_t i,
                            struct vertex_out *v[3])
@@ -320,16 +338,7 @@ static int front_end(struct pipeline *p, struct frame *f, const struct draw_item
         shade_vertices(m, f, i, v); /* clipping interpolates the varyings */
         uint32_t shade = depth_only ? bt->n_shades : add_shade(bt, f, item, m, i, v, &proto);
         stats->tris_clipped++;
-        struct vertex_out *poly = &bt->verts[bt->n_verts];
-        const struct vertex_out *cv[3] = {v[0], v[1], v[2]};
-        int n = clip_triangle(cv, any & VERTEX_NEEDS_CLIP, n_var, f->u.guard_x, f->u.guard_y,
-                              poly);
-        for (int k = 0; k < n; k++)
-            if (!poly[k].projected) /* a vertex made by clipping */
-                vertex_project(&poly[k], fb_w, fb_h);
-        bt->n_verts += (uint32_t)n;
-        for (int k = 1; k + 1 < n; k++)
-            add_setup(p, f, &poly[0], &poly[k], &poly[k + 1], shade);
+        clip_and_add(p, f, v, any & VERTEX_NEEDS_CLIP, n_var, shade);
     }
     stats->tris_in += m->n_tris;
     stats->tris_rejected += n_rejected;
