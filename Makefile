@@ -71,7 +71,7 @@ $(BUILD)/obj/span_avx2_4.o: COPY := -DSPAN_AVX2_COPY -DSIMD_LANES=4
 $(BUILD)/obj/setup_avx2.o: src/setup.c
 $(BUILD)/obj/setup_avx2.o: COPY := -DSETUP_AVX2_COPY
 $(BUILD)/obj/vertex_avx2.o: src/vertex.c
-$(BUILD)/obj/vertex_avx2.o: COPY := -DVERTEX_AVX2_COPY
+$(BUILD)/obj/vertex_avx2.o: COPY := -DVERTEX_AVX2_COPY -DSIMD_LANES=8
 $(BUILD)/obj/skybox_avx2.o: src/skybox.c
 $(BUILD)/obj/skybox_avx2.o: COPY := -DSKYBOX_AVX2_COPY -DSIMD_LANES=8
 $(AVX2_COPIES:%=$(BUILD)/obj/%.o): | $(BUILD)/obj

@@ -109,6 +109,17 @@ void vertex_run(const struct mesh *m, const struct vertex_uniforms *u, struct ve
  * used by back faces alone. */
 void vertex_shade(const struct mesh *m, const struct vertex_uniforms *u, uint32_t i,
                   struct vertex_out *o);
+/* vertex_shade for n vertices (vertex idx[k] of m into out[k]), several at a time when the
+ * mode is Gouraud or per-pixel (SIMD lanes: the square roots and divisions of eight vertices'
+ * normals and lighting in one instruction; every lane the same floats as vertex_shade). */
+void vertex_shade_many(const struct mesh *m, const struct vertex_uniforms *u,
+                       const uint32_t *idx, struct vertex_out *const *out, uint32_t n);
+/* Does vertex_shade_many gain over vertex_shade for this mesh and these uniforms? */
+static inline bool vertex_shade_batched(const struct mesh *m, const struct vertex_uniforms *u)
+{
+    return (u->shade == SHADE_GOURAUD || u->shade == SHADE_PHONG || u->view == VIEW_NORMALS) &&
+           !m->colors;
+}
 /* Outcode of a clip-space position (also used by clip.c for new vertices); the guard band
  * gx, gy >= 1 (as multiples of w: never inside the frustum). */
 static inline uint32_t vertex_outcode(const double c[4], double gx, double gy)

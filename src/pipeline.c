@@ -45,6 +45,12 @@ struct pipeline {
     struct workers *workers;  /* n_threads - 1 of them */
     struct span_ctx *ctx;     /* one per thread */
     uint32_t flush_at;        /* set-up triangles that make the back end run (see use_threads) */
+    /* vertices of set-up triangles waiting for vertex_shade_many (vertex_shade_batched):
+     * shaded together before the back end reads them; at most three per set-up triangle */
+    uint32_t *vq_idx;
+    struct vertex_out **vq_out;
+    uint32_t vq_n, vq_cap;
+    const struct mesh *vq_mesh;
 };
 
 /* What one frame's front end and back end share. */
@@ -60,12 +66,16 @@ struct frame {
 struct pipeline *pipeline_new_batch(uint32_t batch_capacity)
 {
     struct pipeline *p = calloc(1, sizeof *p);
-    if (p && (batch_init(&p->batch[0], batch_capacity, NULL) ||
-              batch_init(&p->batch[1], batch_capacity, NULL))) {
-        batch_free(&p->batch[0]);
-        free(p);
+    if (!p)
+        return NULL;
+    if (batch_init(&p->batch[0], batch_capacity, NULL) ||
+        batch_init(&p->batch[1], batch_capacity, NULL) ||
+        !(p->vq_idx = malloc(3 * (size_t)p->batch[0].cap * sizeof *p->vq_idx)) ||
+        !(p->vq_out = malloc(3 * (size_t)p->batch[0].cap * sizeof *p->vq_out))) {
+        pipeline_destroy(p);
         return NULL;
     }
+    p->vq_cap = 3 * p->batch[0].cap;
     return p;
 }
 
@@ -85,6 +95,8 @@ void pipeline_destroy(struct pipeline *p)
     batch_free(&p->batch[1]);
     workers_destroy(p->workers);
     free(p->ctx);
+    free(p->vq_idx);
+    free(p->vq_out);
     free(p);
 }
 
@@ -169,11 +181,20 @@ static void drain(struct pipeline *p, struct frame *f)
     p->in_flight = false;
 }
 
+/* the queued vertices shaded (the back end reads their varyings) */
+static void shade_queued(struct pipeline *p, const struct frame *f)
+{
+    if (p->vq_n)
+        vertex_shade_many(p->vq_mesh, &f->u, p->vq_idx, p->vq_out, p->vq_n);
+    p->vq_n = 0;
+}
+
 /* the back end for what the front end has set up: one thread draws it now; with threads
  * the pool starts on it (after the batch before it) and the front end goes on with the
  * other batch */
 static int flush(struct pipeline *p, struct frame *f, struct err *e)
 {
+    shade_queued(p, f); /* (while the pool still draws the batch before) */
     drain(p, f);
     struct batch *b = &p->batch[p->cur];
     if (batch_draw_start(b, raster_methods[f->o->raster], f->fb->w, f->fb->h, p->workers,
@@ -220,15 +241,25 @@ static __attribute__((noinline)) void clip_and_add(struct pipeline *p, struct fr
         add_setup(p, f, &poly[0], &poly[k], &poly[k + 1], shade);
 }
 
-/* world position and varyings, once per vertex a drawn triangle uses */
-static void shade_vertices(const struct mesh *m, const struct frame *f, uint32_t i,
-                           struct vertex_out *v[3])
+/* world position and varyings, once per vertex a drawn triangle uses: now, or queued for
+ * vertex_shade_many (shaded = 2) when it does them faster together and `now` is false */
+static void shade_vertices(struct pipeline *p, const struct mesh *m, const struct frame *f,
+                           uint32_t i, struct vertex_out *v[3], bool now)
 {
-    for (int k = 0; k < 3; k++)
-        if (!v[k]->shaded) {
+    const bool queue = !now && vertex_shade_batched(m, &f->u);
+    for (int k = 0; k < 3; k++) {
+        if (v[k]->shaded == 1)
+            continue;
+        f->stats->verts_lit += !v[k]->shaded;
+        if (queue && !v[k]->shaded) {
+            v[k]->shaded = 2;
+            p->vq_mesh = m;
+            p->vq_idx[p->vq_n] = m->tris[i][k];
+            p->vq_out[p->vq_n++] = v[k];
+        } else if (!queue) { /* (a queued vertex is shaded twice: the same floats) */
             vertex_shade(m, &f->u, m->tris[i][k], v[k]);
-            f->stats->verts_lit++;
         }
+    }
 }
 
 /* the shading record of the last material seen: triangles come in runs of one material */
@@ -329,17 +360,18 @@ static int front_end(struct pipeline *p, struct frame *f, const struct draw_item
                 n_no_centre++;
                 continue;
             }
-            shade_vertices(m, f, i, v);
+            shade_vertices(p, m, f, i, v, false);
             t->shade = depth_only ? bt->n_shades : add_shade(bt, f, item, m, i, v, &proto);
             bt->n_tris++;
             stats->tris_drawn++;
             continue;
         }
-        shade_vertices(m, f, i, v); /* clipping interpolates the varyings */
+        shade_vertices(p, m, f, i, v, true); /* clipping interpolates the varyings */
         uint32_t shade = depth_only ? bt->n_shades : add_shade(bt, f, item, m, i, v, &proto);
         stats->tris_clipped++;
         clip_and_add(p, f, v, any & VERTEX_NEEDS_CLIP, n_var, shade);
     }
+    shade_queued(p, f);
     stats->tris_in += m->n_tris;
     stats->tris_rejected += n_rejected;
     stats->tris_culled += n_culled;
