@@ -18,9 +18,10 @@ SRCS    := $(wildcard src/*.c)
 LIBOBJS := $(patsubst src/%.c,$(BUILD)/obj/%.o,$(filter-out src/main.c,$(SRCS)))
 MAINOBJ := $(BUILD)/obj/main.o
 # x86-64: the hot stages compiled again for AVX2 and chosen at run time (include/span.h): the
-# span stage twice (eight and four lanes), interpolation setup, the vertex stage, the sky.
+# span stage twice (eight and four lanes), interpolation setup, the vertex stage, the sky, the
+# edge rasterizer.
 # Each copy is its source file with -mavx2 and its COPY flags, defining only its hot function.
-AVX2_COPIES := span_avx2 span_avx2_4 setup_avx2 vertex_avx2 skybox_avx2
+AVX2_COPIES := span_avx2 span_avx2_4 setup_avx2 vertex_avx2 skybox_avx2 raster_avx2
 ifneq ($(findstring x86_64,$(shell $(CC) -dumpmachine)),)
 LIBOBJS += $(AVX2_COPIES:%=$(BUILD)/obj/%.o)
 CFLAGS  += -DRASTTY_SPAN_AVX2
@@ -72,6 +73,8 @@ $(BUILD)/obj/setup_avx2.o: src/setup.c
 $(BUILD)/obj/setup_avx2.o: COPY := -DSETUP_AVX2_COPY
 $(BUILD)/obj/vertex_avx2.o: src/vertex.c
 $(BUILD)/obj/vertex_avx2.o: COPY := -DVERTEX_AVX2_COPY -DSIMD_LANES=8
+$(BUILD)/obj/raster_avx2.o: src/raster.c
+$(BUILD)/obj/raster_avx2.o: COPY := -DRASTER_AVX2_COPY -DSIMD_LANES=8
 $(BUILD)/obj/skybox_avx2.o: src/skybox.c
 $(BUILD)/obj/skybox_avx2.o: COPY := -DSKYBOX_AVX2_COPY -DSIMD_LANES=8
 $(AVX2_COPIES:%=$(BUILD)/obj/%.o): | $(BUILD)/obj
