@@ -100,13 +100,19 @@ for m in bunny/bunny.obj sports_car/sportsCar.obj lost_empire/lost_empire.obj; d
 done
 echo "-- the demo scene's whole viewer frame, 160x48 cells, as the viewer draws it (--lod auto,"
 echo "   --light camera; render + diff truecolor encode and nothing else between frames; median"
-echo "   of 120 frames orbiting 2 deg)"
+echo "   of 120 frames orbiting 2 deg, then the median over $rounds runs)"
 for th in 1 $cores; do
-    "$BIN" bench assets/demo.rsc --cols 160 --rows 48 --frames 120 --orbit 2 --threads $th \
-        --lod auto --light camera |
-        awk -v th=$th '/viewer frame/ { f = $0; sub(/.*median /, "", f); split(f, w, " ")
-                                        r = w[4]; e = w[7]; sub(/\)/, "", e); t = w[1] }
-                       END { printf "  threads %-3s render %.3f ms + encode %.3f ms: frame %.3f ms\n", th, r, e, t }'
+    rs=() es=() fs=()
+    for _ in $(seq "$rounds"); do
+        read -r f r e < <("$BIN" bench assets/demo.rsc --cols 160 --rows 48 --frames 120 --orbit 2 \
+            --threads $th --lod auto --light camera |
+            awk '/viewer frame/ { f = $0; sub(/.*median /, "", f); split(f, w, " ")
+                                  print w[1], w[4], w[7] + 0 }')
+        fs+=("$f") rs+=("$r") es+=("$e")
+    done
+    printf '  threads %-3s render %.3f ms + encode %.3f ms: frame %.3f ms\n' $th \
+        "$(printf '%s\n' "${rs[@]}" | med)" "$(printf '%s\n' "${es[@]}" | med)" \
+        "$(printf '%s\n' "${fs[@]}" | med)"
 done
 echo "-- OBJ load (parse + mesh build), largest shared model"
 big=$(ls -S "$S"/*/*.obj 2>/dev/null | head -n 1)
