@@ -335,17 +335,13 @@ static int front_end(struct pipeline *p, struct frame *f, const struct draw_item
          * sizes most triangles of a dense mesh do */
         int64_t box[4] = {0, 0, -1, -1};
         bool unclipped = !(any & VERTEX_NEEDS_CLIP);
-        /* culling: once per source triangle, never per clipped piece (a triangle without a
-         * centre is counted as culled when culling would drop it) */
-        const bool culls = !depth_only && o->cull != CULL_NONE;
         if (unclipped && !setup_box(v[0], v[1], v[2], fb_w, fb_h, box)) {
-            if (culls && setup_culled(o->cull, setup_front_facing(v[0], v[1], v[2])))
-                n_culled++;
-            else
-                n_no_centre++;
+            n_no_centre++; /* whatever its facing: its determinant is never computed */
             continue;
         }
-        if (culls && setup_culled(o->cull, setup_front_facing(v[0], v[1], v[2]))) {
+        /* culling: once per source triangle, never per clipped piece */
+        if (!depth_only && o->cull != CULL_NONE &&
+            setup_culled(o->cull, setup_front_facing(v[0], v[1], v[2]))) {
             n_culled++;
             continue;
         }
