@@ -214,7 +214,10 @@ TEST(triangles_without_a_pixel_centre_are_not_lit)
      * (8.1..8.4, 8.1..8.4), a zero-area one, and one whose box holds the centre (7.5, 7.5)
      * that it misses ((7.2,7.2), (7.7,7.2), (7.2,7.7)), beside the 4x4 square. Setup drops
      * all three before any lighting: only the square's four vertices are lit, and the
-     * counters add up (in = rejected + culled + no centre + drawn). */
+     * counters add up (in = rejected + culled + no centre + drawn). With back faces culled
+     * too (the three face away or have no area): the first, with no centre in its box, is
+     * dropped for that before its facing is computed and counts as no centre; the other two
+     * have centres in their boxes and are culled. */
     const char *obj = "v -7.9 7.9 0\nv -7.6 7.9 0\nv -7.9 7.6 0\n"
                       "v -10 -10 0\nv -9 -9 0\nv -8 -8 0\n"
                       "v 0 0 0\nv 4 0 0\nv 4 4 0\nv 0 4 0\n"
@@ -223,11 +226,13 @@ TEST(triangles_without_a_pixel_centre_are_not_lit)
     struct frame f;
     REQUIRE(frame_init(&f, obj, 32, 32) == 0);
     f.cam.ortho_height = 32;
-    for (int threads = 1; threads <= 2; threads++) {
-        f.ro.threads = threads;
+    for (int run = 0; run < 4; run++) {
+        f.ro.threads = 1 + run % 2;
+        f.ro.cull = run < 2 ? CULL_NONE : CULL_BACK;
         REQUIRE(draw(&f) == 0);
         CHECK_EQ_INT(f.st.tris_in, 5);
-        CHECK_EQ_INT(f.st.tris_no_centre, 3);
+        CHECK_EQ_INT(f.st.tris_culled, run < 2 ? 0 : 2);
+        CHECK_EQ_INT(f.st.tris_no_centre, run < 2 ? 3 : 1);
         CHECK_EQ_INT(f.st.tris_drawn, 2);
         CHECK_EQ_INT(f.st.tris_in, f.st.tris_rejected + f.st.tris_culled +
                                        f.st.tris_no_centre + f.st.tris_drawn);
