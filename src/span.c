@@ -477,6 +477,16 @@ PACKS_Z_FILTERS(SHADE_PHONG)
 PACKS_Z(SHADE_WIRE, TEX_NEAREST)
 #undef PACKS_Z_FILTERS
 #undef PACKS_Z
+#define PACKS_Z_ROW(MODE)                                                                      \
+    [MODE] = {packs_z_##MODE##_TEX_NEAREST, packs_z_##MODE##_TEX_BILINEAR,                     \
+              packs_z_##MODE##_TEX_TRILINEAR}
+/* by shading mode and filter (wire draws depth only: one copy for every filter) */
+static void (*const packs_z_copy[SHADE_COUNT][TEX_FILTER_COUNT])(struct span_ctx *) = {
+    PACKS_Z_ROW(SHADE_UNLIT), PACKS_Z_ROW(SHADE_FLAT), PACKS_Z_ROW(SHADE_GOURAUD),
+    PACKS_Z_ROW(SHADE_PHONG),
+    [SHADE_WIRE] = {packs_z_SHADE_WIRE_TEX_NEAREST, packs_z_SHADE_WIRE_TEX_NEAREST,
+                    packs_z_SHADE_WIRE_TEX_NEAREST}};
+#undef PACKS_Z_ROW
 /* the other methods: one function per shading mode, in packs or run by run */
 #define OTHER_METHODS(MODE)                                                                    \
     static __attribute__((noinline)) void packs_##MODE(struct span_ctx *s, enum tex_filter f)  \
@@ -494,6 +504,11 @@ OTHER_METHODS(SHADE_GOURAUD)
 OTHER_METHODS(SHADE_PHONG)
 OTHER_METHODS(SHADE_WIRE)
 #undef OTHER_METHODS
+static void (*const packs_copy[SHADE_COUNT])(struct span_ctx *, enum tex_filter) = {
+    packs_SHADE_UNLIT, packs_SHADE_FLAT, packs_SHADE_GOURAUD, packs_SHADE_PHONG,
+    packs_SHADE_WIRE};
+static void (*const runs_copy[SHADE_COUNT])(struct span_ctx *, enum tex_filter) = {
+    runs_SHADE_UNLIT, runs_SHADE_FLAT, runs_SHADE_GOURAUD, runs_SHADE_PHONG, runs_SHADE_WIRE};
 
 #ifdef SPAN_AVX2_COPY
 void SPAN_FLUSH(struct span_ctx *s)
@@ -520,37 +535,13 @@ static void SPAN_FLUSH(struct span_ctx *s)
     const enum tex_filter f = s->shade ? s->shade->filter : TEX_NEAREST;
     if ((s->persp == PERSP_CORRECT || s->persp == PERSP_AFFINE) && !s->fb->overdraw &&
         (!s->shade || s->shade->view != VIEW_NORMALS)) {
-        if (s->depth == DEPTH_Z && s->persp == PERSP_CORRECT) {
-#define PACK_FILTERS(MODE)                                                                     \
-    f == TEX_NEAREST    ? packs_z_##MODE##_TEX_NEAREST(s)                                      \
-    : f == TEX_BILINEAR ? packs_z_##MODE##_TEX_BILINEAR(s)                                     \
-                        : packs_z_##MODE##_TEX_TRILINEAR(s)
-            switch (s->mode) {
-            case SHADE_UNLIT: PACK_FILTERS(SHADE_UNLIT); break;
-            case SHADE_FLAT: PACK_FILTERS(SHADE_FLAT); break;
-            case SHADE_GOURAUD: PACK_FILTERS(SHADE_GOURAUD); break;
-            case SHADE_PHONG: PACK_FILTERS(SHADE_PHONG); break;
-            default: packs_z_SHADE_WIRE_TEX_NEAREST(s); break;
-            }
-#undef PACK_FILTERS
-        } else {
-            switch (s->mode) {
-            case SHADE_UNLIT: packs_SHADE_UNLIT(s, f); break;
-            case SHADE_FLAT: packs_SHADE_FLAT(s, f); break;
-            case SHADE_GOURAUD: packs_SHADE_GOURAUD(s, f); break;
-            case SHADE_PHONG: packs_SHADE_PHONG(s, f); break;
-            default: packs_SHADE_WIRE(s, TEX_NEAREST); break;
-            }
-        }
+        if (s->depth == DEPTH_Z && s->persp == PERSP_CORRECT)
+            packs_z_copy[s->mode][f](s);
+        else
+            packs_copy[s->mode](s, f);
         s->n_runs = s->n_pixels = 0;
         return;
     }
-    switch (s->mode) {
-    case SHADE_UNLIT: runs_SHADE_UNLIT(s, f); break;
-    case SHADE_FLAT: runs_SHADE_FLAT(s, f); break;
-    case SHADE_GOURAUD: runs_SHADE_GOURAUD(s, f); break;
-    case SHADE_PHONG: runs_SHADE_PHONG(s, f); break;
-    default: runs_SHADE_WIRE(s, f); break;
-    }
+    runs_copy[s->mode](s, f);
     s->n_runs = s->n_pixels = 0;
 }
