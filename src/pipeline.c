@@ -1,6 +1,8 @@
 /* pipeline.c: one frame over a list of draw items (see pipeline.h). */
 #include "pipeline.h"
 
+#include <assert.h>
+
 #include <stdlib.h>
 #include <string.h>
 
@@ -252,6 +254,7 @@ static void shade_vertices(struct pipeline *p, const struct mesh *m, const struc
             continue;
         f->stats->verts_lit += !v[k]->shaded;
         if (queue && !v[k]->shaded) {
+            assert(p->vq_n < p->vq_cap); /* three per set-up triangle, emptied per batch */
             v[k]->shaded = 2;
             p->vq_mesh = m;
             p->vq_idx[p->vq_n] = m->tris[i][k];

@@ -138,7 +138,6 @@ static void VERTEX_RUN(const struct mesh *m, const struct vertex_uniforms *u,
     }
 }
 
-
 /* Gouraud and the modes with normals, SIMD_LANES vertices at a time (vertex_shade_batched):
  * vertex_shade's operations in its order, a vertex per lane, so the same floats; a Gouraud
  * group whose vertices have materials of different Ns (the power is the same in every lane),
@@ -157,7 +156,7 @@ static void VERTEX_SHADE_MANY(const struct mesh *m, const struct vertex_uniforms
     uint32_t k = 0;
     for (; k + SIMD_LANES <= n; k += SIMD_LANES) {
         float ns = m->materials[m->vert_material ? m->vert_material[idx[k]] : 0].ns;
-        bool same = true;
+        bool same = true; /* (the modes with normals light per pixel: Ns does not matter) */
         for (int l = 1; l < SIMD_LANES && m->vert_material && !normals; l++)
             same &= m->materials[m->vert_material[idx[k + l]]].ns == ns;
         if (!same) {
