@@ -2,7 +2,6 @@
 #include "pipeline.h"
 
 #include <assert.h>
-
 #include <stdlib.h>
 #include <string.h>
 
