@@ -78,6 +78,17 @@ struct track {
     int max_dev;    /* largest channel deviation seen */
 };
 
+/* frame k's camera on the orbit; the headlight, when asked, follows it as in the viewer */
+static struct camera orbit_frame(const struct options *o, const struct camera *cam, int k,
+                                 struct render_opts *ro)
+{
+    struct camera c = *cam;
+    camera_turn(&c, o->orbit_deg * k, 0, 1);
+    if (o->light_camera)
+        light_use_camera(ro, &c);
+    return c;
+}
+
 /* The viewer's frame as the viewer draws it (view.c, draw_frame): render, then the one
  * encoding it sends (truecolor, only the changed cells), nothing else between frames — the
  * comparison below runs every configuration after each render, and their screens and
@@ -97,10 +108,7 @@ static int viewer_pass(const struct options *o, struct pipeline *p, const struct
     struct encode_opts eo = {.mode = PALETTE_TRUECOLOR, .glyphs = cell_geom(o->render.glyphs).glyphs};
     int rc = 0;
     for (int k = 0; k < frames && !rc; k++) {
-        struct camera c = *cam;
-        camera_turn(&c, o->orbit_deg * k, 0, 1);
-        if (o->light_camera)
-            light_use_camera(ro, &c);
+        struct camera c = orbit_frame(o, cam, k, ro);
         struct frame_stats st;
         double t0 = timing_now_ms();
         rc = ssaa_draw(ss, p, scene->items, scene->n_items, scene->has_sky ? &scene->sky : NULL,
@@ -159,10 +167,7 @@ static int bench_scene(const struct options *o, const char *path, int cols, int 
         goto done;
     uint64_t static_bytes = 0;
     for (int k = 0; k <= frames; k++) {
-        struct camera c = cam;
-        camera_turn(&c, o->orbit_deg * (k < frames ? k : frames - 1), 0, 1);
-        if (o->light_camera) /* the headlight follows the camera, as in the viewer */
-            light_use_camera(&ro, &c);
+        struct camera c = orbit_frame(o, &cam, k < frames ? k : frames - 1, &ro);
         struct frame_stats st;
         if (ssaa_draw(&ss, p, scene.items, scene.n_items, scene.has_sky ? &scene.sky : NULL, &c,
                       &ro, &fb, &st, e))
