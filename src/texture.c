@@ -168,6 +168,17 @@ void texture_free(struct texture *t)
 static void box_down(const uint8_t *src, int sw, int sh, uint8_t *dst, int dw, int dh,
                      float *tmp)
 {
+    if (sw == 2 * dw && sh == 2 * dh) { /* each texel the mean of a 2x2 block: the float sums
+                                           below are exact there, (a+b+c+d)/4 + 0.5 floored */
+        for (int y = 0; y < dh; y++) {
+            const uint8_t *r0 = src + (size_t)(2 * y) * (size_t)sw * 4, *r1 = r0 + (size_t)sw * 4;
+            uint8_t *d = dst + (size_t)y * (size_t)dw * 4;
+            for (int x = 0; x < dw; x++, d += 4, r0 += 8, r1 += 8)
+                for (int c = 0; c < 4; c++)
+                    d[c] = (uint8_t)((r0[c] + r0[c + 4] + r1[c] + r1[c + 4] + 2) >> 2);
+        }
+        return;
+    }
     /* horizontal: tmp is sh rows of dw texels (4 floats each) */
     for (int y = 0; y < sh; y++)
         for (int x = 0; x < dw; x++) {

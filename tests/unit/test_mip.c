@@ -41,6 +41,38 @@ TEST(mip_chain_is_an_area_weighted_box_filter)
     texture_free(&tx);
 }
 
+/* every level of an even-sized texture: each texel the mean of its 2x2 block, rounded
+ * (floor(sum / 4 + 1/2): a sum of 4k + 2 rounds up), whatever the bytes */
+TEST(mip_levels_of_even_sizes_are_rounded_block_means)
+{
+    enum { W = 32, H = 16 };
+    uint8_t px[W * H * 4];
+    unsigned seed = 12345;
+    for (size_t i = 0; i < sizeof px; i++)
+        px[i] = (uint8_t)((seed = seed * 1103515245u + 12345u) >> 16);
+    struct texture tx;
+    REQUIRE(texture_from_rgba(W, H, px, &tx, NULL) == 0);
+    CHECK_EQ_INT(tx.n_levels, 6);
+    int bad = 0, ups = 0;
+    for (int l = 1; l < tx.n_levels; l++) {
+        const struct texture_level *up = &tx.level[l - 1], *lv = &tx.level[l];
+        if (up->w != 2 * lv->w || up->h != 2 * lv->h)
+            continue; /* 2x1 -> 1x1: not a 2x2 block */
+        for (int y = 0; y < lv->h; y++)
+            for (int x = 0; x < lv->w * 4; x++) {
+                const uint8_t *a = up->rgba + ((size_t)(2 * y) * (size_t)up->w) * 4 +
+                                   (size_t)(x / 4) * 8 + (size_t)(x % 4);
+                const uint8_t *b = a + (size_t)up->w * 4;
+                int sum = a[0] + a[4] + b[0] + b[4];
+                ups += sum % 4 == 2;
+                bad += lv->rgba[(size_t)y * (size_t)lv->w * 4 + (size_t)x] != (sum + 2) / 4;
+            }
+    }
+    CHECK_EQ_INT(bad, 0);
+    CHECK(ups > 0); /* the data has halves to round */
+    texture_free(&tx);
+}
+
 TEST(footprint_picks_levels_and_blends)
 {
     uint8_t px[8 * 8 * 4];
