@@ -3,7 +3,8 @@
  * The decoder is chosen by the file's content (magic bytes), never by its name:
  *   PNG        libpng (row by row)           JPEG        libjpeg-turbo (DCT scaling)
  *   PNM P5/P6  rastty's own (8 and 16 bit)   Radiance HDR rastty's own (flat and RLE)
- *   TGA, BMP, PSD, GIF   stb_image, only after its header was read and checked
+ *   TGA        rastty's own (24/32-bit colour, 8-bit grey; raw and RLE)
+ *   other TGA, BMP, PSD, GIF   stb_image, only after its header was read and checked
  * Why: Debian's stb_image reads past its buffer on 16-bit PNM, loops forever on truncated
  * HDR and has undefined behaviour in its JPEG decoder; PNG and JPEG, the formats real models
  * ship, go to the libraries written and fuzzed for them (libjpeg-turbo is also several
@@ -14,7 +15,7 @@
  *   - images larger than max_side on a side come out box-filtered down by a power of two
  *     (JPEG: the decoder's own 1/2, 1/4, 1/8 scaling) so both sides fit, with a warning;
  *     PNG, JPEG, PNM and HDR are downscaled while decoding, so memory stays near the output
- *     size; TGA/BMP/PSD/GIF (decoded whole by stb) and interlaced PNGs above
+ *     size; TGA/BMP/PSD/GIF (decoded whole) and interlaced PNGs above
  *     IMGDEC_MAX_WHOLE (4096) per side are refused instead;
  *   - a file whose pixel data is shorter than its header's dimensions need is refused
  *     (truncated), before decoding where the format allows it (PNM, flat HDR).

@@ -1,11 +1,14 @@
 /* test_texture.c: texel conventions (v = 1 is the top row, centres at half texels, repeat),
  * both filters, and loading (LDR formats, HDR tone mapping, corrupt files). */
 #include <math.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <string.h>
 
 #include <stdlib.h>
 #include <time.h>
+
+#include <stb_image.h>
 
 #include "file.h"
 #include "imgdec.h"
@@ -329,6 +332,110 @@ TEST(stb_formats_checked_against_file_size)
     CHECK(strcmp(e.msg, "t: TGA of 3855x3855 cannot fit in 65 bytes (at least 464426): "
                         "truncated") == 0);
     CHECK(tx.rgba == NULL);
+}
+
+/* A TGA of w x h (type 2, 3, 10 or 11; bits 8, 24 or 32; rows top-first when top) from a
+ * pseudo-random image with runs: RLE packets of both kinds, some of them crossing rows. */
+static size_t make_tga(uint8_t *f, int type, int bits, bool top, int w, int h, unsigned seed)
+{
+    const int bpp = bits / 8, n = w * h;
+    memset(f, 0, 18);
+    f[0] = 3, f[2] = (uint8_t)type, f[12] = (uint8_t)w, f[14] = (uint8_t)h, f[16] = (uint8_t)bits;
+    f[17] = top ? 0x20 : 0;
+    size_t pos = 21; /* after a 3-byte image id */
+    uint8_t px[64 * 64 * 4];
+    for (int i = 0; i < n; i++) {
+        seed = seed * 1103515245u + 12345u;
+        if (i > 0 && (seed >> 28) < 9) /* a run: the pixel before again */
+            memcpy(px + i * bpp, px + (i - 1) * bpp, (size_t)bpp);
+        else
+            for (int c = 0; c < bpp; c++)
+                px[i * bpp + c] = (uint8_t)((seed = seed * 1103515245u + 12345u) >> 20);
+    }
+    if (type < 9) {
+        memcpy(f + pos, px, (size_t)(n * bpp));
+        return pos + (size_t)(n * bpp);
+    }
+    for (int i = 0; i < n;) {
+        int k = 1; /* the run at i, up to 128 */
+        while (i + k < n && k < 128 && !memcmp(px + (i + k) * bpp, px + i * bpp, (size_t)bpp))
+            k++;
+        if (k > 1) {
+            f[pos++] = (uint8_t)(0x80 | (k - 1));
+            memcpy(f + pos, px + i * bpp, (size_t)bpp);
+            pos += (size_t)bpp;
+        } else { /* raw: up to the next run */
+            while (i + k < n && k < 128 &&
+                   memcmp(px + (i + k) * bpp, px + (i + k - 1) * bpp, (size_t)bpp))
+                k++;
+            f[pos++] = (uint8_t)(k - 1);
+            memcpy(f + pos, px + i * bpp, (size_t)(k * bpp));
+            pos += (size_t)(k * bpp);
+        }
+        i += k;
+    }
+    return pos;
+}
+
+/* rastty's TGA decoder against stb's, byte for byte, on every kind it takes */
+TEST(tga_decodes_as_stb_does)
+{
+    static uint8_t f[18 + 3 + 64 * 64 * 5];
+    static const int kinds[][2] = {{2, 24}, {2, 32}, {3, 8}, {10, 24}, {10, 32}, {11, 8}};
+    int compared = 0;
+    for (size_t k = 0; k < sizeof kinds / sizeof kinds[0]; k++)
+        for (int top = 0; top < 2; top++) {
+            int w = 37 + (int)k, h = 23 + top;
+            size_t len = make_tga(f, kinds[k][0], kinds[k][1], top, w, h, (unsigned)(k * 7 + top));
+            struct texture tx;
+            struct err e;
+            REQUIRE(decode(f, len, &tx, NULL, &e) == 0);
+            int sw, sh, n;
+            uint8_t *ref = stbi_load_from_memory(f, (int)len, &sw, &sh, &n, 4);
+            REQUIRE(ref != NULL);
+            CHECK_EQ_INT(tx.w, sw);
+            CHECK_EQ_INT(tx.h, sh);
+            if (tx.w == sw && tx.h == sh && memcmp(tx.rgba, ref, (size_t)(sw * sh * 4)) != 0)
+                test_fail(t, __FILE__, __LINE__, "type %d, %d bits, %s: bytes differ from stb",
+                          kinds[k][0], kinds[k][1], top ? "top-first" : "bottom-first");
+            compared++;
+            stbi_image_free(ref);
+            texture_free(&tx);
+        }
+    CHECK_EQ_INT(compared, 12);
+    /* pixel data that stops short: named, not decoded from nothing */
+    size_t len = make_tga(f, 10, 24, false, 40, 20, 1);
+    struct texture tx;
+    struct err e;
+    CHECK_EQ_INT(decode(f, len - 40, &tx, NULL, &e), -1);
+    CHECK_STR_CONTAINS(e.msg, "t: TGA pixel data ends at row");
+    CHECK(tx.rgba == NULL);
+    /* the shared textures too */
+    const char *dir = test_models_dir();
+    if (!dir) {
+        test_skip(t, "no ../shared/models: the shared TGA textures not compared");
+        return;
+    }
+    static const char *const files[] = {"african_head/african_head_diffuse.tga",
+                                        "african_head/african_head_nm.tga",
+                                        "african_head/african_head_spec.tga",
+                                        "diablo3_pose/diablo3_pose_diffuse.tga"};
+    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
+        char path[1024];
+        snprintf(path, sizeof path, "%s/%s", dir, files[i]);
+        char *data;
+        size_t n;
+        REQUIRE(file_read(path, FILE_MAX_IMAGE, &data, &n) == 0);
+        REQUIRE(decode(data, n, &tx, NULL, &e) == 0);
+        int sw, sh, c;
+        uint8_t *ref = stbi_load_from_memory((const uint8_t *)data, (int)n, &sw, &sh, &c, 4);
+        REQUIRE(ref != NULL);
+        if (tx.w != sw || tx.h != sh || memcmp(tx.rgba, ref, (size_t)sw * (size_t)sh * 4))
+            test_fail(t, __FILE__, __LINE__, "%s: differs from stb", files[i]);
+        stbi_image_free(ref);
+        texture_free(&tx);
+        free(data);
+    }
 }
 
 /* a 151-byte PSD with 4 channels: stb's matte removal casts -12750 to a byte (UBSan, found by
