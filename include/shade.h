@@ -39,12 +39,12 @@ void shade_ctx_init(struct shade_ctx *c, const struct render_opts *o, const floa
                     int ortho, const float view_back[3]);
 
 static inline void shade_albedo(const struct shade_ctx *c, const struct shade_tri *t,
-                                const float *var, float albedo_out[3])
+                                const float *var, float lambda, float albedo_out[3])
 {
     const float *kd = t->base;
     if (t->tex) {
         float tx[3];
-        texture_sample(t->tex, c->filter, var[0], var[1], 0, tx);
+        texture_sample(t->tex, c->filter, var[0], var[1], lambda, tx);
         albedo_out[0] = kd[0] * tx[0];
         albedo_out[1] = kd[1] * tx[1];
         albedo_out[2] = kd[2] * tx[2];
@@ -71,8 +71,12 @@ static inline void shade_phong(const struct shade_ctx *c, const struct shade_tri
     light_terms(&c->lights, n, vv, t->mat->ns, d_out, s_out);
 }
 
-static inline void shade_fragment(const struct shade_ctx *c, enum shade_mode mode,
-                                  const struct shade_tri *t, const float *var, float rgb_out[3])
+/* One pixel: the colour from its varyings; lambda is its texture level of detail
+ * (texture_lod, trilinear only; 0 otherwise). In every lane shade_fragment_v gives exactly
+ * this. */
+static inline void shade_fragment_l(const struct shade_ctx *c, enum shade_mode mode,
+                                    const struct shade_tri *t, const float *var, float lambda,
+                                    float rgb_out[3])
 {
     float albedo[3], d[3], s[3];
     if (c->view == VIEW_NORMALS) {
@@ -83,7 +87,7 @@ static inline void shade_fragment(const struct shade_ctx *c, enum shade_mode mod
             rgb_out[k] = n[k] * in + 0.5f;
         return;
     }
-    shade_albedo(c, t, var, albedo);
+    shade_albedo(c, t, var, lambda, albedo);
     switch (mode) {
     case SHADE_FLAT:
         light_combine(albedo, t->flat_d, t->flat_s, t->mat->ks, rgb_out);
@@ -106,6 +110,13 @@ static inline void shade_fragment(const struct shade_ctx *c, enum shade_mode mod
         rgb_out[0] = albedo[0], rgb_out[1] = albedo[1], rgb_out[2] = albedo[2];
         return;
     }
+}
+
+/* shade_fragment_l without a level of detail (level 0) */
+static inline void shade_fragment(const struct shade_ctx *c, enum shade_mode mode,
+                                  const struct shade_tri *t, const float *var, float rgb_out[3])
+{
+    shade_fragment_l(c, mode, t, var, 0, rgb_out);
 }
 
 /* A vector of pixels at once (SIMD_LANES; the normals view goes pixel by pixel through

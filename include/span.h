@@ -104,10 +104,11 @@ static inline void span_end(struct span_ctx *s)
 /* The instruction set the span stage runs on. On x86-64 the build makes two more copies of
  * it for AVX2 (the same C and the same bytes, fewer instructions: blends, rounding,
  * three-operand forms), one with eight lanes and one with four, used when the CPU has AVX2:
- * a triangle of up to four pixels goes to the four-lane copy, any other to the eight-lane
- * one. RASTTY_SIMD in the environment chooses at the first frame; span_isa_set chooses now:
- * "auto" (AVX2 where possible), "sse2", "avx2" (both AVX2 copies), "avx2-4" or "avx2-8" (one
- * of them for every triangle: for measuring and tests); -1 when this build or CPU cannot.
+ * a triangle of one pixel is drawn without lanes (the default methods; it would pay a
+ * group's setting up for one lane), one of up to four pixels in the four-lane copy, any
+ * other in the eight-lane one. RASTTY_SIMD in the environment chooses at the first frame; span_isa_set chooses now:
+ * "auto" (AVX2 where possible), "sse2", "avx2" (by triangle size as above), "avx2-4" or
+ * "avx2-8" (one of them for every triangle: for measuring and tests); -1 when this build or CPU cannot.
  * span_isa_name: the one in use. */
 enum span_isa { SPAN_ISA_SSE2, SPAN_ISA_AVX2, SPAN_ISA_AVX2_4, SPAN_ISA_AVX2_8 };
 int span_isa_set(const char *name);

@@ -186,7 +186,7 @@ static inline void texture_sample(const struct texture *t, enum tex_filter f, fl
         texture_nearest(&base, u, v, rgb_out);
         return;
     }
-    float frac;
+    float frac = 0;
     int l0 = f == TEX_TRILINEAR ? texture_levels(t, lambda, &frac) : 0;
     if (l0 == 0)
         texture_bilinear(&base, u, v, rgb_out);
@@ -309,6 +309,32 @@ static inline void texture_bilinear_v_levels(const struct texture *t, vi lv, vf 
         vf b = c01 + ax * (c11 - c01);
         rgb_out[ch] = (a + ay * (b - a)) * k;
     }
+}
+
+/* vf_log2 of one float: the same operations */
+static inline float texture_log2(float x)
+{
+    int32_t b;
+    __builtin_memcpy(&b, &x, sizeof b);
+    float e = (float)(((b >> 23) & 255) - 127);
+    int32_t m = (b & 0x7fffff) | 0x3f800000;
+    float t;
+    __builtin_memcpy(&t, &m, sizeof t);
+    t -= 1.0f;
+    return e + t * (1.4234853f + t * (-0.5877338f + t * 0.1655588f));
+}
+
+/* texture_lod_v of one pixel: the same operations */
+static inline float texture_lod(const struct texture *t, float dudx, float dvdx, float dudy,
+                                float dvdy)
+{
+    float w = (float)t->w, h = (float)t->h;
+    float ax = dudx * w, bx = dvdx * h, ay = dudy * w, by = dvdy * h;
+    float rx = ax * ax + bx * bx, ry = ay * ay + by * by;
+    float r2 = rx > ry ? rx : ry;
+    if (!(r2 > 1e-30f && r2 < 1e30f))
+        return -1;
+    return 0.5f * texture_log2(r2);
 }
 
 /* The level of detail (texture_sample's lambda) of every lane's pixel from the screen-space

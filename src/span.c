@@ -15,15 +15,18 @@
  * same bytes, in VEX encoding with blends, rounding and 32-bit multiplies (simd.h). A
  * triangle of at most four pixels fills one group of four: the four-lane copy draws it with
  * half the per-lane loads and stores of a group of eight (span_flush). */
-void span_flush_avx2(struct span_ctx *s);
-void span_flush_avx2_4(struct span_ctx *s);
+void span_flush_avx2(struct span_ctx *s, bool pixelwise);
+void span_flush_avx2_4(struct span_ctx *s, bool pixelwise);
+/* triangles of at most this many pixels are drawn a pixel at a time (pixels()): one pixel
+ * 7.46M -> 7.13M instructions a frame on the demo at 160x96, two 7.21M (Phong slower) */
+#define SPAN_PIXELS_MAX 1
 #if defined(SPAN_AVX2_COPY) && SIMD_LANES == 8
 #define SPAN_FLUSH span_flush_avx2
 #elif defined(SPAN_AVX2_COPY)
 #define SPAN_FLUSH span_flush_avx2_4
 #else
 #define SPAN_FLUSH span_flush_base
-static void span_flush_base(struct span_ctx *s);
+static void span_flush_base(struct span_ctx *s, bool pixelwise);
 
 void span_begin(struct span_ctx *s, const struct setup_tri *t, const struct shade_tri *st,
                 uint32_t tri_index)
@@ -91,16 +94,16 @@ void span_flush(struct span_ctx *s)
 {
     switch (span_isa_get()) {
 #ifdef RASTTY_SPAN_AVX2 /* (span_isa_set refuses AVX2 in builds without the copies) */
-    case SPAN_ISA_AVX2_4: span_flush_avx2_4(s); break;
-    case SPAN_ISA_AVX2_8: span_flush_avx2(s); break;
+    case SPAN_ISA_AVX2_4: span_flush_avx2_4(s, false); break;
+    case SPAN_ISA_AVX2_8: span_flush_avx2(s, false); break;
     case SPAN_ISA_AVX2: /* a triangle of up to four pixels fills one group of four */
         if (s->n_pixels <= 4)
-            span_flush_avx2_4(s);
+            span_flush_avx2_4(s, s->n_pixels <= SPAN_PIXELS_MAX);
         else
-            span_flush_avx2(s);
+            span_flush_avx2(s, false);
         break;
 #endif
-    default: span_flush_base(s); break;
+    default: span_flush_base(s, false); break;
     }
 }
 #endif
@@ -458,6 +461,75 @@ static inline __attribute__((always_inline)) void packs(struct span_ctx *s,
     s->shaded += shaded;
 }
 
+/* The default methods (depth z, perspective-correct) one pixel at a time, for the triangles
+ * of a pixel or two (most triangles of a dense mesh at terminal sizes): a group of lanes
+ * costs its setting up (the triangle's planes in every lane, the lanes filled run by run,
+ * stored back lane by lane) whatever it holds. Each pixel takes the operations a lane of
+ * pack_group would, in the same order, so the bytes are the same (shade.h, texture.h,
+ * light.h: every vector function is its scalar one in each lane). */
+static inline __attribute__((always_inline)) void pixels(struct span_ctx *s,
+                                                         const enum shade_mode mode)
+{
+    const struct setup_interp *in = &s->in;
+    const struct setup_tri *t = s->tri;
+    const int n_var = span_n_var(s, mode);
+    const struct shade_ctx *sc = s->shade;
+    const struct texture *tex = mode != SHADE_WIRE ? s->st->tex : NULL;
+    const bool lod = tex && sc->filter == TEX_TRILINEAR;
+    float *restrict depth = s->fb->depth;
+    uint8_t *restrict rgb = s->fb->rgb;
+    const size_t fb_w = (size_t)s->fb->w;
+    uint64_t tested = 0, shaded = 0;
+    for (int r = 0; r < s->n_runs; r++) {
+        const int y = s->runs[r].y, x1 = s->runs[r].x1;
+        tested += (uint64_t)(x1 - s->runs[r].x0 + 1);
+        const float Y = (float)(y - t->y0);
+        for (int x = s->runs[r].x0; x <= x1; x++) {
+            const float X = (float)(x - t->x0);
+            const size_t i = (size_t)y * fb_w + (size_t)x;
+            float z = in->z.c + ((in->z_c_lo + in->z.dy * Y) + in->z.dx * X);
+            z = in->z_lo > z ? in->z_lo : z; /* vf_max(z_lo, z) */
+            z = in->z_hi < z ? in->z_hi : z; /* vf_min(z_hi, z) */
+            if (!(z < depth[i]))
+                continue;
+            depth[i] = z;
+            shaded++;
+            if (mode == SHADE_WIRE)
+                continue;
+            const float rq = 1.0f / ((in->q.c + in->q.dy * Y) + in->q.dx * X);
+            float var[VARY_MAX];
+            for (int v = 0; v < n_var; v++)
+                var[v] = ((in->a_c[v] + in->a_dy[v] * Y) + in->a_dx[v] * X) * rq;
+            float lambda = 0, c[3];
+            if (lod)
+                lambda = texture_lod(tex, (in->a_dx[0] - var[0] * in->q.dx) * rq,
+                                     (in->a_dx[1] - var[1] * in->q.dx) * rq,
+                                     (in->a_dy[0] - var[0] * in->q.dy) * rq,
+                                     (in->a_dy[1] - var[1] * in->q.dy) * rq);
+            shade_fragment_l(sc, mode, s->st, var, lambda, c);
+            uint8_t *p = rgb + 3 * i;
+            p[0] = fb_quantize(c[0]), p[1] = fb_quantize(c[1]), p[2] = fb_quantize(c[2]);
+        }
+    }
+    s->tested += tested;
+    s->shaded += shaded;
+}
+
+#define PIXELS(MODE)                                                                           \
+    static __attribute__((noinline)) void pixels_##MODE(struct span_ctx *s)                   \
+    {                                                                                          \
+        pixels(s, MODE);                                                                       \
+    }
+PIXELS(SHADE_UNLIT)
+PIXELS(SHADE_FLAT)
+PIXELS(SHADE_GOURAUD)
+PIXELS(SHADE_PHONG)
+PIXELS(SHADE_WIRE)
+#undef PIXELS
+static void (*const pixels_copy[SHADE_COUNT])(struct span_ctx *) = {
+    pixels_SHADE_UNLIT, pixels_SHADE_FLAT, pixels_SHADE_GOURAUD, pixels_SHADE_PHONG,
+    pixels_SHADE_WIRE};
+
 /* The default methods' copies (depth z, perspective-correct), one function each: compiled
  * apart, each copy's registers and code layout are its own, not whatever the others left
  * in one huge function (a change in one mode's code moved another's time by 5-10%). */
@@ -511,9 +583,9 @@ static void (*const runs_copy[SHADE_COUNT])(struct span_ctx *, enum tex_filter) 
     runs_SHADE_UNLIT, runs_SHADE_FLAT, runs_SHADE_GOURAUD, runs_SHADE_PHONG, runs_SHADE_WIRE};
 
 #ifdef SPAN_AVX2_COPY
-void SPAN_FLUSH(struct span_ctx *s)
+void SPAN_FLUSH(struct span_ctx *s, bool pixelwise)
 #else
-static void SPAN_FLUSH(struct span_ctx *s)
+static void SPAN_FLUSH(struct span_ctx *s, bool pixelwise)
 #endif
 {
     if (!s->in_ready) {
@@ -535,7 +607,9 @@ static void SPAN_FLUSH(struct span_ctx *s)
     const enum tex_filter f = s->shade ? s->shade->filter : TEX_NEAREST;
     if ((s->persp == PERSP_CORRECT || s->persp == PERSP_AFFINE) && !s->fb->overdraw &&
         (!s->shade || s->shade->view != VIEW_NORMALS)) {
-        if (s->depth == DEPTH_Z && s->persp == PERSP_CORRECT)
+        if (s->depth == DEPTH_Z && s->persp == PERSP_CORRECT && pixelwise)
+            pixels_copy[s->mode](s);
+        else if (s->depth == DEPTH_Z && s->persp == PERSP_CORRECT)
             packs_z_copy[s->mode][f](s);
         else
             packs_copy[s->mode](s, f);

@@ -360,6 +360,56 @@ TEST(thread_count_never_changes_the_picture)
     scene1_free(&s);
 }
 
+TEST(one_pixel_triangles_draw_as_lanes_do)
+{
+    /* a dense grid to the horizon (most triangles a pixel or less): "avx2" draws the
+     * triangles of one pixel without lanes (span.h), "avx2-4", "avx2-8" and "sse2" in
+     * lanes; every shading mode and filter of the default methods, the same bytes and
+     * depths */
+    if (span_isa_set("avx2") != 0) {
+        test_skip(t, "no AVX2 copy in this build or on this CPU");
+        return;
+    }
+    char *obj = grid_obj(240, 6);
+    struct scene1 s;
+    REQUIRE(scene1_init(&s, obj, 160, 96, 0) == 0);
+    free(obj);
+    REQUIRE(texture_build_mips(&s.tex, NULL) >= 0);
+    struct camera cam = grid_camera(0.5);
+    size_t n = 160 * 96;
+    uint8_t *rgb = malloc(n * 3);
+    float *depth = malloc(n * sizeof *depth);
+    REQUIRE(rgb && depth);
+    int compared = 0, differ = 0;
+    for (enum shade_mode m = SHADE_UNLIT; m <= SHADE_PHONG; m++)
+        for (enum tex_filter f = 0; f < TEX_FILTER_COUNT; f++) {
+            struct render_opts o;
+            render_opts_default(&o);
+            o.shade = m, o.filter = f, o.threads = 1;
+            struct frame_stats st;
+            REQUIRE(span_isa_set("avx2") == 0);
+            REQUIRE(pipeline_draw(s.p, &s.item, 1, NULL, &cam, &o, &s.fb, &st, NULL) == 0);
+            /* tiny triangles: about two pixels a triangle drawn */
+            CHECK(st.tris_drawn > 3000 && st.pixels_tested < 3 * st.tris_drawn);
+            memcpy(rgb, s.fb.rgb, n * 3);
+            memcpy(depth, s.fb.depth, n * sizeof *depth);
+            static const char *const lanes[] = {"avx2-4", "avx2-8", "sse2"};
+            for (int c = 0; c < 3; c++) {
+                REQUIRE(span_isa_set(lanes[c]) == 0);
+                REQUIRE(pipeline_draw(s.p, &s.item, 1, NULL, &cam, &o, &s.fb, &st, NULL) == 0);
+                compared++;
+                differ += memcmp(rgb, s.fb.rgb, n * 3) != 0 ||
+                          memcmp(depth, s.fb.depth, n * sizeof *depth) != 0;
+            }
+        }
+    CHECK_EQ_INT(compared, 4 * 3 * 3);
+    CHECK_EQ_INT(differ, 0);
+    span_isa_set("auto");
+    free(rgb);
+    free(depth);
+    scene1_free(&s);
+}
+
 TEST(simd_copy_never_changes_the_picture)
 {
     /* the span stage's AVX2 copies (span.h: eight lanes, four lanes, and both by triangle
