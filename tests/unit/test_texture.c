@@ -9,6 +9,7 @@
 #include <time.h>
 
 #include <stb_image.h>
+#include <stb_image_write.h>
 
 #include "file.h"
 #include "imgdec.h"
@@ -435,6 +436,76 @@ TEST(tga_decodes_as_stb_does)
         stbi_image_free(ref);
         texture_free(&tx);
         free(data);
+    }
+}
+
+struct membuf {
+    uint8_t d[4096];
+    size_t n;
+};
+
+static void to_membuf(void *ctx, void *data, int size)
+{
+    struct membuf *m = ctx;
+    if (size > 0 && m->n + (size_t)size <= sizeof m->d)
+        memcpy(m->d + m->n, data, (size_t)size), m->n += (size_t)size;
+}
+
+static uint32_t crc32_of(const uint8_t *p, size_t n)
+{
+    uint32_t c = 0xffffffffu;
+    for (size_t i = 0; i < n; i++) {
+        c ^= p[i];
+        for (int k = 0; k < 8; k++)
+            c = c >> 1 ^ (0xedb88320u & (0u - (c & 1)));
+    }
+    return ~c;
+}
+
+/* PNG: zlib's Adler-32 over the inflated bytes is not checked (the chunk CRCs are): a
+ * changed IDAT byte is still refused, a wrong Adler-32 under a right CRC decodes */
+TEST(png_idat_crc_checked_adler32_not)
+{
+    uint8_t px[8 * 8 * 3];
+    for (size_t i = 0; i < sizeof px; i++)
+        px[i] = (uint8_t)(i * 7);
+    struct membuf m = {.n = 0};
+    REQUIRE(stbi_write_png_to_func(to_membuf, &m, 8, 8, 3, px, 8 * 3) != 0);
+    size_t at = 8, idat = 0, idat_len = 0; /* the IDAT chunk's data */
+    while (at + 12 <= m.n) {
+        size_t len = (size_t)m.d[at] << 24 | (size_t)m.d[at + 1] << 16 |
+                     (size_t)m.d[at + 2] << 8 | m.d[at + 3];
+        if (!memcmp(m.d + at + 4, "IDAT", 4))
+            idat = at + 8, idat_len = len;
+        at += 12 + len;
+    }
+    REQUIRE(idat > 0 && idat_len > 6);
+    struct texture tx;
+    struct err e;
+    REQUIRE(decode(m.d, m.n, &tx, NULL, &e) == 0);
+    int same = tx.w == 8 && tx.h == 8;
+    for (int i = 0; same && i < 64; i++)
+        same = !memcmp(tx.rgba + 4 * i, px + 3 * i, 3);
+    CHECK(same);
+    texture_free(&tx);
+    /* one byte of the compressed data changed: the CRC no longer matches */
+    struct membuf bad = m;
+    bad.d[idat + 3] ^= 0x40;
+    CHECK_EQ_INT(decode(bad.d, bad.n, &tx, NULL, &e), -1);
+    CHECK_STR_CONTAINS(e.msg, "t: bad PNG (");
+    /* the Adler-32 (the stream's last 4 bytes) changed and the CRC made right again */
+    bad = m;
+    bad.d[idat + idat_len - 1] ^= 0x01;
+    uint32_t crc = crc32_of(bad.d + idat - 4, idat_len + 4);
+    for (int k = 0; k < 4; k++)
+        bad.d[idat + idat_len + (size_t)k] = (uint8_t)(crc >> (24 - 8 * k));
+    CHECK_EQ_INT(decode(bad.d, bad.n, &tx, NULL, &e), 0);
+    if (tx.rgba) {
+        same = tx.w == 8 && tx.h == 8;
+        for (int i = 0; same && i < 64; i++)
+            same = !memcmp(tx.rgba + 4 * i, px + 3 * i, 3);
+        CHECK(same);
+        texture_free(&tx);
     }
 }
 
