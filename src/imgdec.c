@@ -607,6 +607,25 @@ static size_t stb_min_bytes(const uint8_t *d, size_t len, const char *kind, size
     return 0;
 }
 
+/* The checks of a format decoded whole (stb's, and TGA): its size, and a file long enough
+ * for that size even at the format's best compression, so a few hundred bytes cannot ask
+ * for 16 million decoded pixels. */
+static int whole_image_checks(const uint8_t *d, size_t len, const char *kind, const char *name,
+                              int iw, int ih, struct err *e)
+{
+    if (too_big(name, iw, ih, e))
+        return -1;
+    if (iw > IMGDEC_MAX_WHOLE || ih > IMGDEC_MAX_WHOLE)
+        return err_set(e, "%s: %s of %dx%d (%s images are limited to %d per side; PNG and JPEG "
+                          "are downscaled)",
+                       name, kind, iw, ih, kind, IMGDEC_MAX_WHOLE);
+    size_t need = stb_min_bytes(d, len, kind, (size_t)iw * (size_t)ih);
+    if (len < need)
+        return err_set(e, "%s: %s of %dx%d cannot fit in %zu bytes (at least %zu): truncated",
+                       name, kind, iw, ih, len, need);
+    return 0;
+}
+
 static int decode_stb(const uint8_t *d, size_t len, const char *kind, const char *name,
                       int max_side, struct texture *out, struct warnings *w, struct err *e)
 {
@@ -615,18 +634,8 @@ static int decode_stb(const uint8_t *d, size_t len, const char *kind, const char
     int iw, ih, n;
     if (!stbi_info_from_memory(d, (int)len, &iw, &ih, &n))
         return err_set(e, "%s: not a readable image (%s)", name, stbi_failure_reason());
-    if (too_big(name, iw, ih, e))
+    if (whole_image_checks(d, len, kind, name, iw, ih, e))
         return -1;
-    if (iw > IMGDEC_MAX_WHOLE || ih > IMGDEC_MAX_WHOLE)
-        return err_set(e, "%s: %s of %dx%d (%s images are limited to %d per side; PNG and JPEG "
-                          "are downscaled)",
-                       name, kind, iw, ih, kind, IMGDEC_MAX_WHOLE);
-    /* the file must be long enough for its size even at the format's best compression, so a
-     * few hundred bytes cannot ask for 16 million decoded pixels */
-    size_t need = stb_min_bytes(d, len, kind, (size_t)iw * (size_t)ih);
-    if (len < need)
-        return err_set(e, "%s: %s of %dx%d cannot fit in %zu bytes (at least %zu): truncated",
-                       name, kind, iw, ih, len, need);
     /* stb "removes the white matte" of PSDs with 4+ channels by dividing by alpha and
      * casting out-of-range floats to bytes (undefined behaviour, found by fuzz_texture) */
     if (strcmp(kind, "PSD") == 0 && len >= 14 && (d[12] << 8 | d[13]) >= 4)
@@ -669,17 +678,10 @@ static int decode_tga(const uint8_t *d, size_t len, const char *name, int max_si
     if (d[1] != 0 || !(type == 2 || type == 3 || type == 10 || type == 11) || (desc & 0x10) ||
         (grey ? bits != 8 : bits != 24 && bits != 32))
         return decode_stb(d, len, "TGA", name, max_side, out, w, e);
-    if (too_big(name, iw, ih, e))
+    /* (a raw TGA's length: tga_plausible) */
+    if (whole_image_checks(d, len, "TGA", name, iw, ih, e))
         return -1;
-    if (iw > IMGDEC_MAX_WHOLE || ih > IMGDEC_MAX_WHOLE)
-        return err_set(e, "%s: TGA of %dx%d (TGA images are limited to %d per side; PNG and "
-                          "JPEG are downscaled)",
-                       name, iw, ih, IMGDEC_MAX_WHOLE);
     const size_t bpp = (size_t)bits / 8, npx = (size_t)iw * (size_t)ih;
-    size_t need = rle ? stb_min_bytes(d, len, "TGA", npx) : 18 + d[0] + npx * bpp;
-    if (len < need)
-        return err_set(e, "%s: TGA of %dx%d cannot fit in %zu bytes (at least %zu): truncated",
-                       name, iw, ih, len, need);
     uint8_t *img = malloc(npx * 4); /* top row first */
     if (!img)
         return oom(name, e);
