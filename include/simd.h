@@ -155,6 +155,12 @@ SIMD_INLINE vf vf_sqrt(vf a)
 #endif
 }
 
+/* log2(1 + t) on [0, 1) as t (C1 + t (C2 + t C3)): vf_log2's polynomial, and texture.h's
+ * one-float copy of it (the same constants, so the two never drift apart) */
+#define SIMD_LOG2_C1 1.4234853f
+#define SIMD_LOG2_C2 (-0.5877338f)
+#define SIMD_LOG2_C3 0.1655588f
+
 /* log2 of positive finite lanes, to about 0.0013 (exponent bits plus a cubic on the
  * mantissa): a texture's level of detail needs no more. Zero, negative or non-finite lanes
  * give garbage, which callers select away. */
@@ -163,7 +169,7 @@ SIMD_INLINE vf vf_log2(vf x)
     vi b = (vi)x;
     vf e = vf_from_vi(((b >> 23) & vi_set(255)) - vi_set(127));
     vf t = (vf)((b & vi_set(0x7fffff)) | vi_set(0x3f800000)) - vf_set(1.0f); /* [0,1) */
-    vf p = t * (vf_set(1.4234853f) + t * (vf_set(-0.5877338f) + t * vf_set(0.1655588f)));
+    vf p = t * (vf_set(SIMD_LOG2_C1) + t * (vf_set(SIMD_LOG2_C2) + t * vf_set(SIMD_LOG2_C3)));
     return e + p;
 }
 

@@ -321,7 +321,7 @@ static inline float texture_log2(float x)
     float t;
     __builtin_memcpy(&t, &m, sizeof t);
     t -= 1.0f;
-    return e + t * (1.4234853f + t * (-0.5877338f + t * 0.1655588f));
+    return e + t * (SIMD_LOG2_C1 + t * (SIMD_LOG2_C2 + t * SIMD_LOG2_C3));
 }
 
 /* texture_lod_v of one pixel: the same operations */
