@@ -6,7 +6,7 @@ PKGS    := ncursesw stb libpng libjpeg assimp
 WARN    := -std=c11 -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototypes
 DEFS    := -D_DEFAULT_SOURCE -D_POSIX_C_SOURCE=200809L -fno-math-errno -ffp-contract=off
 OPT     ?= -O3 -g
-CFLAGS  += $(WARN) $(DEFS) $(OPT) -Iinclude -DRASTTY_DATADIR='"$(PREFIX)/share/rastty"'  $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
+CFLAGS  += $(WARN) $(DEFS) $(FLOOR) $(OPT) -Iinclude -DRASTTY_DATADIR='"$(PREFIX)/share/rastty"'  $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 # meshoptimizer (mesh level of detail) has no pkg-config file in Debian: its shared library
 # brings its own C++ runtime (libstdc++) as a dependency
 LDLIBS  += $(shell pkg-config --libs $(PKGS) 2>/dev/null || echo -lncursesw -lstb -lpng16 -ljpeg -lassimp) \
@@ -36,7 +36,7 @@ DEBIAN_PKGS := build-essential pkg-config libncurses-dev libstb-dev libpng-dev \
                libjpeg62-turbo-dev libassimp-dev libmeshoptimizer-dev libosmesa6-dev chafa tmux \
                ncurses-term procps python3
 
-.PHONY: all test unit check-asan asan-build bench chart deps install uninstall clean help fuzz
+.PHONY: all test unit check-asan asan-build floor-build bench chart deps install uninstall clean help fuzz
 
 all: rastty assets
 
@@ -48,6 +48,7 @@ help:
 	@echo "make test       unit + oracle (Mesa) + end-to-end tests, then the same under ASan+UBSan"
 	@echo "make check-asan unit + end-to-end tests built with -fsanitize=address,undefined"
 	@echo "make bench      speed and bytes/frame benchmarks (not a test)"
+	@echo "make floor-build  the measuring builds of tests/bench_floor.sh (make bench makes them)"
 	@echo "make chart      regenerate assets/doc/chart.svg (+ .csv): every method's speed against accuracy"
 	@echo "make fuzz       libFuzzer on every parser and decoder (FUZZ_SECONDS=60 each)"
 	@echo "make deps       install Debian build/test packages (root) or print the apt-get line"
@@ -114,8 +115,22 @@ build/asan/rastty: $(BUILD)/librastty.a $(MAINOBJ)
 	@echo "  LD      $@"
 	$(Q)$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $(MAINOBJ) $(BUILD)/librastty.a $(LDLIBS)
 
-bench: rastty assets oracle-build build/bench/reorder
+bench: rastty assets oracle-build build/bench/reorder floor-build
 	@tests/bench.sh
+
+# Measuring builds for tests/bench_floor.sh (never installed): the same sources with the
+# texture's cache misses taken out, and with interpolation setup done twice (texture.h,
+# span.c say how); the difference from ./rastty is what that work costs a frame.
+FLOORS := texels setup2
+floor-build:
+	@$(MAKE) --no-print-directory BUILD=build/floor-texels FLOOR=-DRASTTY_FLOOR_TEXELS \
+	    build/floor-texels/rastty
+	@$(MAKE) --no-print-directory BUILD=build/floor-setup2 FLOOR=-DRASTTY_FLOOR_SETUP_TWICE \
+	    build/floor-setup2/rastty
+
+$(FLOORS:%=build/floor-%/rastty): $(BUILD)/librastty.a $(MAINOBJ)
+	@echo "  LD      $@"
+	$(Q)$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $(MAINOBJ) $(BUILD)/librastty.a $(LDLIBS)
 
 # does meshoptimizer's vertex-cache / overdraw reordering pay? (tests/bench_lod.sh runs it)
 build/bench/reorder: tests/bench/reorder.c $(BUILD)/librastty.a

@@ -122,10 +122,20 @@ static inline int texture_wrap(float x, int n)
     return i < 0 ? i + n : i;
 }
 
+/* RASTTY_FLOOR_TEXELS is for measuring only (`make floor-build`, tests/bench_floor.sh; never
+ * a build anyone runs): every texel fetch then reads one of the level's first 16 texels,
+ * which stay in L1 — the frame with the texture's cache misses taken out and everything
+ * else (addresses, gathers, shading) left in. Wrong pictures, honest times. */
+#ifdef RASTTY_FLOOR_TEXELS
+#define TEXEL_INDEX(k) ((k) & 15)
+#else
+#define TEXEL_INDEX(k) (k)
+#endif
+
 /* texel at column i, row j counted from the bottom */
 static inline const uint8_t *texture_texel(const struct texture_level *lv, int i, int j)
 {
-    return lv->rgba + ((size_t)(lv->h - 1 - j) * (size_t)lv->w + (size_t)i) * 4;
+    return lv->rgba + TEXEL_INDEX((size_t)(lv->h - 1 - j) * (size_t)lv->w + (size_t)i) * 4;
 }
 
 static inline void texture_nearest(const struct texture_level *lv, float u, float v,
@@ -232,7 +242,7 @@ SIMD_INLINE vi texel_channel_v(vi words, int c)
  * 32-bit load per texel (a gather), split into channels in vector registers */
 SIMD_INLINE void texture_fetch_v(const struct texture_level *lv, vi i, vi j, vi rgb_out[3])
 {
-    vi v = vi_gather(lv->rgba, (vi_set(lv->h - 1) - j) * vi_set(lv->w) + i);
+    vi v = vi_gather(lv->rgba, TEXEL_INDEX((vi_set(lv->h - 1) - j) * vi_set(lv->w) + i));
     for (int c = 0; c < 3; c++)
         rgb_out[c] = texel_channel_v(v, c);
 }

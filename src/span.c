@@ -591,6 +591,10 @@ static void SPAN_FLUSH(struct span_ctx *s, bool pixelwise)
 {
     if (!s->in_ready) {
         int n_var = span_n_var(s, s->mode);
+#ifdef RASTTY_FLOOR_SETUP_TWICE /* measuring only (as RASTTY_FLOOR_TEXELS, texture.h): the
+                                  frame with interpolation setup paid twice, the same bytes */
+        for (int twice = 0; twice < 2; twice++)
+#endif
 #ifdef SPAN_AVX2_COPY
         setup_interp_avx2(s->tri, s->depth, &s->fb->proj, s->persp == PERSP_AFFINE, n_var,
                           &s->in);
