@@ -84,6 +84,9 @@ long texture_build_mips(struct texture *t, struct err *e);
  * a warning added to w (may be NULL). */
 int texture_load(const char *path, int max_side, struct texture *out, struct warnings *w,
                  struct err *e);
+/* texture_load without the mip chain (one level: the sky builds its own chain) */
+int texture_load_level0(const char *path, int max_side, struct texture *out,
+                        struct warnings *w, struct err *e);
 /* Through the cache: the same file again gives the same texture. *out points into the
  * cache. Errors as texture_load, plus the budget: "path: 1024x1024 texture would pass the
  * 512 MiB texture budget". */

@@ -60,23 +60,34 @@ static inline uint8_t *texel(const struct skybox_level *l, int face, int i, int 
     return l->rgb[face] + ((size_t)(j + 1) * (size_t)(l->n + 2) + (size_t)(i + 1)) * 4;
 }
 
-/* border texels: nearest interior texel of the neighbouring face in that direction */
+/* border texel (i, j) of face f: the nearest interior texel of the neighbouring face in
+ * that direction */
+static void fill_border_texel(struct skybox_level *l, int f, int i, int j)
+{
+    int n = l->n;
+    vec3 d = dir_of(f, 2.0 * (i + 0.5) / n - 1, 2.0 * (j + 0.5) / n - 1);
+    double sc, tc, ma;
+    int g = face_of(d, &sc, &tc, &ma);
+    int si = (int)floor((sc / ma + 1) * 0.5 * n), sj = (int)floor((tc / ma + 1) * 0.5 * n);
+    si = si < 0 ? 0 : si >= n ? n - 1 : si;
+    sj = sj < 0 ? 0 : sj >= n ? n - 1 : sj;
+    memcpy(texel(l, f, i, j), texel(l, g, si, sj), 4);
+}
+
+/* every face's border (its sources are interior texels: any order gives the same bytes) */
 static void fill_border(struct skybox_level *l)
 {
     int n = l->n;
-    for (int f = 0; f < 6; f++)
-        for (int j = -1; j <= n; j++)
-            for (int i = -1; i <= n; i++) {
-                if (i >= 0 && i < n && j >= 0 && j < n)
-                    continue;
-                vec3 d = dir_of(f, 2.0 * (i + 0.5) / n - 1, 2.0 * (j + 0.5) / n - 1);
-                double sc, tc, ma;
-                int g = face_of(d, &sc, &tc, &ma);
-                int si = (int)floor((sc / ma + 1) * 0.5 * n), sj = (int)floor((tc / ma + 1) * 0.5 * n);
-                si = si < 0 ? 0 : si >= n ? n - 1 : si;
-                sj = sj < 0 ? 0 : sj >= n ? n - 1 : sj;
-                memcpy(texel(l, f, i, j), texel(l, g, si, sj), 4);
-            }
+    for (int f = 0; f < 6; f++) {
+        for (int i = -1; i <= n; i++) { /* the rows above and below */
+            fill_border_texel(l, f, i, -1);
+            fill_border_texel(l, f, i, n);
+        }
+        for (int j = 0; j < n; j++) { /* the columns left and right */
+            fill_border_texel(l, f, -1, j);
+            fill_border_texel(l, f, n, j);
+        }
+    }
 }
 
 /* the six faces in one block, one after another (the sky's gathers index all of them from
@@ -103,14 +114,13 @@ static int build_chain(struct skybox *s, struct err *e)
             return err_set(e, "out of memory for the skybox");
         s->n_levels++;
         for (int f = 0; f < 6; f++)
-            for (int j = 0; j < dst->n; j++)
-                for (int i = 0; i < dst->n; i++)
-                    for (int c = 0; c < 3; c++) {
-                        int sum = texel(src, f, 2 * i, 2 * j)[c] + texel(src, f, 2 * i + 1, 2 * j)[c] +
-                                  texel(src, f, 2 * i, 2 * j + 1)[c] +
-                                  texel(src, f, 2 * i + 1, 2 * j + 1)[c];
-                        texel(dst, f, i, j)[c] = (uint8_t)((sum + 2) / 4);
-                    }
+            for (int j = 0; j < dst->n; j++) { /* a row from two, by row pointers */
+                const uint8_t *r0 = texel(src, f, 0, 2 * j), *r1 = texel(src, f, 0, 2 * j + 1);
+                uint8_t *d = texel(dst, f, 0, j);
+                for (int i = 0; i < dst->n; i++, r0 += 8, r1 += 8, d += 4)
+                    for (int c = 0; c < 3; c++)
+                        d[c] = (uint8_t)((r0[c] + r0[c + 4] + r1[c] + r1[c + 4] + 2) / 4);
+            }
         fill_border(dst);
     }
     return 0;
@@ -123,7 +133,7 @@ int skybox_load(struct skybox *s, const char *const paths[6], struct err *e)
     int rc = 0;
     for (int f = 0; f < 6 && rc == 0; f++) {
         struct texture t;
-        rc = texture_load(paths[f], SKYBOX_MAX_FACE, &t, NULL, e);
+        rc = texture_load_level0(paths[f], SKYBOX_MAX_FACE, &t, NULL, e);
         if (rc)
             break;
         int n = s->n_levels ? s->level[0].n : t.w;
@@ -136,9 +146,9 @@ int skybox_load(struct skybox *s, const char *const paths[6], struct err *e)
             rc = err_set(e, "out of memory for the skybox");
         } else {
             s->n_levels = 1;
-            for (int j = 0; j < t.h; j++)
-                for (int i = 0; i < t.w; i++)
-                    memcpy(texel(&s->level[0], f, i, j), t.rgba + ((size_t)j * t.w + i) * 4, 3);
+            for (int j = 0; j < t.h; j++) /* (byte 3 of a texel is never read) */
+                memcpy(texel(&s->level[0], f, 0, j), t.rgba + (size_t)j * t.w * 4,
+                       (size_t)t.w * 4);
         }
         texture_free(&t);
     }

@@ -13,8 +13,8 @@
 #include "file.h"
 #include "imgdec.h"
 
-int texture_load(const char *path_raw, int max_side, struct texture *out, struct warnings *w,
-                 struct err *e)
+int texture_load_level0(const char *path_raw, int max_side, struct texture *out,
+                        struct warnings *w, struct err *e)
 {
     /* the path may come from an MTL file: never echo its raw bytes */
     char path[FILE_QUOTE_SIZE];
@@ -27,6 +27,13 @@ int texture_load(const char *path_raw, int max_side, struct texture *out, struct
         return err_set(e, "%s: cannot open texture: %s", path, file_strerror(rc));
     rc = imgdec_decode((const uint8_t *)data, len, path, max_side, out, w, e);
     free(data);
+    return rc;
+}
+
+int texture_load(const char *path_raw, int max_side, struct texture *out, struct warnings *w,
+                 struct err *e)
+{
+    int rc = texture_load_level0(path_raw, max_side, out, w, e);
     if (rc == 0 && texture_build_mips(out, e) < 0) {
         texture_free(out);
         return -1;
