@@ -61,6 +61,27 @@ struct light {
     vec3 color; /* linear, 1 = white */
 };
 
+/* How several threads share a frame (--split; the picture never depends on it, a test
+ * checks every method at 1, 2, 3 and 5 threads both ways):
+ *   SPLIT_TILES   the calling thread runs the front end (vertices, culling, setup) while the
+ *                 pool draws the set-up triangles by 64x64 screen tile (llvmpipe's way).
+ *                 Fails: at terminal sizes a dense mesh is mostly front end, which stays on
+ *                 one thread — two threads draw the head at 160x96 no faster than one.
+ *   SPLIT_SLICES  thread k takes the k-th slice of the frame's triangles (in submission
+ *                 order) through the whole pipeline into a framebuffer of its own; the
+ *                 framebuffers are then merged pixel by pixel, the nearer fragment winning
+ *                 and on a tie the earlier slice — which is what one thread drawing every
+ *                 slice in turn keeps, since the depth test is strict. Costs: a framebuffer
+ *                 per thread to clear and merge, and the vertices two slices share done in
+ *                 both. Fails: large frames, where the clear and the merge grow with the
+ *                 pixels while a dense mesh's front end does not. The counts of lit
+ *                 vertices and shaded pixels are then summed over the slices (a fragment a
+ *                 later slice hides is still counted), so they can exceed one thread's.
+ *   SPLIT_AUTO    slices when the frame holds at least one triangle (after culling of
+ *                 whole meshes) for every PIPELINE_SLICE_PIXELS pixels, else tiles; tiles
+ *                 always for wireframe, the wireframe overlay and the overdraw count. */
+enum thread_split { SPLIT_AUTO, SPLIT_TILES, SPLIT_SLICES, SPLIT_COUNT };
+
 struct render_opts {
     enum shade_mode shade;
     enum tex_filter filter;
@@ -68,6 +89,7 @@ struct render_opts {
     enum persp_method persp;    /* --persp: how varyings are interpolated */
     enum depth_mode depth;      /* --depth: what the depth buffer stores */
     int threads;                /* --threads: 0 = one per core; the picture never depends on it */
+    enum thread_split split;    /* --split: how the threads share the frame */
     enum ssaa_method ssaa;      /* --ssaa: samples per pixel (ssaa.h) */
     enum lod_mode lod;          /* --lod: which simplified level of each mesh is drawn */
     float lod_ratio;            /* LOD_RATIO: fraction of the triangles kept, (0, 1] */
@@ -132,7 +154,7 @@ struct render_enum {
 };
 extern const struct render_enum render_shade_names, render_cull_names, render_filter_names,
     render_view_names, render_raster_names, render_persp_names, render_depth_names,
-    render_ssaa_names, render_lod_names, render_glyphs_names;
+    render_ssaa_names, render_lod_names, render_glyphs_names, render_split_names;
 
 const char *render_shade_name(enum shade_mode m);
 const char *render_cull_name(enum cull_mode m);

@@ -58,8 +58,9 @@
 
 /* One back-end worker's state: the frame's constants and the current triangle. */
 struct span_ctx {
-    /* per frame */
-    struct fb *fb;
+    /* per frame (each thread's on cache lines of its own: the pipeline allocates them
+     * 64-byte aligned, and the alignment rounds the size up to whole lines) */
+    _Alignas(64) struct fb *fb;
     const struct shade_ctx *shade;
     enum shade_mode mode;      /* SHADE_WIRE: depth only */
     enum persp_method persp;

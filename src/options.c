@@ -45,7 +45,8 @@ struct flag {
 };
 
 /* every enum field is an int underneath (the flag table writes them as ints) */
-_Static_assert(sizeof(enum shade_mode) == sizeof(int) && sizeof(enum raster_method) == sizeof(int),
+_Static_assert(sizeof(enum shade_mode) == sizeof(int) && sizeof(enum raster_method) == sizeof(int) &&
+                   sizeof(enum thread_split) == sizeof(int),
                "enums are ints");
 #define ENUM_FLAG(flag, cmds, what, table, member)                                         \
     {flag, F_ENUM, ARG_ENUM, cmds, "M", what, &table, offsetof(struct options, member)}
@@ -69,6 +70,7 @@ static const struct flag flags[] = {
     ENUM_FLAG("--persp", C_DRAW | C_BENCH, "varying interpolation", render_persp_names, render.persp),
     ENUM_FLAG("--depth", C_DRAW | C_BENCH, "depth buffer", render_depth_names, render.depth),
     {"--threads", F_THREADS, ARG_VALUE, C_DRAW | C_BENCH, "N", "rendering threads, 1..64 (default: $RASTTY_THREADS, else one per core)", NULL, 0},
+    ENUM_FLAG("--split", C_DRAW | C_BENCH, "how threads share a frame: triangle slices merged by depth, screen tiles, or auto (slices for dense meshes at small sizes)", render_split_names, render.split),
     ENUM_FLAG("--ssaa", C_DRAW | C_BENCH, "supersampling: M x M samples a pixel, box filter", render_ssaa_names, render.ssaa),
     {"--lod", F_LOD, ARG_VALUE, C_DRAW | C_BENCH, "M", "mesh level of detail: off, auto (the coarsest level whose error is under 0.15 px on screen; auto:PX another bound) or RATIO (the level nearest that fraction of the triangles, 0..1) (default: auto in the viewer, else off)", NULL, 0},
     {"--background", F_BACKGROUND, ARG_VALUE, C_DRAW, "R,G,B", "background colour, 0..255 each (default 0,0,0)", NULL, 0},

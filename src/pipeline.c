@@ -2,6 +2,7 @@
 #include "pipeline.h"
 
 #include <assert.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -26,6 +27,17 @@
  * run on every thread first, the dense models' records (57 MB for lost_empire) were out
  * of the caches again when the front end read them (car 2 threads 7.9 -> 7.2 ms). */
 #define PIPELINE_VERTEX_CHUNK 512
+/* SPLIT_AUTO takes slices when the frame's meshes have a triangle for every
+ * PIPELINE_SLICE_PIXELS pixels, or for every PIPELINE_SLICE_PIXELS_SMALL in a frame of up
+ * to PIPELINE_SLICE_SMALL pixels (320x200). Two threads, fastest of each pair (ms): the
+ * head 160x96 0.110 against tiles' 0.185, 320x200 0.223 against 0.276, 400x300 0.35
+ * against 0.37, 480x360 even, 640x480 0.62 against 0.58; the demo 320x192 1.15 against
+ * 1.24, 640x480 5.8 against 3.7 (its floor and teapot are a few large triangles: one
+ * slice gets most of the pixels); lost_empire 640x480 12.4 against 14.9, the bunny even,
+ * diablo3 (5k triangles) 2.1 against 1.5. */
+#define PIPELINE_SLICE_PIXELS 8
+#define PIPELINE_SLICE_PIXELS_SMALL 64
+#define PIPELINE_SLICE_SMALL 64000
 
 struct item_verts {
     struct vertex_out *v;
@@ -52,6 +64,27 @@ struct pipeline {
     struct vertex_out **vq_out;
     uint32_t vq_n, vq_cap;
     const struct mesh *vq_mesh;
+    /* SPLIT_SLICES (render.h): one single-thread pipeline per thread, each with its own
+     * batches and vertex records; slice k > 0 draws into slice_fb[k], slice 0 into the
+     * frame's framebuffer. The meshes the frame draws (NULL: skipped), chosen once. */
+    struct pipeline **slice;
+    struct fb *slice_fb;
+    int n_slices;
+    const struct mesh **slice_mesh;
+    int slice_mesh_cap;
+    struct slice_out { /* a slice's results, each on cache lines of its own: a slice counts
+                        * as it goes, and two threads writing one line slow both */
+        _Alignas(64) struct frame_stats st;
+        struct err err;
+        int rc;
+        double ms; /* how long it took */
+    } *slice_out;
+    /* where the slices end, as fractions of the frame's triangles (slice k: cut[k] ..
+     * cut[k+1]), moved after each frame toward equal times (slice_balance) */
+    double slice_cut[WORKERS_MAX + 2];
+    double slice_step[WORKERS_MAX + 2]; /* how far cut k may move next (slice_balance) */
+    int slice_dir[WORKERS_MAX + 2];     /* which way it moved last: -1, 0, 1 */
+    uint64_t slice_tris; /* the triangle count the cuts were made for */
 };
 
 /* What one frame's front end and back end share. */
@@ -64,11 +97,17 @@ struct frame {
     struct frame_stats *stats;
 };
 
+static void slices_free(struct pipeline *p); /* (SPLIT_SLICES, below) */
+
 struct pipeline *pipeline_new_batch(uint32_t batch_capacity)
 {
-    struct pipeline *p = calloc(1, sizeof *p);
+    /* on cache lines of its own, as the threads' span contexts: a slice's pipeline is
+     * written by its thread only, and must share no line with another's */
+    size_t sz = (sizeof(struct pipeline) + 63) / 64 * 64;
+    struct pipeline *p = aligned_alloc(64, sz);
     if (!p)
         return NULL;
+    memset(p, 0, sz);
     if (batch_init(&p->batch[0], batch_capacity, NULL) ||
         batch_init(&p->batch[1], batch_capacity, NULL) ||
         !(p->vq_idx = malloc(3 * (size_t)p->batch[0].cap * sizeof *p->vq_idx)) ||
@@ -98,6 +137,8 @@ void pipeline_destroy(struct pipeline *p)
     free(p->ctx);
     free(p->vq_idx);
     free(p->vq_out);
+    slices_free(p);
+    free(p->slice_mesh);
     free(p);
 }
 
@@ -110,7 +151,9 @@ static int use_threads(struct pipeline *p, int n, struct err *e)
     free(p->ctx);
     p->n_threads = 0;
     p->workers = NULL;
-    p->ctx = calloc((size_t)n, sizeof *p->ctx);
+    p->ctx = aligned_alloc(64, (size_t)n * sizeof *p->ctx); /* (whole lines each) */
+    if (p->ctx)
+        memset(p->ctx, 0, (size_t)n * sizeof *p->ctx);
     if (!p->ctx)
         return err_set(e, "out of memory for %d threads", n);
     if (!(p->workers = workers_new(n - 1, e)))
@@ -301,9 +344,13 @@ static uint32_t add_shade(struct batch *bt, const struct frame *f, const struct 
  * records). */
 static int front_end(struct pipeline *p, struct frame *f, const struct draw_item *item,
                      const struct mesh *m, struct vertex_out *vo, bool depth_only,
-                     struct err *e)
+                     uint32_t i0, uint32_t i1, struct err *e)
 {
-    uint32_t verts_done = 0;
+    /* the vertex stage starts at the lowest vertex triangles i0 .. i1-1 use (a slice) */
+    uint32_t verts_done = i0 ? m->n_verts : 0;
+    for (uint32_t i = i0; i0 && i < i1; i++)
+        for (int k = 0; k < 3; k++)
+            verts_done = m->tris[i][k] < verts_done ? m->tris[i][k] : verts_done;
     const struct render_opts *o = f->o;
     struct frame_stats *stats = f->stats;
     struct batch *bt = &p->batch[p->cur];
@@ -313,7 +360,7 @@ static int front_end(struct pipeline *p, struct frame *f, const struct draw_item
      * memory update the compiler must keep in order with the batch's stores */
     uint64_t n_rejected = 0, n_culled = 0, n_no_centre = 0;
     const int fb_w = f->fb->w, fb_h = f->fb->h;
-    for (uint32_t i = 0; i < m->n_tris; i++) {
+    for (uint32_t i = i0; i < i1; i++) {
         const uint32_t *c = m->tris[i];
         if (verts_done < m->n_verts) { /* the vertex stage just ahead of the triangles */
             uint32_t hi = c[0] > c[1] ? c[0] : c[1];
@@ -372,7 +419,7 @@ static int front_end(struct pipeline *p, struct frame *f, const struct draw_item
         clip_and_add(p, f, v, any & VERTEX_NEEDS_CLIP, n_var, shade);
     }
     shade_queued(p, f);
-    stats->tris_in += m->n_tris;
+    stats->tris_in += i1 - i0;
     stats->tris_rejected += n_rejected;
     stats->tris_culled += n_culled;
     stats->tris_no_centre += n_no_centre;
@@ -512,6 +559,20 @@ static void sky_stage(struct pipeline *p, const struct skybox *sky, const struct
     workers_for(p->workers, (size_t)fb->h, 8, sky_band, &j);
 }
 
+/* the vertex stage's matrices for one draw item */
+static void item_uniforms(struct vertex_uniforms *u, const struct draw_item *item, mat4 pv)
+{
+    u->model = item->model;
+    u->normal_matrix = m4_normal_matrix(item->model);
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 4; c++) {
+            u->model_f[r][c] = (float)item->model.m[r][c];
+            if (c < 3)
+                u->normal_f[r][c] = (float)u->normal_matrix.m[r][c];
+        }
+    u->mvp = m4_mul(pv, item->model);
+}
+
 /* The item's mesh at the level of detail the frame draws (lod.h), noted in stats. */
 static const struct mesh *lod_mesh(const struct draw_item *item, const struct camera *cam,
                                    int fb_h, const struct render_opts *o, double scale,
@@ -529,6 +590,275 @@ static const struct mesh *lod_mesh(const struct draw_item *item, const struct ca
     return lod_level(m, level);
 }
 
+/* ---- SPLIT_SLICES (render.h): each thread the whole pipeline for a slice of the triangles */
+
+/* one slice pipeline per thread and a framebuffer for every slice but the first, of fb's
+ * size */
+static void slices_free(struct pipeline *p)
+{
+    for (int k = 0; k < p->n_slices; k++) {
+        pipeline_destroy(p->slice[k]);
+        fb_free(&p->slice_fb[k]);
+    }
+    free(p->slice);
+    free(p->slice_fb);
+    free(p->slice_out);
+    p->slice = NULL, p->slice_fb = NULL, p->slice_out = NULL;
+    p->n_slices = 0;
+}
+
+static int slices_ready(struct pipeline *p, const struct fb *fb, int n_items, struct err *e)
+{
+    if (p->n_slices != p->n_threads) {
+        slices_free(p);
+        int n = p->n_threads;
+        p->slice = calloc((size_t)n, sizeof *p->slice);
+        p->slice_fb = calloc((size_t)n, sizeof *p->slice_fb);
+        p->slice_out = aligned_alloc(64, (size_t)n * sizeof *p->slice_out);
+        p->n_slices = n; /* (slices_free copes with the NULLs of a failure below) */
+        if (!p->slice || !p->slice_fb || !p->slice_out) {
+            p->n_slices = 0;
+            slices_free(p);
+            return err_set(e, "out of memory for %d slices", n);
+        }
+        for (int k = 0; k < n; k++)
+            if (!(p->slice[k] = pipeline_new_batch(p->batch[0].cap)) ||
+                use_threads(p->slice[k], 1, NULL)) {
+                slices_free(p);
+                return err_set(e, "out of memory for %d slices", n);
+            }
+        p->slice_tris = UINT64_MAX; /* the cuts are made again */
+    }
+    for (int k = 1; k < p->n_slices; k++)
+        if (p->slice_fb[k].w != fb->w || p->slice_fb[k].h != fb->h) {
+            fb_free(&p->slice_fb[k]);
+            if (fb_init(&p->slice_fb[k], fb->w, fb->h, false, e))
+                return -1;
+        }
+    if (n_items > p->slice_mesh_cap) {
+        const struct mesh **nm = realloc(p->slice_mesh, (size_t)n_items * sizeof *nm);
+        if (!nm)
+            return err_set(e, "out of memory for %d draw items", n_items);
+        p->slice_mesh = nm;
+        p->slice_mesh_cap = n_items;
+    }
+    return 0;
+}
+
+/* the frame's index of the first triangle of slice k (k = n_slices: the end) */
+static uint64_t slice_at(const struct pipeline *p, int k, uint64_t n_tris)
+{
+    return k >= p->n_slices ? n_tris : (uint64_t)(p->slice_cut[k] * (double)n_tris);
+}
+
+/* Move the cuts toward slices of equal time. A slice's time is taken as spread evenly over
+ * its triangles and cut i heads for where the cumulative time reaches i/n of the whole,
+ * but moves at most slice_step[i]: the step halves each time the cut turns back and grows
+ * by half while it keeps its way, so a cut next to a few costly triangles (the demo's
+ * floor at 640x480: moving the cut across it moved 3.6 ms) settles instead of jumping
+ * over them every frame, and a new view still moves it quickly. Each slice keeps at least
+ * a quarter of an even share. The cuts never change a picture, only which thread draws
+ * what. */
+static void slice_balance(struct pipeline *p)
+{
+    const int n = p->n_slices;
+    double total = 0, most = 0, want[WORKERS_MAX + 2];
+    for (int k = 0; k < n; k++) {
+        total += p->slice_out[k].ms;
+        most = p->slice_out[k].ms > most ? p->slice_out[k].ms : most;
+    }
+    /* within a tenth of even: left alone (each slice keeps its vertex records and batches
+     * warm in its core's caches; moving on noise cost the demo 6%) */
+    if (!(total > 0) || most * n < 1.1 * total)
+        return;
+    want[0] = 0, want[n] = 1;
+    int k = 0; /* the slice in which the cumulative time reaches i/n */
+    double acc = 0; /* time of slices before k */
+    for (int i = 1; i < n; i++) {
+        double target = total * i / n;
+        while (k < n - 1 && acc + p->slice_out[k].ms < target)
+            acc += p->slice_out[k++].ms;
+        double t = p->slice_out[k].ms, w = p->slice_cut[k + 1] - p->slice_cut[k];
+        want[i] = p->slice_cut[k] + (t > 0 ? (target - acc) / t : 0) * w;
+    }
+    const double least = 0.25 / n;
+    for (int i = 1; i < n; i++) {
+        double d = want[i] - p->slice_cut[i], step = p->slice_step[i];
+        int dir = d > 0 ? 1 : d < 0 ? -1 : 0;
+        step *= dir && p->slice_dir[i] && dir != p->slice_dir[i] ? 0.5 : 1.5;
+        step = step < 1e-4 ? 1e-4 : step > 0.5 / n ? 0.5 / n : step;
+        p->slice_step[i] = step, p->slice_dir[i] = dir;
+        double c = p->slice_cut[i] + (d > step ? step : d < -step ? -step : d);
+        double lo = p->slice_cut[i - 1] + least, hi = 1 - least * (n - i);
+        p->slice_cut[i] = c < lo ? lo : c > hi ? hi : c;
+    }
+}
+
+struct slice_job {
+    struct pipeline *p;
+    const struct draw_item *items;
+    int n_items;
+    const struct camera *cam;
+    const struct render_opts *o;
+    struct fb *fb;
+    mat4 pv;
+    uint64_t n_tris; /* the frame's triangles (slice k draws slice_at(k) .. slice_at(k+1)) */
+    struct slice_out *out; /* p->slice_out */
+};
+
+/* slice k: its triangles through the front end and the back end, on one thread */
+static void slice_main(void *arg, int k)
+{
+    struct slice_job *j = arg;
+    struct pipeline *sp = j->p->slice[k];
+    struct fb *fb = k ? &j->p->slice_fb[k] : j->fb;
+    struct frame_stats *st = &j->out[k].st;
+    struct err *e = &j->out[k].err;
+    memset(st, 0, sizeof *st);
+    j->out[k].rc = 0;
+    if (k) { /* (slice 0's is the frame's: the others read it meanwhile) */
+        fb->depth_mode = j->fb->depth_mode;
+        fb->proj = j->fb->proj;
+        fb->pixel_aspect = j->fb->pixel_aspect;
+    }
+    fb_clear(fb, j->o->background);
+    struct frame f;
+    frame_init(&f, j->cam, j->o, fb, st);
+    batch_reset(&sp->batch[sp->cur]);
+    sp->ctx[0] = f.span;
+    const double t0 = timing_now_ms();
+    const uint64_t lo = slice_at(j->p, k, j->n_tris), hi = slice_at(j->p, k + 1, j->n_tris);
+    uint64_t base = 0; /* the frame's index of the item's first triangle */
+    for (int it = 0; it < j->n_items && base < hi; it++) {
+        const struct mesh *m = j->p->slice_mesh[it];
+        if (!m)
+            continue;
+        uint64_t first = base;
+        base += m->n_tris;
+        if (base <= lo)
+            continue;
+        uint32_t i0 = (uint32_t)(lo > first ? lo - first : 0);
+        uint32_t i1 = (uint32_t)(hi < base ? hi - first : m->n_tris);
+        item_uniforms(&f.u, &j->items[it], j->pv);
+        struct vertex_out *vo = item_verts(sp, it, m->n_verts, e);
+        if (!vo || front_end(sp, &f, &j->items[it], m, vo, false, i0, i1, e)) {
+            j->out[k].rc = -1;
+            drain(sp, &f);
+            return;
+        }
+    }
+    j->out[k].rc = flush(sp, &f, e);
+    drain(sp, &f);
+    st->pixels_tested += sp->ctx[0].tested;
+    st->pixels_shaded += sp->ctx[0].shaded;
+    j->out[k].ms = timing_now_ms() - t0;
+}
+
+/* slices 1.. merged into slice 0 (the frame's framebuffer), rows y0 .. y1-1: the nearer
+ * fragment wins, and on a tie the earlier slice (the depth test is strict) */
+struct merge_job {
+    struct fb *fb;
+    const struct fb *slice_fb;
+    int n_slices;
+};
+
+static void merge_rows(void *arg, size_t y0, size_t y1)
+{
+    const struct merge_job *j = arg;
+    struct fb *fb = j->fb;
+    const enum depth_mode mode = fb->depth_mode;
+    const size_t i0 = y0 * (size_t)fb->w, i1 = y1 * (size_t)fb->w;
+    for (int k = 1; k < j->n_slices; k++) {
+        const struct fb *s = &j->slice_fb[k];
+        for (size_t i = i0; i < i1; i++)
+            if (fb_depth_passes(mode, s->depth[i], fb->depth[i])) {
+                fb->depth[i] = s->depth[i];
+                memcpy(fb->rgb + 3 * i, s->rgb + 3 * i, 3);
+            }
+    }
+}
+
+/* The surfaces of the frame by slices: the meshes and levels chosen once (as the tiles'
+ * path does), the slices drawn on every thread, merged. */
+static int draw_slices(struct pipeline *p, const struct draw_item *items, int n_items,
+                       const struct camera *cam, const struct render_opts *o, struct fb *fb,
+                       mat4 pv, struct frame_stats *stats, struct err *e)
+{
+    if (slices_ready(p, fb, n_items, e))
+        return -1;
+    struct slice_job job = {.p = p, .items = items, .n_items = n_items, .cam = cam, .o = o,
+                            .fb = fb, .pv = pv, .out = p->slice_out},
+                     *j = &job;
+    for (int it = 0; it < n_items; it++) {
+        const struct draw_item *item = &items[it];
+        const struct mesh *m = item->mesh;
+        p->slice_mesh[it] = NULL;
+        if (m->n_tris == 0)
+            continue;
+        mat4 mvp = m4_mul(pv, item->model);
+        double scale = max_scale(item->model);
+        stats->tris_full += m->n_tris;
+        if (sphere_outside(m, mvp, scale)) {
+            stats->meshes_culled++;
+            stats->tris_in += m->n_tris;
+            stats->tris_culled += m->n_tris;
+            continue;
+        }
+        p->slice_mesh[it] = lod_mesh(item, cam, fb->h, o, scale, stats);
+        j->n_tris += p->slice_mesh[it]->n_tris;
+    }
+    if (j->n_tris != p->slice_tris) { /* another scene: even slices to start from */
+        for (int k = 0; k <= p->n_slices; k++) {
+            p->slice_cut[k] = (double)k / p->n_slices;
+            p->slice_step[k] = 0.25 / p->n_slices;
+            p->slice_dir[k] = 0;
+        }
+        p->slice_tris = j->n_tris;
+    }
+    workers_run(p->workers, slice_main, j);
+    int rc = 0;
+    for (int k = 0; k < p->n_slices; k++) {
+        const struct frame_stats *s = &j->out[k].st;
+        if (j->out[k].rc && !rc) {
+            rc = -1;
+            if (e)
+                *e = j->out[k].err;
+        }
+        stats->tris_in += s->tris_in;
+        stats->tris_culled += s->tris_culled;
+        stats->tris_rejected += s->tris_rejected;
+        stats->tris_clipped += s->tris_clipped;
+        stats->tris_drawn += s->tris_drawn;
+        stats->tris_empty += s->tris_empty;
+        stats->tris_no_centre += s->tris_no_centre;
+        stats->verts_lit += s->verts_lit;
+        stats->pixels_tested += s->pixels_tested;
+        stats->pixels_shaded += s->pixels_shaded;
+    }
+    if (rc)
+        return -1;
+    slice_balance(p);
+    struct merge_job mj = {fb, p->slice_fb, p->n_slices};
+    workers_for(p->workers, (size_t)fb->h, 16, merge_rows, &mj);
+    return 0;
+}
+
+/* tiles or slices for this frame (render.h, enum thread_split) */
+static bool use_slices(const struct pipeline *p, const struct draw_item *items, int n_items,
+                       const struct render_opts *o, const struct fb *fb, bool wire)
+{
+    if (p->n_threads < 2 || wire || o->view == VIEW_WIRE_OVERLAY || fb->overdraw ||
+        o->split == SPLIT_TILES)
+        return false;
+    if (o->split == SPLIT_SLICES)
+        return true;
+    uint64_t n = 0, px = (uint64_t)fb->w * (uint64_t)fb->h;
+    for (int it = 0; it < n_items; it++)
+        n += items[it].mesh->n_tris;
+    return n * PIPELINE_SLICE_PIXELS >= px ||
+           (px <= PIPELINE_SLICE_SMALL && n * PIPELINE_SLICE_PIXELS_SMALL >= px);
+}
+
 int pipeline_draw(struct pipeline *p, const struct draw_item *items, int n_items,
                   const struct skybox *sky, const struct camera *cam,
                   const struct render_opts *o, struct fb *fb, struct frame_stats *stats,
@@ -541,17 +871,28 @@ int pipeline_draw(struct pipeline *p, const struct draw_item *items, int n_items
         return -1;
     fb->depth_mode = o->depth;
     fb->proj = (struct fb_depth_proj){cam->ortho_height > 0, cam->near, cam->far};
+    mat4 pv = m4_mul(camera_proj(cam, fb_aspect(fb)), camera_view(cam));
+    bool show_sky = sky && (o->view == VIEW_COLOR || o->view == VIEW_WIRE_OVERLAY);
+    bool wire = o->view != VIEW_NORMALS && o->shade == SHADE_WIRE; /* (frame_init's mode) */
+    if (use_slices(p, items, n_items, o, fb, wire)) { /* each slice clears its own */
+        if (draw_slices(p, items, n_items, cam, o, fb, pv, stats, e))
+            return -1;
+        if (show_sky) /* the sky goes where the surfaces left room */
+            sky_stage(p, sky, cam, fb);
+        if (o->view == VIEW_DEPTH)
+            fb_show_depth(fb);
+        stats->render_ms = timing_now_ms() - t0;
+        return 0;
+    }
     struct clear_job cj = {fb, o->background};
     workers_for(p->workers, (size_t)fb->h, 16, clear_band, &cj);
-    mat4 pv = m4_mul(camera_proj(cam, fb_aspect(fb)), camera_view(cam));
     struct frame f;
     frame_init(&f, cam, o, fb, stats);
     batch_reset(&p->batch[p->cur]);
     for (int k = 0; k < p->n_threads; k++)
         p->ctx[k] = f.span;
+    assert(wire == (f.span.mode == SHADE_WIRE));
 
-    bool show_sky = sky && (o->view == VIEW_COLOR || o->view == VIEW_WIRE_OVERLAY);
-    bool wire = f.span.mode == SHADE_WIRE;
     /* wire frames have no surface colour: the sky goes everywhere, before anything else */
     if (show_sky && wire)
         sky_stage(p, sky, cam, fb);
@@ -572,15 +913,7 @@ int pipeline_draw(struct pipeline *p, const struct draw_item *items, int n_items
             const struct mesh *m = item->mesh;
             if (m->n_tris == 0)
                 continue;
-            f.u.model = item->model;
-            f.u.normal_matrix = m4_normal_matrix(item->model);
-            for (int r = 0; r < 3; r++)
-                for (int c = 0; c < 4; c++) {
-                    f.u.model_f[r][c] = (float)item->model.m[r][c];
-                    if (c < 3)
-                        f.u.normal_f[r][c] = (float)f.u.normal_matrix.m[r][c];
-                }
-            f.u.mvp = m4_mul(pv, item->model);
+            item_uniforms(&f.u, item, pv);
             double scale = max_scale(item->model);
             if (counts)
                 stats->tris_full += m->n_tris;
@@ -606,7 +939,7 @@ int pipeline_draw(struct pipeline *p, const struct draw_item *items, int n_items
             if (pass == 2 && !pass1)
                 vertex_stage(p, m, &f.u, vo);
             if (pass == 1) {
-                if (front_end(p, &f, item, m, vo, wire, e))
+                if (front_end(p, &f, item, m, vo, wire, 0, m->n_tris, e))
                     goto fail;
             } else {
                 draw_edges(m, vo, o, !wire || o->hidden_lines, !wire, fb, stats);

@@ -12,6 +12,7 @@ static const char *const persp_names[] = {"correct", "affine", "span8", "span16"
 static const char *const depth_names[] = {"z", "w", "z16", "rz"};
 static const char *const ssaa_names[] = {"1", "2", "4", "8"};
 static const char *const lod_names[] = {"off", "auto"}; /* LOD_RATIO is a number */
+static const char *const split_names[] = {"auto", "tiles", "slices"};
 #define COUNT(a) ((int)(sizeof a / sizeof *a))
 _Static_assert(COUNT(shade_names) == SHADE_COUNT, "shade names");
 _Static_assert(COUNT(cull_names) == CULL_COUNT, "cull names");
@@ -22,6 +23,7 @@ _Static_assert(COUNT(persp_names) == PERSP_COUNT, "persp names");
 _Static_assert(COUNT(depth_names) == DEPTH_COUNT, "depth names");
 _Static_assert(COUNT(ssaa_names) == SSAA_COUNT, "ssaa names");
 _Static_assert(COUNT(lod_names) == LOD_NAMED && LOD_AUTO == 1, "lod names");
+_Static_assert(COUNT(split_names) == SPLIT_COUNT, "split names");
 
 const struct render_enum render_shade_names = {shade_names, SHADE_COUNT};
 const struct render_enum render_cull_names = {cull_names, CULL_COUNT};
@@ -33,6 +35,7 @@ const struct render_enum render_depth_names = {depth_names, DEPTH_COUNT};
 const struct render_enum render_ssaa_names = {ssaa_names, SSAA_COUNT};
 const struct render_enum render_lod_names = {lod_names, LOD_NAMED};
 const struct render_enum render_glyphs_names = {cell_glyphs_names, CELL_GLYPHS_COUNT};
+const struct render_enum render_split_names = {split_names, SPLIT_COUNT};
 
 void render_opts_default(struct render_opts *o)
 {
