@@ -126,6 +126,8 @@ struct frame_stats {
     uint64_t meshes_culled; /* whole meshes outside the frustum (bounding sphere) */
     uint64_t tris_full;     /* what tris_in would be at full detail (--lod off) */
     int lod_min, lod_max;   /* levels of detail drawn (0 = full), over the drawn items; -1 none */
+    int threads;            /* threads that drew the frame */
+    bool slices;            /* they split the triangles (SPLIT_SLICES), not the screen */
     double render_ms;
 };
 

@@ -204,8 +204,11 @@ int cmd_render(const struct options *o, struct err *e)
                     cam.eye.x, cam.eye.y, cam.eye.z, cam.target.x, cam.target.y, cam.target.z,
                     cam.up.x, cam.up.y, cam.up.z, cam.fov_deg, cam.near, cam.far);
             double med = timing_median(ms, drawn); /* sorts ms: ms[0] is the fastest */
-            fprintf(stderr, "frames=%d median_ms=%.4f min_ms=%.4f load_ms=%.2f simd=%s\n", drawn,
-                    med, ms[0], load_ms, span_isa_name());
+            fprintf(stderr,
+                    "frames=%d median_ms=%.4f min_ms=%.4f load_ms=%.2f simd=%s threads=%d "
+                    "split=%s\n",
+                    drawn, med, ms[0], load_ms, span_isa_name(), st.threads,
+                    st.threads < 2 ? "none" : st.slices ? "slices" : "tiles");
         }
         fb_free(&fb);
     }

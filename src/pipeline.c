@@ -869,12 +869,14 @@ int pipeline_draw(struct pipeline *p, const struct draw_item *items, int n_items
     stats->lod_min = stats->lod_max = -1;
     if (use_threads(p, o->threads > 0 ? o->threads : workers_cores(), e))
         return -1;
+    stats->threads = p->n_threads;
     fb->depth_mode = o->depth;
     fb->proj = (struct fb_depth_proj){cam->ortho_height > 0, cam->near, cam->far};
     mat4 pv = m4_mul(camera_proj(cam, fb_aspect(fb)), camera_view(cam));
     bool show_sky = sky && (o->view == VIEW_COLOR || o->view == VIEW_WIRE_OVERLAY);
     bool wire = o->view != VIEW_NORMALS && o->shade == SHADE_WIRE; /* (frame_init's mode) */
     if (use_slices(p, items, n_items, o, fb, wire)) { /* each slice clears its own */
+        stats->slices = true;
         if (draw_slices(p, items, n_items, cam, o, fb, pv, stats, e))
             return -1;
         if (show_sky) /* the sky goes where the surfaces left room */

@@ -537,6 +537,43 @@ TEST(slices_draw_what_one_thread_draws)
     scene1_free(&r);
 }
 
+TEST(split_auto_takes_slices_for_dense_meshes_in_small_frames)
+{
+    /* render.h: a 30x30 grid (1800 triangles) at 160x96 holds a triangle for every 8.5
+     * pixels: slices (the frame is under 320x200 and has one for every 64); at 640x480, one
+     * for every 171: tiles; one thread: neither; wireframe: tiles; asked for: as asked */
+    char *obj = grid_obj(30, 6);
+    struct scene1 s, b;
+    REQUIRE(scene1_init(&s, obj, 160, 96, 0) == 0);
+    REQUIRE(scene1_init(&b, obj, 640, 480, 0) == 0);
+    free(obj);
+    struct camera cam = grid_camera(0.4);
+    struct render_opts o;
+    render_opts_default(&o);
+    struct frame_stats st;
+    o.threads = 2;
+    REQUIRE(pipeline_draw(s.p, &s.item, 1, NULL, &cam, &o, &s.fb, &st, NULL) == 0);
+    CHECK(st.slices && st.threads == 2);
+    REQUIRE(pipeline_draw(b.p, &b.item, 1, NULL, &cam, &o, &b.fb, &st, NULL) == 0);
+    CHECK(!st.slices && st.threads == 2);
+    o.split = SPLIT_SLICES;
+    REQUIRE(pipeline_draw(b.p, &b.item, 1, NULL, &cam, &o, &b.fb, &st, NULL) == 0);
+    CHECK(st.slices);
+    o.split = SPLIT_TILES;
+    REQUIRE(pipeline_draw(s.p, &s.item, 1, NULL, &cam, &o, &s.fb, &st, NULL) == 0);
+    CHECK(!st.slices);
+    o.split = SPLIT_AUTO;
+    o.shade = SHADE_WIRE;
+    REQUIRE(pipeline_draw(s.p, &s.item, 1, NULL, &cam, &o, &s.fb, &st, NULL) == 0);
+    CHECK(!st.slices);
+    o.shade = SHADE_GOURAUD;
+    o.threads = 1;
+    REQUIRE(pipeline_draw(s.p, &s.item, 1, NULL, &cam, &o, &s.fb, &st, NULL) == 0);
+    CHECK(!st.slices && st.threads == 1);
+    scene1_free(&s);
+    scene1_free(&b);
+}
+
 TEST(packed_groups_draw_what_runs_draw)
 {
     /* perspective-correct and affine interpolation draw a triangle's pixels in packs
