@@ -555,6 +555,25 @@ static void sky_stage(struct pipeline *p, const struct skybox *sky, const struct
     workers_for(p->workers, (size_t)fb->h, 8, sky_band, &j);
 }
 
+/* Is the item's mesh wholly outside the view (its bounding sphere)? Then its triangles count
+ * as culled. `counts`: the frame's statistics count this item here (its triangles toward
+ * tris_full either way). */
+static bool item_outside(const struct draw_item *item, mat4 mvp, double scale, bool counts,
+                         struct frame_stats *stats)
+{
+    const struct mesh *m = item->mesh;
+    if (counts)
+        stats->tris_full += m->n_tris;
+    if (!sphere_outside(m, mvp, scale))
+        return false;
+    if (counts) {
+        stats->meshes_culled++;
+        stats->tris_in += m->n_tris;
+        stats->tris_culled += m->n_tris;
+    }
+    return true;
+}
+
 /* the vertex stage's matrices for one draw item */
 static void item_uniforms(struct vertex_uniforms *u, const struct draw_item *item, mat4 pv)
 {
@@ -800,15 +819,9 @@ static int draw_slices(struct pipeline *p, const struct draw_item *items, int n_
         p->slice_mesh[it] = NULL;
         if (m->n_tris == 0)
             continue;
-        mat4 mvp = m4_mul(pv, item->model);
         double scale = max_scale(item->model);
-        stats->tris_full += m->n_tris;
-        if (sphere_outside(m, mvp, scale)) {
-            stats->meshes_culled++;
-            stats->tris_in += m->n_tris;
-            stats->tris_culled += m->n_tris;
+        if (item_outside(item, m4_mul(pv, item->model), scale, true, stats))
             continue;
-        }
         p->slice_mesh[it] = lod_mesh(item, cam, fb->h, o, scale, stats);
         j->n_tris += p->slice_mesh[it]->n_tris;
     }
@@ -922,16 +935,8 @@ int pipeline_draw(struct pipeline *p, const struct draw_item *items, int n_items
                 continue;
             item_uniforms(&f.u, item, pv);
             double scale = max_scale(item->model);
-            if (counts)
-                stats->tris_full += m->n_tris;
-            if (sphere_outside(m, f.u.mvp, scale)) {
-                if (counts) {
-                    stats->meshes_culled++;
-                    stats->tris_in += m->n_tris;
-                    stats->tris_culled += m->n_tris;
-                }
+            if (item_outside(item, f.u.mvp, scale, counts, stats))
                 continue;
-            }
             /* room for the mesh in full: changing levels never allocates (a batch the
              * pool is drawing points into earlier items' arrays only) */
             struct vertex_out *vo = item_verts(p, it, m->n_verts, e);
