@@ -78,6 +78,10 @@ enum tex_filter { TEX_NEAREST, TEX_BILINEAR, TEX_TRILINEAR, TEX_FILTER_COUNT };
  * GL's glGenerateMipmap computes it, so Mesa's chain and ours agree). Returns the bytes the
  * levels below level 0 use, or -1 (out of memory, e set). */
 long texture_build_mips(struct texture *t, struct err *e);
+/* One row of a level of even size from the two rows above it: texel x of d (4 bytes) is the
+ * rounded mean (a+b+c+d+2)/4 of texels 2x, 2x+1 of r0 and of r1, each channel (the mip chain's
+ * and the sky's 2x2 step). */
+void texture_row_halve(const uint8_t *r0, const uint8_t *r1, uint8_t *d, int dw);
 
 /* Decode an image file (owned by out); on failure fills e with "path: reason" and returns -1.
  * Larger than max_side (TEXTURE_MAX_SIDE for ordinary textures) on a side: downscaled, with

@@ -2,7 +2,6 @@
 #include "pipeline.h"
 
 #include <assert.h>
-#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -607,8 +606,6 @@ static const struct mesh *lod_mesh(const struct draw_item *item, const struct ca
 
 /* ---- SPLIT_SLICES (render.h): each thread the whole pipeline for a slice of the triangles */
 
-/* one slice pipeline per thread and a framebuffer for every slice but the first, of fb's
- * size */
 static void slices_free(struct pipeline *p)
 {
     for (int k = 0; k < p->n_slices; k++) {
@@ -622,6 +619,8 @@ static void slices_free(struct pipeline *p)
     p->n_slices = 0;
 }
 
+/* one slice pipeline per thread and a framebuffer for every slice but the first, of fb's
+ * size */
 static int slices_ready(struct pipeline *p, const struct fb *fb, int n_items, struct err *e)
 {
     if (p->n_slices != p->n_threads) {

@@ -114,13 +114,9 @@ static int build_chain(struct skybox *s, struct err *e)
             return err_set(e, "out of memory for the skybox");
         s->n_levels++;
         for (int f = 0; f < 6; f++)
-            for (int j = 0; j < dst->n; j++) { /* a row from two, by row pointers */
-                const uint8_t *r0 = texel(src, f, 0, 2 * j), *r1 = texel(src, f, 0, 2 * j + 1);
-                uint8_t *d = texel(dst, f, 0, j);
-                for (int i = 0; i < dst->n; i++, r0 += 8, r1 += 8, d += 4)
-                    for (int c = 0; c < 3; c++)
-                        d[c] = (uint8_t)((r0[c] + r0[c + 4] + r1[c] + r1[c + 4] + 2) / 4);
-            }
+            for (int j = 0; j < dst->n; j++) /* a row from two (byte 3 too: never read) */
+                texture_row_halve(texel(src, f, 0, 2 * j), texel(src, f, 0, 2 * j + 1),
+                                  texel(dst, f, 0, j), dst->n);
         fill_border(dst);
     }
     return 0;

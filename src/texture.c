@@ -170,6 +170,13 @@ void texture_free(struct texture *t)
     memset(t, 0, sizeof *t);
 }
 
+void texture_row_halve(const uint8_t *r0, const uint8_t *r1, uint8_t *d, int dw)
+{
+    for (int x = 0; x < dw; x++, d += 4, r0 += 8, r1 += 8)
+        for (int c = 0; c < 4; c++)
+            d[c] = (uint8_t)((r0[c] + r0[c + 4] + r1[c] + r1[c + 4] + 2) >> 2);
+}
+
 /* one box-filtered level: dst (dw x dh) from src (sw x sh), each destination texel the
  * area-weighted mean of the source texels under it; rows stay top-first */
 static void box_down(const uint8_t *src, int sw, int sh, uint8_t *dst, int dw, int dh,
@@ -179,10 +186,7 @@ static void box_down(const uint8_t *src, int sw, int sh, uint8_t *dst, int dw, i
                                            below are exact there, (a+b+c+d)/4 + 0.5 floored */
         for (int y = 0; y < dh; y++) {
             const uint8_t *r0 = src + (size_t)(2 * y) * (size_t)sw * 4, *r1 = r0 + (size_t)sw * 4;
-            uint8_t *d = dst + (size_t)y * (size_t)dw * 4;
-            for (int x = 0; x < dw; x++, d += 4, r0 += 8, r1 += 8)
-                for (int c = 0; c < 4; c++)
-                    d[c] = (uint8_t)((r0[c] + r0[c + 4] + r1[c] + r1[c + 4] + 2) >> 2);
+            texture_row_halve(r0, r1, dst + (size_t)y * (size_t)dw * 4, dw);
         }
         return;
     }
