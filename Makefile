@@ -6,7 +6,7 @@ PKGS    := ncursesw stb libpng libjpeg assimp
 WARN    := -std=c11 -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototypes
 DEFS    := -D_DEFAULT_SOURCE -D_POSIX_C_SOURCE=200809L -fno-math-errno -ffp-contract=off
 OPT     ?= -O3 -g
-CFLAGS  += $(WARN) $(DEFS) $(FLOOR) $(OPT) -Iinclude -DRASTTY_DATADIR='"$(PREFIX)/share/rastty"'  $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
+CFLAGS  += $(WARN) $(DEFS) $(FLOOR) $(OPT) -DRASTTY_DATADIR='"$(PREFIX)/share/rastty"'  $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 # meshoptimizer (mesh level of detail) has no pkg-config file in Debian: its shared library
 # brings its own C++ runtime (libstdc++) as a dependency
 LDLIBS  += $(shell pkg-config --libs $(PKGS) 2>/dev/null || echo -lncursesw -lstb -lpng16 -ljpeg -lassimp) \
@@ -14,18 +14,34 @@ LDLIBS  += $(shell pkg-config --libs $(PKGS) 2>/dev/null || echo -lncursesw -lst
 
 # `make V=1` shows full command lines
 Q       := $(if $(V),,@)
-SRCS    := $(wildcard src/*.c)
+
+# Layers (README, "The map"): src/LAYER/*.c with its headers in include/LAYER/. A file
+# includes its own layer and the layers below it, never above and never a sibling:
+#     main.c -> {cmd, viewer, bench} -> cli -> term -> render -> scene -> base
+# Each layer compiles with the include paths of exactly those layers, so an include
+# against the rule fails the build; `make layers` (tests/layers.py, run by every build)
+# also checks that term reaches render only through fb.h and that no includes go round
+# in a circle.
+LAYERS      := base scene render term cli cmd viewer bench
+BELOW_base  :=
+BELOW_scene := base
+BELOW_render:= scene base
+BELOW_term  := render scene base
+BELOW_cli   := term render scene base
+BELOW_cmd   := cli term render scene base
+BELOW_viewer:= cli term render scene base
+BELOW_bench := cli term render scene base
+layer_inc    = $(foreach l,$(1) $(BELOW_$(1)),-Iinclude/$(l))
+ALL_INC     := $(foreach l,$(LAYERS),-Iinclude/$(l))
+# The kernels (include/render/kernel.h): one file per instruction set in src/render/kernel/.
+# On x86-64 the AVX2 ones are built too (KERNELS_AVX2=no leaves them out: the sanitizer
+# build does, the AVX2 kernels' own tests run in the plain build).
+KERNELS_AVX2 ?= $(if $(findstring x86_64,$(shell $(CC) -dumpmachine)),yes,no)
+AVX2_SRCS := src/render/kernel/kernel_avx2.c src/render/kernel/kernel_avx2_4.c
+SRCS    := $(filter-out $(if $(filter yes,$(KERNELS_AVX2)),,$(AVX2_SRCS)),\
+                        $(wildcard src/*/*.c src/*/*/*.c)) src/main.c
 LIBOBJS := $(patsubst src/%.c,$(BUILD)/obj/%.o,$(filter-out src/main.c,$(SRCS)))
 MAINOBJ := $(BUILD)/obj/main.o
-# x86-64: the hot stages compiled again for AVX2 and chosen at run time (include/span.h): the
-# span stage twice (eight and four lanes), interpolation setup, the vertex stage, the sky, the
-# edge rasterizer.
-# Each copy is its source file with -mavx2 and its COPY flags, defining only its hot function.
-AVX2_COPIES := span_avx2 span_avx2_4 setup_avx2 vertex_avx2 skybox_avx2 raster_avx2
-ifneq ($(findstring x86_64,$(shell $(CC) -dumpmachine)),)
-LIBOBJS += $(AVX2_COPIES:%=$(BUILD)/obj/%.o)
-CFLAGS  += -DRASTTY_SPAN_AVX2
-endif
 UNITSRC := $(wildcard tests/unit/*.c)
 UNITOBJ := $(patsubst tests/unit/%.c,$(BUILD)/tests/%.o,$(UNITSRC))
 
@@ -36,7 +52,7 @@ DEBIAN_PKGS := build-essential pkg-config libncurses-dev libstb-dev libpng-dev \
                libjpeg62-turbo-dev libassimp-dev libmeshoptimizer-dev libosmesa6-dev chafa tmux \
                ncurses-term procps python3
 
-.PHONY: all test unit check-asan asan-build floor-build bench chart deps install uninstall clean help fuzz
+.PHONY: all layers test unit check-asan asan-build floor-build bench chart deps install uninstall clean help fuzz
 
 all: rastty assets
 
@@ -46,6 +62,7 @@ include tests/oracle/oracle.mk
 help:
 	@echo "make            build ./rastty"
 	@echo "make test       unit + oracle (Mesa) + end-to-end tests, then the same under ASan+UBSan"
+	@echo "make layers     the include graph against the layer rule: files per layer, circles"
 	@echo "make check-asan unit + end-to-end tests built with -fsanitize=address,undefined"
 	@echo "make bench      speed and bytes/frame benchmarks (not a test)"
 	@echo "make floor-build  the measuring builds of tests/bench_floor.sh (make bench makes them)"
@@ -62,38 +79,27 @@ $(BUILD)/librastty.a: $(LIBOBJS)
 	@rm -f $@
 	$(Q)$(AR) rcs $@ $^
 
-$(BUILD)/obj/%.o: src/%.c | $(BUILD)/obj
-	@echo "  CC      $<"
-	$(Q)$(CC) $(CFLAGS) -MMD -MP -c -o $@ $<
-
-$(BUILD)/obj/span_avx2.o: src/span.c
-$(BUILD)/obj/span_avx2.o: COPY := -DSPAN_AVX2_COPY -DSIMD_LANES=8
-$(BUILD)/obj/span_avx2_4.o: src/span.c
-$(BUILD)/obj/span_avx2_4.o: COPY := -DSPAN_AVX2_COPY -DSIMD_LANES=4
-$(BUILD)/obj/setup_avx2.o: src/setup.c
-$(BUILD)/obj/setup_avx2.o: COPY := -DSETUP_AVX2_COPY
-$(BUILD)/obj/vertex_avx2.o: src/vertex.c
-$(BUILD)/obj/vertex_avx2.o: COPY := -DVERTEX_AVX2_COPY -DSIMD_LANES=8
-$(BUILD)/obj/raster_avx2.o: src/raster.c
-$(BUILD)/obj/raster_avx2.o: COPY := -DRASTER_AVX2_COPY -DSIMD_LANES=8
-$(BUILD)/obj/skybox_avx2.o: src/skybox.c
-$(BUILD)/obj/skybox_avx2.o: COPY := -DSKYBOX_AVX2_COPY -DSIMD_LANES=8
-$(AVX2_COPIES:%=$(BUILD)/obj/%.o): | $(BUILD)/obj
-	@echo "  CC      $< (AVX2 $(COPY))"
-	$(Q)$(CC) $(CFLAGS) -mavx2 -mno-fma $(COPY) -MMD -MP -c -o $@ $<
+$(foreach l,$(LAYERS),$(eval $(BUILD)/obj/$(l)/%.o: LAYER_INC := $(call layer_inc,$(l))))
+$(MAINOBJ): LAYER_INC := $(ALL_INC)
+$(BUILD)/obj/render/kernel/kernel.o: KERNEL_FLAGS := $(if $(filter yes,$(KERNELS_AVX2)),-DRASTTY_KERNEL_AVX2)
+$(AVX2_SRCS:src/%.c=$(BUILD)/obj/%.o): KERNEL_FLAGS := -mavx2 -mno-fma
+$(BUILD)/obj/%.o: src/%.c
+	@mkdir -p $(dir $@)
+	@echo "  CC      $< $(KERNEL_FLAGS)"
+	$(Q)$(CC) $(CFLAGS) $(LAYER_INC) $(KERNEL_FLAGS) -MMD -MP -c -o $@ $<
 
 $(BUILD)/tests/%.o: tests/unit/%.c | $(BUILD)/tests
 	@echo "  CC      $<"
-	$(Q)$(CC) $(CFLAGS) -Itests/unit -MMD -MP -c -o $@ $<
+	$(Q)$(CC) $(CFLAGS) $(ALL_INC) -Itests/unit -MMD -MP -c -o $@ $<
 
 $(BUILD)/unit-tests: $(UNITOBJ) $(BUILD)/librastty.a
 	@echo "  LD      $@"
 	$(Q)$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS)
 
-$(BUILD)/obj $(BUILD)/tests:
+$(BUILD)/tests:
 	@mkdir -p $@
 
--include $(wildcard $(BUILD)/obj/*.d $(BUILD)/tests/*.d)
+-include $(wildcard $(BUILD)/obj/*.d $(BUILD)/obj/*/*.d $(BUILD)/obj/*/*/*.d $(BUILD)/tests/*.d)
 
 # The whole suite, plain and under ASan+UBSan; tests/run.sh prints one summary line at the end.
 test: rastty assets $(BUILD)/unit-tests asan-build oracle-build
@@ -102,11 +108,15 @@ test: rastty assets $(BUILD)/unit-tests asan-build oracle-build
 unit: $(BUILD)/unit-tests
 	$(BUILD)/unit-tests
 
+# The include graph against the layer rule (tests/layers.py; also a suite of make test)
+layers:
+	@python3 tests/layers.py --report
+
 # Same sources, separate build tree, sanitizers on; tests/run.sh --asan runs what applies.
 SAN := -fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recover=all -fno-omit-frame-pointer
 asan-build:
 	@$(MAKE) --no-print-directory BUILD=build/asan OPT="-O1 -g $(SAN)" LDFLAGS="$(SAN)" \
-	    build/asan/unit-tests build/asan/rastty
+	    KERNELS_AVX2=no build/asan/unit-tests build/asan/rastty
 
 check-asan: asan-build
 	@tests/run.sh --asan
@@ -135,7 +145,7 @@ $(FLOORS:%=build/floor-%/rastty): $(BUILD)/librastty.a $(MAINOBJ)
 # does meshoptimizer's vertex-cache / overdraw reordering pay? (tests/bench_lod.sh runs it)
 build/bench/reorder: tests/bench/reorder.c $(BUILD)/librastty.a
 	@mkdir -p $(dir $@)
-	$(Q)$(CC) $(CFLAGS) -o $@ $< $(BUILD)/librastty.a $(LDLIBS)
+	$(Q)$(CC) $(CFLAGS) $(ALL_INC) -o $@ $< $(BUILD)/librastty.a $(LDLIBS)
 
 # The README's chart: every method on the scene set at 160x96 and 640x480 (several minutes;
 # run it on a quiet machine). Shared models from ../shared/models (or RASTTY_SHARED).
@@ -146,10 +156,10 @@ chart: rastty assets
 FUZZ_SECONDS ?= 60
 FUZZ_TARGETS := obj mtl decode scene texture stl ply import
 FUZZ_CFLAGS  := -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
-                -std=c11 $(DEFS) -Iinclude $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
+                -std=c11 $(DEFS) $(ALL_INC) $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 build/fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/fuzz_mesh.h tests/fuzz/stb_impl.c $(SRCS)
 	@mkdir -p build/fuzz-work/$*
-	clang $(FUZZ_CFLAGS) $< tests/fuzz/stb_impl.c $(filter-out src/main.c,$(SRCS)) -o $@ $(LDLIBS)
+	clang $(FUZZ_CFLAGS) $< tests/fuzz/stb_impl.c $(filter-out src/main.c $(AVX2_SRCS),$(SRCS)) -o $@ $(LDLIBS)
 fuzz: $(addprefix build/fuzz_,$(FUZZ_TARGETS))
 	@for t in $(FUZZ_TARGETS); do \
 	    echo "== fuzz_$$t ($(FUZZ_SECONDS) s)"; \

@@ -7,6 +7,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "bench.h"
 #include "cmd.h"
 #include "config.h"
 #include "options.h"

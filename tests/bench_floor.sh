@@ -7,7 +7,7 @@
 #   build/floor-texels/rastty     every texel fetch reads one of the first 16 texels: the
 #                                 frame without the texture's cache misses (texture.h)
 #   build/floor-setup2/rastty     interpolation setup done twice: the frame plus one more
-#                                 setup's cost (span.c)
+#                                 setup's cost (kernel_span.h)
 #   Mesa llvmpipe (glbench)       one thread (LP_NUM_THREADS=0), the same scene
 # and then, from the times: what the texture's misses and the setup cost a frame, the issue's
 # target (0.25x Mesa at 160x96, 0.40x at 640x480), and the frame with both taken out.
@@ -45,7 +45,7 @@ least() { sort -g | head -1; }
 ms_of() { sed -n 's/.*median_ms=\([0-9.]*\).*/\1/p'; }
 mkdir -p build/bench
 echo "-- where the time goes: head gouraud, one thread, ms/frame: the least of $rounds alternating"
-echo "   rounds' medians of $frames frames (build/floor-*: texture.h, span.c; tests/bench_floor.sh)"
+echo "   rounds' medians of $frames frames (build/floor-*: texture.h, kernel_span.h; tests/bench_floor.sh)"
 printf '  %-8s %8s %10s %10s %8s %9s %9s %9s %11s\n' size rastty no-misses setup-x2 mesa \
     misses setup target "rastty-both"
 for size in 160x96 640x480; do

@@ -43,6 +43,7 @@ suites() { # tag: plain | asan
         export RASTTY_BIN=./rastty UNIT_BIN=build/unit-tests RASTTY_ASAN=
     fi
     run_suite "$tag/unit" "$UNIT_BIN"
+    [ "$tag" = plain ] && run_suite "$tag/layers" python3 tests/layers.py
     for t in tests/e2e/*.sh; do
         [ -e "$t" ] || continue
         run_suite "$tag/e2e/$(basename "$t" .sh)" bash "$t"

@@ -42,11 +42,11 @@ TEST(config_file_settings_parse)
                                 "glyphs = braille\n", &d, &e) == 0);
     config_apply(&d, &o);
     CHECK(strcmp(o.colors, "16") == 0 && o.spin == 0 && o.spin_timeout == 5 && o.light_camera);
-    CHECK_EQ_INT(o.render.glyphs, CELL_BRAILLE);
+    CHECK_EQ_INT(o.glyphs, CELL_BRAILLE);
     char *argv2[] = {"rastty", "--glyphs", "quadrant"}; /* the command line wins */
     REQUIRE(options_parse(3, argv2, &o, &e) == 0);
     config_apply(&d, &o);
-    CHECK_EQ_INT(o.render.glyphs, CELL_QUADRANT);
+    CHECK_EQ_INT(o.glyphs, CELL_QUADRANT);
 }
 
 TEST(config_file_errors_name_the_line)

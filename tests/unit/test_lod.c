@@ -11,6 +11,12 @@
 #include "scene.h"
 #include "test.h"
 
+/* lod_choose with a render_opts' level-of-detail fields */
+static int choose(const struct mesh *m, const struct render_opts *o, double px)
+{
+    return lod_choose(m, o->lod, o->lod_ratio, o->lod_px, px);
+}
+
 /* A UV sphere of radius r around the origin: `slices` around, `stacks` from pole to pole,
  * outward winding, normals = positions, a uv seam at u = 0/1 (same positions, other uvs)
  * and two materials (the northern half 0, the southern 1): seams of every kind. */
@@ -261,6 +267,7 @@ TEST(lod_levels_keep_closed_meshes_closed_and_every_material_and_uv)
                       k, l->n_tris, err, dev);
     }
     free(src);
+    lod_free(&m);
     mesh_free(&m);
     mesh_free(&copy);
 }
@@ -289,24 +296,25 @@ TEST(lod_auto_picks_the_coarsest_level_under_the_bound_coarser_far_away)
     int last = 0, seen_coarser = 0;
     for (double d = 2; d < 2000; d *= 1.5) {
         double px = px_at(&m, d);
-        int k = lod_choose(&m, &o, px);
+        int k = choose(&m, &o, px);
         CHECK(k >= last); /* never finer farther away */
         CHECK(lod_level_error(&m, k) * px < o.lod_px);
         CHECK(k == n - 1 || lod_level_error(&m, k + 1) * px >= o.lod_px);
         seen_coarser |= k > 0;
         last = k;
     }
-    CHECK_EQ_INT(lod_choose(&m, &o, px_at(&m, 2)), 0);
+    CHECK_EQ_INT(choose(&m, &o, px_at(&m, 2)), 0);
     CHECK_EQ_INT(last, n - 1);
     CHECK(seen_coarser);
     /* a smaller bound never picks a coarser level */
     o.lod_px = 0.01f;
-    CHECK(lod_choose(&m, &o, px_at(&m, 20)) <= lod_choose(&m, &(struct render_opts){
+    CHECK(choose(&m, &o, px_at(&m, 20)) <= choose(&m, &(struct render_opts){
                                                               .lod = LOD_AUTO, .lod_px = 1},
                                                           px_at(&m, 20)));
     /* off: always the mesh itself */
     o.lod = LOD_OFF;
-    CHECK_EQ_INT(lod_choose(&m, &o, px_at(&m, 1000)), 0);
+    CHECK_EQ_INT(choose(&m, &o, px_at(&m, 1000)), 0);
+    lod_free(&m);
     mesh_free(&m);
 }
 
@@ -337,6 +345,7 @@ TEST(lod_auto_in_a_frame_far_away_draws_fewer_triangles)
     CHECK(far.tris_in < near.tris_in);
     pipeline_destroy(p);
     fb_free(&fb);
+    lod_free(&m);
     mesh_free(&m);
 }
 
@@ -353,18 +362,19 @@ TEST(lod_ratio_picks_the_level_nearest_by_ratio)
     double n0 = m.n_tris;
     for (int k = 0; k < n; k++) {
         o.lod_ratio = (float)(lod_level(&m, k)->n_tris / n0);
-        CHECK_EQ_INT(lod_choose(&m, &o, 1), k);
+        CHECK_EQ_INT(choose(&m, &o, 1), k);
     }
     /* between levels 1 and 2: the nearer by ratio (the geometric mean is the border) */
     double g = sqrt((double)lod_level(&m, 1)->n_tris * lod_level(&m, 2)->n_tris) / n0;
     o.lod_ratio = (float)(g * 1.02);
-    CHECK_EQ_INT(lod_choose(&m, &o, 1), 1);
+    CHECK_EQ_INT(choose(&m, &o, 1), 1);
     o.lod_ratio = (float)(g / 1.02);
-    CHECK_EQ_INT(lod_choose(&m, &o, 1), 2);
+    CHECK_EQ_INT(choose(&m, &o, 1), 2);
     o.lod_ratio = 1e-6f;
-    CHECK_EQ_INT(lod_choose(&m, &o, 1), n - 1);
+    CHECK_EQ_INT(choose(&m, &o, 1), n - 1);
     o.lod_ratio = 1;
-    CHECK_EQ_INT(lod_choose(&m, &o, 1), 0);
+    CHECK_EQ_INT(choose(&m, &o, 1), 0);
+    lod_free(&m);
     mesh_free(&m);
 }
 
@@ -430,6 +440,7 @@ TEST(lod_off_draws_the_same_bytes_and_every_level_culls_right)
     pipeline_destroy(p);
     fb_free(&a);
     fb_free(&b);
+    lod_free(&m);
     mesh_free(&m);
     mesh_free(&plain);
 }
@@ -441,17 +452,20 @@ TEST(lod_small_or_broken_meshes_get_no_levels)
     REQUIRE(sphere(&m, 12, 16) == 0);
     REQUIRE(lod_build(&m, NULL) == 0);
     CHECK_EQ_INT(lod_level_count(&m), 1);
+    lod_free(&m);
     mesh_free(&m);
     /* NaN and infinite positions */
     REQUIRE(sphere(&m, 64, 32) == 0);
     m.verts[5].pos[1] = NAN;
     REQUIRE(lod_build(&m, NULL) == 0);
     CHECK_EQ_INT(lod_level_count(&m), 1);
+    lod_free(&m);
     mesh_free(&m);
     REQUIRE(sphere(&m, 64, 32) == 0);
     m.verts[5].pos[1] = INFINITY;
     REQUIRE(lod_build(&m, NULL) == 0);
     CHECK_EQ_INT(lod_level_count(&m), 1);
+    lod_free(&m);
     mesh_free(&m);
     /* every vertex at one point: nothing to measure, nothing to simplify */
     REQUIRE(sphere(&m, 64, 32) == 0);
@@ -459,6 +473,7 @@ TEST(lod_small_or_broken_meshes_get_no_levels)
         m.verts[v].pos[0] = m.verts[v].pos[1] = m.verts[v].pos[2] = 1;
     REQUIRE(lod_build(&m, NULL) == 0);
     CHECK_EQ_INT(lod_level_count(&m), 1);
+    lod_free(&m);
     mesh_free(&m);
     /* a bumpy grid of "blocks": every quad cut out by its own uvs, so each inner position
      * has four vertices (uv seams in every direction) — lost_empire's structure; the
@@ -490,6 +505,7 @@ TEST(lod_small_or_broken_meshes_get_no_levels)
     m.n_materials = 1;
     REQUIRE(lod_build(&m, NULL) == 0);
     CHECK_EQ_INT(lod_level_count(&m), 1);
+    lod_free(&m);
     mesh_free(&m);
     free(pos);
     free(uv);
@@ -500,6 +516,7 @@ TEST(lod_small_or_broken_meshes_get_no_levels)
     m.vert_material = NULL;
     REQUIRE(lod_build(&m, NULL) == 0);
     CHECK_EQ_INT(lod_level_count(&m), 1);
+    lod_free(&m);
     mesh_free(&m);
 }
 
@@ -531,5 +548,6 @@ TEST(lod_background_build_makes_the_same_levels)
     mesh_free(&c);
     mesh_free(&ms[0]);
     mesh_free(&ms[1]);
+    lod_free(&ref);
     mesh_free(&ref);
 }

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "kernel.h"
 #include "obj.h"
 #include "pipeline.h"
 #include "skybox.h"
@@ -360,83 +361,98 @@ TEST(thread_count_never_changes_the_picture)
     scene1_free(&s);
 }
 
-/* s drawn with options o on instruction set `ref`, then on each of `others`: how many of
- * those frames differ from the first (colours or depths), -1 if a set or a draw failed;
- * *st: the first frame's counts */
-static int frames_differ_across_isas(struct scene1 *s, const struct camera *cam,
-                                     const struct render_opts *o, const char *ref,
-                                     const char *const others[3], struct frame_stats *st)
+/* The fast kernels (kernel.h) this build and CPU can run. */
+static const enum kernel_isa fast_kernels[] = {KERNEL_SSE2, KERNEL_AVX2, KERNEL_AVX2_4,
+                                               KERNEL_AVX2_8};
+#define N_FAST (int)(sizeof fast_kernels / sizeof fast_kernels[0])
+
+/* s drawn with options o (and the sky, when given) by the reference kernel, then by each
+ * fast kernel this build and CPU has: how many of those frames differ from the reference's
+ * (colours, depths, overdraw counts, or the pixel and triangle counts); *compared_out: how
+ * many were drawn; *st: the reference frame's counts. -1 if a draw failed. */
+static int frames_differ_from_ref(struct scene1 *s, const struct skybox *sky,
+                                  const struct camera *cam, const struct render_opts *o,
+                                  struct frame_stats *st, int *compared_out)
 {
     size_t n = (size_t)s->fb.w * (size_t)s->fb.h;
     uint8_t *rgb = malloc(n * 3);
     float *depth = malloc(n * sizeof *depth);
+    uint32_t *od = s->fb.overdraw ? malloc(n * sizeof *od) : NULL;
     int differ = -1;
-    struct frame_stats other;
-    if (rgb && depth && span_isa_set(ref) == 0 &&
-        pipeline_draw(s->p, &s->item, 1, NULL, cam, o, &s->fb, st, NULL) == 0) {
+    struct render_opts ro = *o;
+    ro.kernel = KERNEL_REF;
+    *compared_out = 0;
+    if (rgb && depth && (od || !s->fb.overdraw) &&
+        pipeline_draw(s->p, &s->item, 1, sky, cam, &ro, &s->fb, st, NULL) == 0) {
         memcpy(rgb, s->fb.rgb, n * 3);
         memcpy(depth, s->fb.depth, n * sizeof *depth);
+        if (od)
+            memcpy(od, s->fb.overdraw, n * sizeof *od);
         differ = 0;
-        for (int c = 0; c < 3 && differ >= 0; c++) {
-            if (span_isa_set(others[c]) != 0 ||
-                pipeline_draw(s->p, &s->item, 1, NULL, cam, o, &s->fb, &other, NULL) != 0)
+        for (int c = 0; c < N_FAST && differ >= 0; c++) {
+            struct frame_stats other;
+            ro.kernel = fast_kernels[c];
+            if (!kernel_set(ro.kernel))
+                continue;
+            if (pipeline_draw(s->p, &s->item, 1, sky, cam, &ro, &s->fb, &other, NULL) != 0) {
                 differ = -1;
-            else
-                differ += memcmp(rgb, s->fb.rgb, n * 3) != 0 ||
-                          memcmp(depth, s->fb.depth, n * sizeof *depth) != 0;
+                break;
+            }
+            ++*compared_out;
+            differ += memcmp(rgb, s->fb.rgb, n * 3) != 0 ||
+                      memcmp(depth, s->fb.depth, n * sizeof *depth) != 0 ||
+                      (od && memcmp(od, s->fb.overdraw, n * sizeof *od) != 0) ||
+                      other.pixels_tested != st->pixels_tested ||
+                      other.pixels_shaded != st->pixels_shaded ||
+                      other.tris_drawn != st->tris_drawn || other.tris_empty != st->tris_empty;
         }
     }
-    span_isa_set("auto");
     free(rgb);
     free(depth);
+    free(od);
     return differ;
 }
 
-TEST(one_pixel_triangles_draw_as_lanes_do)
+TEST(one_pixel_triangles_draw_the_reference_bytes)
 {
-    /* a dense grid to the horizon (most triangles a pixel or less): "avx2" draws the
-     * triangles of one pixel without lanes (span.h), "avx2-4", "avx2-8" and "sse2" in
-     * lanes; every shading mode and filter of the default methods, the same bytes and
-     * depths */
-    if (span_isa_set("avx2") != 0) {
-        test_skip(t, "no AVX2 copy in this build or on this CPU");
-        return;
-    }
+    /* a dense grid to the horizon (most triangles a pixel or less): the AVX2 set draws the
+     * triangles of one pixel without lanes (kernel.h), the others in lanes; every shading
+     * mode and filter of the default methods, every fast kernel against the reference: the
+     * same bytes, depths and counts */
     char *obj = grid_obj(240, 6);
     struct scene1 s;
     REQUIRE(scene1_init(&s, obj, 160, 96, 0) == 0);
     free(obj);
     REQUIRE(texture_build_mips(&s.tex, NULL) >= 0);
     struct camera cam = grid_camera(0.5);
-    static const char *const lanes[] = {"avx2-4", "avx2-8", "sse2"};
-    int compared = 0, differ = 0;
+    int runs = 0, compared = 0, differ = 0;
     for (enum shade_mode m = SHADE_UNLIT; m <= SHADE_PHONG; m++)
         for (enum tex_filter f = 0; f < TEX_FILTER_COUNT; f++) {
             struct render_opts o;
             render_opts_default(&o);
             o.shade = m, o.filter = f, o.threads = 1;
             struct frame_stats st = {0};
-            int d = frames_differ_across_isas(&s, &cam, &o, "avx2", lanes, &st);
+            int c, d = frames_differ_from_ref(&s, NULL, &cam, &o, &st, &c);
             /* tiny triangles: about two pixels a triangle drawn */
             CHECK(st.tris_drawn > 3000 && st.pixels_tested < 3 * st.tris_drawn);
-            compared += d >= 0;
+            runs += d >= 0 && c >= 1;
+            compared += c;
             differ += d != 0;
         }
-    CHECK_EQ_INT(compared, 4 * 3);
+    CHECK_EQ_INT(runs, 4 * 3);
     CHECK_EQ_INT(differ, 0);
+    fprintf(stderr, "      %d frames compared with the reference's%s\n", compared,
+            kernel_set(KERNEL_AVX2) ? "" : " (no AVX2 kernel here: the baseline's only)");
     scene1_free(&s);
 }
 
-TEST(simd_copy_never_changes_the_picture)
+TEST(every_kernel_draws_the_reference_bytes)
 {
-    /* the span stage's AVX2 copies (span.h: eight lanes, four lanes, and both by triangle
-     * size) against the baseline one: a textured grid through the near plane with a 6x5
-     * texture (no power of two: the modulo wrap) and its mips, in every shading mode,
-     * filter, depth and interpolation method: the same bytes and depths */
-    if (span_isa_set("avx2") != 0) {
-        test_skip(t, "no AVX2 copy in this build or on this CPU");
-        return;
-    }
+    /* every fast kernel (kernel.h) against the reference: a textured grid through the near
+     * plane with a 6x5 texture (no power of two: the modulo wrap) and its mips, the sky
+     * behind it, in every shading mode, filter, depth and interpolation method; then every
+     * rasterizer, the overdraw count and the normals and depth views: the same bytes,
+     * depths and counts */
     char *obj = grid_obj(20, 6);
     struct scene1 s;
     REQUIRE(scene1_init(&s, obj, 203, 117, 0) == 0);
@@ -447,12 +463,13 @@ TEST(simd_copy_never_changes_the_picture)
         px[i] = (uint8_t)(i * 37 + (i / 4) * 11);
     REQUIRE(texture_from_rgba(6, 5, px, &s.tex, NULL) == 0);
     REQUIRE(texture_build_mips(&s.tex, NULL) >= 0);
+    struct skybox sky;
+    REQUIRE(skybox_procedural(&sky, v3(1, 2, 1), NULL) == 0);
     struct camera cam = grid_camera(0.4);
     const enum depth_mode depths[] = {DEPTH_Z, DEPTH_W, DEPTH_Z16, DEPTH_RZ};
     const enum persp_method persps[] = {PERSP_CORRECT, PERSP_AFFINE, PERSP_SPAN8};
-    static const char *const copies[] = {"avx2", "avx2-4", "avx2-8"};
-    int compared = 0, differ = 0;
-    for (enum shade_mode m = SHADE_UNLIT; m <= SHADE_PHONG; m++)
+    int runs = 0, compared = 0, differ = 0;
+    for (enum shade_mode m = SHADE_UNLIT; m <= SHADE_WIRE; m++)
         for (enum tex_filter f = 0; f < TEX_FILTER_COUNT; f++)
             for (int di = 0; di < 4; di++)
                 for (int pi = 0; pi < 3; pi++) {
@@ -460,14 +477,35 @@ TEST(simd_copy_never_changes_the_picture)
                     render_opts_default(&o);
                     o.shade = m, o.filter = f, o.depth = depths[di], o.persp = persps[pi];
                     o.threads = 1;
+                    o.hidden_lines = true;
                     struct frame_stats st = {0};
-                    int d = frames_differ_across_isas(&s, &cam, &o, "sse2", copies, &st);
-                    CHECK(st.pixels_shaded > 1000);
-                    compared += d >= 0;
+                    int c, d = frames_differ_from_ref(&s, &sky, &cam, &o, &st, &c);
+                    CHECK(m == SHADE_WIRE || st.pixels_shaded > 1000);
+                    runs += d >= 0 && c >= 1;
+                    compared += c;
                     differ += d != 0;
                 }
-    CHECK_EQ_INT(compared, 4 * 3 * 4 * 3);
+    CHECK_EQ_INT(runs, 5 * 3 * 4 * 3);
+    /* the other rasterizers, the views, the overdraw count (and its runs), two threads */
+    fb_free(&s.fb);
+    REQUIRE(fb_init(&s.fb, 203, 117, true, NULL) == 0);
+    for (int v = 0; v < 6; v++) {
+        struct render_opts o;
+        render_opts_default(&o);
+        o.threads = v == 5 ? 2 : 1;
+        o.raster = v == 0 ? RASTER_SCANLINE : v == 1 ? RASTER_TILED : RASTER_EDGE;
+        o.view = v == 2 ? VIEW_NORMALS : v == 3 ? VIEW_DEPTH : v == 4 ? VIEW_OVERDRAW : VIEW_COLOR;
+        struct frame_stats st = {0};
+        int c, d = frames_differ_from_ref(&s, &sky, &cam, &o, &st, &c);
+        runs += d >= 0 && c >= 1;
+        compared += c;
+        differ += d != 0;
+    }
+    CHECK_EQ_INT(runs, 5 * 3 * 4 * 3 + 6);
     CHECK_EQ_INT(differ, 0);
+    fprintf(stderr, "      %d frames compared with the reference's%s\n", compared,
+            kernel_set(KERNEL_AVX2) ? "" : " (no AVX2 kernel here: the baseline's only)");
+    skybox_free(&sky);
     scene1_free(&s);
 }
 

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "kernel.h"
 #include "raster.h"
 #include "setup.h"
 #include "span.h"
@@ -67,8 +68,10 @@ static int draw(struct rig *r, struct vertex_out a, struct vertex_out b, struct 
     if (setup_triangle(&a, &b, &c, W, H, &t) != SETUP_DRAW)
         return 0;
     struct raster_rect all = {0, 0, W - 1, H - 1};
+    const struct kernel_set *ks = kernel_set(KERNEL_AUTO); /* (for the rig's methods now) */
+    kernel_choose_span(ks, &r->span);
     span_begin(&r->span, &t, &r->st, 0);
-    raster_methods[r->method](&t, all, &r->span);
+    ks->by_size[SPAN_SIZE_LARGE]->raster[r->method](&t, all, &r->span);
     span_end(&r->span);
     return 1;
 }

@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "render.h"
+#include "render_opts.h"
 #include "sweep.h"
 #include "test.h"
 

@@ -131,7 +131,12 @@ static int decode(const void *data, size_t len, struct texture *tx, struct warni
 {
     if (w)
         memset(w, 0, sizeof *w);
-    return imgdec_decode(data, len, "t", TEXTURE_MAX_SIDE, tx, w, e);
+    struct imgdec_image img;
+    memset(tx, 0, sizeof *tx);
+    if (imgdec_decode(data, len, "t", TEXTURE_MAX_SIDE, &img, w, e))
+        return -1;
+    tx->w = img.w, tx->h = img.h, tx->rgba = img.rgba;
+    return 0;
 }
 
 /* issue 12, defect 1: 16-bit PGM/PPM crashed stb_image (reads past its buffer) */

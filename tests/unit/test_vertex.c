@@ -1,11 +1,13 @@
-/* test_vertex.c: the vertex stage's lighting, several vertices at a time (vertex_shade_many:
- * a vertex per SIMD lane) against one at a time (vertex_shade) — every byte of every vertex
- * record the same, in every mode it batches, on every instruction set the machine has. */
+/* test_vertex.c: the vertex stage in every kernel (kernel.h) against one vertex at a time:
+ * the lighting, several vertices at a time (vertex_shade_many: a vertex per SIMD lane)
+ * against vertex_shade, and the positions (vertex_run) against the reference kernel's —
+ * every byte of every vertex record the same, in every mode, on every instruction set the
+ * machine has. */
 #include <stdlib.h>
 #include <string.h>
 
+#include "kernel.h"
 #include "light.h"
-#include "span.h"
 #include "test.h"
 #include "vertex.h"
 
@@ -55,13 +57,16 @@ TEST(vertex_shade_many_is_vertex_shade)
     } cases[] = {{SHADE_GOURAUD, VIEW_COLOR, 0, 1}, {SHADE_GOURAUD, VIEW_COLOR, 0, 2},
                  {SHADE_GOURAUD, VIEW_COLOR, 1, 1}, {SHADE_PHONG, VIEW_COLOR, 0, 1},
                  {SHADE_UNLIT, VIEW_NORMALS, 0, 1}, {SHADE_FLAT, VIEW_COLOR, 0, 1}};
-    const char *isas[] = {"sse2", "avx2"};
+    static const enum kernel_isa isas[] = {KERNEL_REF, KERNEL_SSE2, KERNEL_AVX2_8, KERNEL_AVX2_4};
+    int kernels = 0;
     static struct vertex_out one[N_VERTS], many[N_VERTS];
     struct vertex_out *outs[N_VERTS];
     uint32_t idx[N_VERTS];
-    for (int is = 0; is < 2; is++) {
-        if (span_isa_set(isas[is]))
+    for (int is = 0; is < 4; is++) {
+        if (!kernel_set(isas[is]))
             continue; /* (no AVX2 here) */
+        const struct kernel *k = kernel_set(isas[is])->by_size[SPAN_SIZE_LARGE];
+        kernels++;
         for (size_t c = 0; c < sizeof cases / sizeof *cases; c++) {
             u.shade = cases[c].shade, u.view = cases[c].view, u.ortho = cases[c].ortho;
             ro.n_lights = cases[c].n_lights;
@@ -76,16 +81,57 @@ TEST(vertex_shade_many_is_vertex_shade)
                 idx[i] = (uint32_t)(N_VERTS - 1 - i); /* any order */
                 outs[i] = &many[idx[i]];
             }
-            vertex_shade_many(&m, &u, idx, outs, N_VERTS);
+            k->vertex_shade_many(&m, &u, idx, outs, N_VERTS);
             int differ = 0;
             for (int i = 0; i < N_VERTS; i++)
                 differ += memcmp(&one[i], &many[i], sizeof one[i]) != 0;
             if (differ)
                 test_fail(t, __FILE__, __LINE__, "%s, case %zu: %d of %d vertices differ",
-                          isas[is], c, differ, N_VERTS);
+                          k->name, c, differ, N_VERTS);
             /* the lighting reached the records (not all zero) */
-            CHECK(one[3].shaded == 1 && one[3].var[0] == verts[3].uv[0]);
+            CHECK(one[3].shaded == VERTEX_SHADED && one[3].var[0] == verts[3].uv[0]);
         }
     }
-    span_isa_set("auto");
+    CHECK(kernels >= 2);
+}
+
+TEST(vertex_run_is_the_reference)
+{
+    /* positions, outcodes and snapped window positions of vertices in and around the view
+     * (inside, beyond the guard band, behind the eye, through the near plane) by every
+     * kernel against the reference kernel's: the same bytes */
+    enum { N = 61 };
+    struct mesh_vertex verts[N];
+    uint32_t seed = 11;
+    for (int i = 0; i < N; i++)
+        for (int c = 0; c < 3; c++)
+            verts[i].pos[c] = rnd(&seed) * (i % 7 == 0 ? 400.0f : 3.0f);
+    struct mesh m;
+    memset(&m, 0, sizeof m);
+    m.verts = verts, m.n_verts = N;
+    struct vertex_uniforms u;
+    memset(&u, 0, sizeof u);
+    struct camera cam;
+    camera_default(&cam);
+    cam.eye = v3(0.2, 0.4, 1.5);
+    u.fb_w = 160, u.fb_h = 96;
+    u.mvp = m4_mul(camera_proj(&cam, 160.0 / 96), camera_view(&cam));
+    u.guard_x = 1.0 + 2.0 * VERTEX_GUARD_PX / u.fb_w;
+    u.guard_y = 1.0 + 2.0 * VERTEX_GUARD_PX / u.fb_h;
+    static struct vertex_out ref[N], out[N];
+    memset(ref, 0, sizeof ref);
+    kernel_set(KERNEL_REF)->by_size[SPAN_SIZE_LARGE]->vertex_run(&m, &u, ref, 0, N);
+    int clipped = 0, projected = 0;
+    for (int i = 0; i < N; i++)
+        clipped += (ref[i].outcode & VERTEX_NEEDS_CLIP) != 0, projected += ref[i].projected;
+    CHECK(clipped > 5 && projected > 20);
+    static const enum kernel_isa isas[] = {KERNEL_SSE2, KERNEL_AVX2_8, KERNEL_AVX2_4};
+    for (int is = 0; is < 3; is++) {
+        if (!kernel_set(isas[is]))
+            continue;
+        memset(out, 0, sizeof out);
+        kernel_set(isas[is])->by_size[SPAN_SIZE_LARGE]->vertex_run(&m, &u, out, 0, 30);
+        kernel_set(isas[is])->by_size[SPAN_SIZE_LARGE]->vertex_run(&m, &u, out, 30, N);
+        CHECK(memcmp(ref, out, sizeof ref) == 0);
+    }
 }

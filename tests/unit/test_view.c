@@ -172,7 +172,7 @@ TEST(render_option_keys_cycle_through_every_value)
     view_key(&s, IN_LOD, 1);
     CHECK_EQ_INT(s.ro.lod, LOD_AUTO);
     view_key(&s, IN_GLYPHS, 1);
-    CHECK_EQ_INT(s.ro.glyphs, CELL_QUADRANT);
+    CHECK_EQ_INT(s.glyphs, CELL_QUADRANT);
     CHECK_STR_CONTAINS(s.message, "glyphs: quadrant  (half quadrant sextant braille ascii)");
     /* a new scene keeps the methods, the level of detail and the glyphs chosen with keys */
     struct render_opts ro;
@@ -180,7 +180,7 @@ TEST(render_option_keys_cycle_through_every_value)
     view_state_scene(&s, &s.home, &ro, 1);
     CHECK(s.ro.raster == RASTER_SCANLINE && s.ro.depth == (enum depth_mode)1);
     CHECK_EQ_INT(s.ro.lod, LOD_AUTO);
-    CHECK_EQ_INT(s.ro.glyphs, CELL_QUADRANT);
+    CHECK_EQ_INT(s.glyphs, CELL_QUADRANT);
 }
 
 TEST(l_switches_between_the_headlight_and_the_world_lights)

@@ -1,0 +1,111 @@
+/* frontend.h: the front end of one thread of drawing — vertex stage, trivial rejection,
+ * culling, clipping and triangle setup of a draw item's triangles, appended to a batch
+ * (batch.h) that the back end draws, and the edges of wireframe as lines.
+ *
+ * For each triangle of an item, in order:
+ *     the vertex stage just ahead of it (kernel.h's vertex_run, in chunks of at least
+ *       FRONTEND_VERTEX_CHUNK vertices: each unique vertex positioned once a frame)
+ *     trivial reject (all corners outside one frustum plane, or a corner not finite)
+ *     its pixel box (setup_box): no pixel centre in it, dropped (most triangles of a dense
+ *       mesh at terminal sizes)
+ *     facing and culling, once per source triangle
+ *     setup.c: edge equations and the tie rule; covering no centre of a box of a few
+ *       pixels, dropped before its vertices are lit
+ *     its vertices' world positions and varyings (vertex_shade, or queued for
+ *       vertex_shade_many), its shading record (flat: its lighting)
+ *     clip.c: polygon clipping, only when outcodes say a corner is outside the near/far
+ *       planes or the x/y guard band; each piece set up
+ * Every FRONTEND_FLUSH_ONE_THREAD set-up triangles (FRONTEND_FLUSH_THREADS with a pool) and
+ * at the end the batch goes to the back end: batch_draw_start on the pool (or now, on this
+ * thread), while the front end fills the other of its two batches.
+ *
+ * Owns: per-item vertex outputs and the two batches, allocated once and reused across
+ * frames, so a frame performs no allocation once the largest mesh has been seen. One per
+ * thread that runs a front end: the tiles plan has one, the slices plan one per slice. */
+#ifndef RASTTY_FRONTEND_H
+#define RASTTY_FRONTEND_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "batch.h"
+#include "frame.h"
+#include "scene.h"
+#include "workers.h"
+
+/* One thread draws a batch right after setting it up: a smaller batch finds the vertex
+ * records its interpolation setup reads still in the caches (lost_empire at 160x96: a drawn
+ * triangle for every 16 set up, 8192 drawn ones span ~16 MB of vertex records; 16.8 -> 13.8
+ * ms with 1024). Several threads draw one batch while the front end sets up the next:
+ * batches small enough that the first is handed over early. */
+#define FRONTEND_FLUSH_ONE_THREAD 1024
+#define FRONTEND_FLUSH_THREADS 512
+/* The vertex stage runs in chunks of at least this many vertices just before the first
+ * triangle that uses them: it then reads vertex records still in the caches (a mesh whose
+ * triangles come in the order of their vertices, as exporters write them; any other order
+ * makes the chunks larger, up to the whole mesh at once). With threads too: run on every
+ * thread first, the dense models' records (57 MB for lost_empire) were out of the caches
+ * again when the front end read them (car 2 threads 7.9 -> 7.2 ms). */
+#define FRONTEND_VERTEX_CHUNK 512
+
+struct frontend {
+    /* vertex-stage output per draw item, reused across frames (64-byte aligned: each half of
+     * a vertex record is one cache line) */
+    struct frontend_item {
+        struct vertex_out *v;
+        uint32_t cap;
+        const struct mesh *level; /* the level of detail this frame draws (chosen once) */
+    } *items;
+    int n_items;
+    /* set-up triangles: front end -> back end. With a pool, the pool draws one batch while
+     * the front end fills the other: batch[cur] is being filled, batch[!cur] is being
+     * drawn when in_flight */
+    struct batch batch[2];
+    int cur;
+    bool in_flight;
+    /* the back end the batches go to (frontend_use) */
+    struct workers *workers;  /* NULL: this thread draws each batch at once */
+    struct span_ctx *ctx;     /* one per thread of the back end */
+    int n_ctx;
+    uint32_t flush_at;        /* set-up triangles that make the back end run */
+    /* vertices of set-up triangles waiting for vertex_shade_many: shaded together before the
+     * back end reads them; at most three per set-up triangle */
+    uint32_t *vq_idx;
+    struct vertex_out **vq_out;
+    uint32_t vq_n, vq_cap;
+    const struct mesh *vq_mesh;
+};
+
+/* Batches of batch_cap set-up triangles (tests: the picture must not depend on it). 0 or
+ * -1 with e set (out of memory). */
+int frontend_init(struct frontend *fe, uint32_t batch_cap, struct err *e);
+void frontend_free(struct frontend *fe);
+/* The back end for this frame: w's threads and this one (ctx[0] .. ctx[n_ctx - 1]: one span
+ * context per thread, filled from f's template), or this thread alone (w NULL, n_ctx 1).
+ * Empties the batch being filled. */
+void frontend_begin(struct frontend *fe, const struct frame *f, struct workers *w,
+                    struct span_ctx *ctx, int n_ctx);
+/* Item it's vertex-stage output array, grown to n (kept across frames); NULL and e set when
+ * out of memory. */
+struct vertex_out *frontend_item_verts(struct frontend *fe, int it, uint32_t n, struct err *e);
+/* The front end for the item's triangles i0 .. i1-1 of m (the item's mesh at the level of
+ * detail drawn; no triangle uses a vertex below verts_from: the vertex stage starts there)
+ * with vertex records vo; depth_only: the hidden-line pre-pass (every face, whatever the
+ * culling; no shading records). 0 or -1 (out of memory). */
+int frontend_triangles(struct frontend *fe, struct frame *f, const struct draw_item *item,
+                       const struct mesh *m, struct vertex_out *vo, bool depth_only,
+                       uint32_t i0, uint32_t i1, uint32_t verts_from, struct err *e);
+/* The surfaces are complete: what is set up goes to the back end, and every batch is drawn
+ * before this returns (the counts of pixels are then in the span contexts). 0 or -1. */
+int frontend_finish(struct frontend *fe, struct frame *f, struct err *e);
+/* Nothing may be left drawing once the caller has the frame back: joins the pool after a
+ * failure. */
+void frontend_abandon(struct frontend *fe, struct frame *f);
+
+/* Triangle edges of m (vertex records vo, positioned) as lines, depth-tested when asked.
+ * `overlay` edges decorate a shaded frame: they are not counted as the frame's triangles. */
+void frontend_edges(const struct mesh *m, const struct vertex_out *vo,
+                    const struct render_opts *o, bool depth_test, bool overlay, struct fb *fb,
+                    struct frame_stats *stats);
+
+#endif

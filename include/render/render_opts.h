@@ -1,0 +1,146 @@
+/* render_opts.h: everything that chooses HOW a frame is drawn, in one value.
+ *
+ * The same struct render_opts reaches the pipeline from `rastty render`, `dump`, the viewer
+ * and the benchmarks, so every method is selectable everywhere (what a frame reports back,
+ * struct frame_stats, is pipeline.h's).
+ *
+ * Lighting model (conventions): directional lights (direction TOWARD the light, colour),
+ * default one white light toward (1,1,1). With V toward the eye and H = normalize(L+V):
+ *   c = albedo * (0.1 + 0.9 * sum_l max(0,N.L)*col_l) + ks * sum_l max(0,N.H)^ns * col_l
+ * clamped to [0,1]; albedo = material kd * texture texel (texel = 1 without texture);
+ * ks = 0.5 and ns = 32 unless the MTL says otherwise.
+ *   unlit   : c = albedo
+ *   flat    : N = face normal (file winding, world space); diffuse and specular evaluated once
+ *             per triangle with V from the triangle's centroid; albedo still per pixel.
+ *   gouraud : diffuse and specular sums evaluated per vertex (V per vertex), interpolated
+ *             (perspective-correct), combined per pixel with the per-pixel albedo.
+ *   phong   : N (interpolated, renormalised) and V (from interpolated world position) per
+ *             pixel.
+ *   wire    : triangle edges as Bresenham lines (line.h), in the wire colour.
+ * Orthographic cameras use a constant V = camera_back(). Normals are not flipped for back
+ * faces. */
+#ifndef RASTTY_RENDER_OPTS_H
+#define RASTTY_RENDER_OPTS_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "fb.h"
+#include "lod.h"
+#include "scene.h"
+#include "texture.h"
+#include "vecmath.h"
+
+#define RENDER_MAX_LIGHTS SCENE_MAX_LIGHTS
+
+enum shade_mode { SHADE_UNLIT, SHADE_FLAT, SHADE_GOURAUD, SHADE_PHONG, SHADE_WIRE, SHADE_COUNT };
+enum cull_mode { CULL_NONE, CULL_BACK, CULL_FRONT, CULL_COUNT };
+/* Methods: each axis picks one way to do a stage; every combination draws the same scene.
+ * What each costs and where it fails is documented beside its code: rasterizers in raster.h,
+ * perspective methods in span.h, depth buffers in fb.h (enum depth_mode). */
+enum raster_method { RASTER_EDGE, RASTER_SCANLINE, RASTER_TILED, RASTER_COUNT };
+enum persp_method { PERSP_CORRECT, PERSP_AFFINE, PERSP_SPAN8, PERSP_SPAN16, PERSP_SPAN32,
+                    PERSP_COUNT };
+/* Supersampling (--ssaa N; ssaa.h does it around pipeline_draw, which ignores the field):
+ * k x k samples per pixel with k = render_ssaa_factor(), averaged with a box filter. */
+enum ssaa_method { SSAA_1, SSAA_2, SSAA_4, SSAA_8, SSAA_COUNT };
+
+/* What the framebuffer's colour shows after the frame (the viewer's `v` key). */
+enum debug_view { VIEW_COLOR, VIEW_DEPTH, VIEW_NORMALS, VIEW_OVERDRAW, VIEW_WIRE_OVERLAY,
+                  VIEW_COUNT };
+
+/* How several threads share a frame (--split; the picture never depends on it, a test
+ * checks every method at 1, 2, 3 and 5 threads both ways):
+ *   SPLIT_TILES   the calling thread runs the front end (vertices, culling, setup) while the
+ *                 pool draws the set-up triangles by 64x64 screen tile (llvmpipe's way).
+ *                 Fails: at terminal sizes a dense mesh is mostly front end, which stays on
+ *                 one thread — two threads draw the head at 160x96 no faster than one.
+ *   SPLIT_SLICES  thread k takes the k-th slice of the frame's triangles (in submission
+ *                 order) through the whole pipeline into a framebuffer of its own; the
+ *                 framebuffers are then merged pixel by pixel, the nearer fragment winning
+ *                 and on a tie the earlier slice — which is what one thread drawing every
+ *                 slice in turn keeps, since the depth test is strict. Costs: a framebuffer
+ *                 per thread to clear and merge, and the vertices two slices share done in
+ *                 both. Fails: large frames, where the clear and the merge grow with the
+ *                 pixels while a dense mesh's front end does not. The counts of lit
+ *                 vertices and shaded pixels are then summed over the slices (a fragment a
+ *                 later slice hides is still counted), so they can exceed one thread's.
+ *   SPLIT_AUTO    slices when the frame holds at least one triangle (after culling of
+ *                 whole meshes) for every PIPELINE_SLICE_PIXELS pixels, else tiles; tiles
+ *                 always for wireframe, the wireframe overlay and the overdraw count. */
+enum thread_split { SPLIT_AUTO, SPLIT_TILES, SPLIT_SLICES, SPLIT_COUNT };
+
+/* Which instruction set's kernels draw (--kernel; kernel.h): auto is AVX2 where the CPU has
+ * it (x86-64), else SSE2; ref is the scalar reference every other kernel must match byte for
+ * byte; avx2-4 and avx2-8 draw every triangle with one AVX2 width (avx2 picks the width by
+ * the triangle's size). The picture never depends on it. */
+enum kernel_isa { KERNEL_AUTO, KERNEL_REF, KERNEL_SSE2, KERNEL_AVX2, KERNEL_AVX2_4, KERNEL_AVX2_8,
+                  KERNEL_ISA_COUNT };
+
+struct render_opts {
+    enum shade_mode shade;
+    enum tex_filter filter;
+    enum raster_method raster;  /* --raster: which pixels a triangle covers */
+    enum persp_method persp;    /* --persp: how varyings are interpolated */
+    enum depth_mode depth;      /* --depth: what the depth buffer stores */
+    int threads;                /* --threads: 0 = one per core; the picture never depends on it */
+    enum thread_split split;    /* --split: how the threads share the frame */
+    enum kernel_isa kernel;     /* --kernel: whose kernels draw; the picture never depends on it */
+    enum ssaa_method ssaa;      /* --ssaa: samples per pixel (ssaa.h) */
+    enum lod_mode lod;          /* --lod: which simplified level of each mesh is drawn */
+    float lod_ratio;            /* LOD_RATIO: fraction of the triangles kept, (0, 1] */
+    float lod_px;               /* LOD_AUTO: largest error on screen, in pixels (> 0) */
+    enum cull_mode cull;
+    enum debug_view view;
+    bool textures;       /* sample material / override textures (else albedo = kd) */
+    bool hidden_lines;   /* wire: hide edges behind the model's surfaces (depth pre-pass) */
+    uint8_t background[3];
+    uint8_t wire_color[3];
+    int n_lights;
+    struct light lights[RENDER_MAX_LIGHTS];
+    vec3 ambient_sky, ambient_ground; /* hemisphere ambient (light.h): from straight above
+                                       * (+Y) and below; both 0.1 = the constant 0.1 */
+};
+
+/* Defaults from the conventions: phong, trilinear, edge rasterizer, perspective-correct, float
+ * window depth, no supersampling, every mesh in full (lod off; auto's bound LOD_DEFAULT_PX),
+ * no culling, textures on, black background, white wire colour, one white light toward
+ * (1,1,1), ambient 0.1. */
+void render_opts_default(struct render_opts *o);
+/* The ideal image's methods — rastty's most accurate setting, the reference every method is
+ * measured against (bench --chart): perspective-correct, trilinear, --ssaa 8, meshes in full
+ * (lod off). Everything else (shading, lights, depth method, rasterizer, ...) is left as it
+ * is. */
+void render_opts_ideal(struct render_opts *o);
+
+/* --ssaa's k: 1, 2, 4 or 8 samples per axis */
+static inline int render_ssaa_factor(enum ssaa_method m)
+{
+    return 1 << (int)m;
+}
+
+/* Every enum-valued option by name: the flag parser, --help, the HUD and the viewer's cycle
+ * keys all read these tables. names[v] is the spelling of value v; n is the count. */
+struct render_enum {
+    const char *const *names;
+    int n;
+};
+extern const struct render_enum render_shade_names, render_cull_names, render_filter_names,
+    render_view_names, render_raster_names, render_persp_names, render_depth_names,
+    render_ssaa_names, render_lod_names, render_split_names, render_kernel_names;
+
+const char *render_shade_name(enum shade_mode m);
+const char *render_cull_name(enum cull_mode m);
+const char *render_filter_name(enum tex_filter f);
+const char *render_view_name(enum debug_view v);
+const char *render_raster_name(enum raster_method m);
+const char *render_persp_name(enum persp_method m);
+const char *render_depth_name(enum depth_mode m);
+const char *render_ssaa_name(enum ssaa_method m);
+/* Parse a name back; -1 if unknown. */
+int render_enum_parse(const struct render_enum *t, const char *s);
+int render_shade_parse(const char *s);
+int render_cull_parse(const char *s);
+int render_filter_parse(const char *s);
+
+#endif

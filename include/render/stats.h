@@ -1,0 +1,33 @@
+/* stats.h: what a frame reports back — counts of triangles, vertices and pixels at each
+ * stage, the levels of detail drawn, how the threads shared it, its time (the HUD, --stats,
+ * the benchmarks). pipeline_draw fills it. */
+#ifndef RASTTY_STATS_H
+#define RASTTY_STATS_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+struct frame_stats {
+    uint64_t tris_in;       /* triangles submitted */
+    uint64_t tris_culled;   /* back/front-face culled, zero-area, or mesh outside frustum */
+    uint64_t tris_rejected; /* trivially outside one frustum plane */
+    uint64_t tris_clipped;  /* needed polygon clipping */
+    uint64_t tris_drawn;    /* reached the rasterizer (after clipping, fan pieces counted) */
+    uint64_t tris_empty;    /* reached the rasterizer but covered no pixel centre */
+    uint64_t tris_no_centre; /* dropped by setup: zero area, no pixel centre in the box, or a
+                              * box of at most 4 pixels whose centres it misses (not
+                              * lit, no shading record); unclipped, in = rejected + culled +
+                              * no_centre + drawn */
+    uint64_t verts_lit;     /* vertices lit (vertex_shade): only those of triangles drawn */
+    uint64_t pixels_tested; /* fragments inside a triangle */
+    uint64_t pixels_shaded; /* fragments that passed the depth test */
+    uint64_t meshes_culled; /* whole meshes outside the frustum (bounding sphere) */
+    uint64_t tris_full;     /* what tris_in would be at full detail (--lod off) */
+    int lod_min, lod_max;   /* levels of detail drawn (0 = full), over the drawn items; -1 none */
+    const char *kernel;     /* the kernels that drew it (kernel.h: "avx2", "sse2", "ref", ...) */
+    int threads;            /* threads that drew the frame */
+    bool slices;            /* they split the triangles (SPLIT_SLICES), not the screen */
+    double render_ms;
+};
+
+#endif

@@ -1,0 +1,89 @@
+/* lod.h: mesh level of detail — a chain of simplified copies of each mesh, built at load, and
+ * the copy a frame draws (--lod auto|off|RATIO).
+ *
+ * At terminal sizes a dense mesh puts many triangles on each pixel: the sports car's 300k
+ * triangles cover 15k pixels at 160x96. Its coarser levels draw what the screen can show.
+ *
+ * The chain (lod_build, lod_start): level 0 is the mesh itself; level k+1 is level k
+ * simplified by meshoptimizer (meshopt_simplify, edge collapses ranked by quadric error) to
+ * half its triangles. The simplifier collapses an edge only onto one of its own vertices,
+ * so every level's vertices are the source's: positions, uvs, normals and colours keep their
+ * values. Vertices that share a position but not the rest (uv and normal seams, and material
+ * borders: mesh.h makes vertices unique per material) are "seams" to it and stay seams, so
+ * every triangle keeps one material and its uvs, and a closed mesh stays closed. Each level
+ * has its own compact vertex array (in order of first use), so the vertex stage does less
+ * work too, and borrows the source's materials and textures.
+ *   The simplifier reports its error relative to the mesh's extent; a level's error
+ * (lod_level_error) is the sum of the steps' errors down to it, in object-space units: an
+ * estimate of how far its surface lies from the source's (quadric error, a mean-square
+ * plane distance, not a bound). The chain stops where a step cannot reach 3/4 of its
+ * triangles (everything is a seam or a border: the lost_empire's blocks), where a level
+ * would have fewer than LOD_MIN_TRIS triangles, where its error passes LOD_MAX_ERROR of the
+ * mesh's extent, or at LOD_MAX_LEVELS. Meshes smaller than 2 * LOD_MIN_TRIS, without
+ * vert_material, or with non-finite positions get no levels.
+ *
+ * The choice (lod_choose, per frame and draw item):
+ *   off   : level 0.
+ *   auto  : the coarsest level whose error, projected at the nearest point of the item's
+ *           bounding sphere (view depth, vertical fov, framebuffer height; orthographic: view
+ *           height), is below o->lod_px pixels of the framebuffer being drawn (with --ssaa,
+ *           the supersampled one). The default, LOD_DEFAULT_PX (render.h), comes from the
+ *           methods chart (README).
+ *   RATIO : the level whose triangle count is nearest (by ratio) to RATIO x the source's.
+ * Only complete levels are chosen: while a background build runs, the chain grows.
+ *
+ * Vertex-cache, overdraw and vertex-fetch reordering (meshopt_optimize*) were measured on the
+ * shared models and do not pay here (README): the source's triangle order is kept. */
+#ifndef RASTTY_LOD_H
+#define RASTTY_LOD_H
+
+#include <stdbool.h>
+
+#include "camera.h"
+#include "mesh.h"
+
+/* Mesh level of detail (--lod; this file picks the level per frame and draw item): off draws
+ * every mesh in full, auto the coarsest level whose error stays under lod_px pixels on
+ * screen, RATIO (LOD_RATIO) the level nearest to that fraction of the triangles. Only off
+ * and auto have names (render_lod_names in render.h, the chart's `lod` axis). */
+enum lod_mode { LOD_OFF, LOD_AUTO, LOD_RATIO };
+#define LOD_NAMED 2
+/* auto's error bound in pixels, chosen from the methods chart (README, "Level of detail") */
+#define LOD_DEFAULT_PX 0.15f
+
+#define LOD_MAX_LEVELS 8   /* simplified levels after level 0 */
+#define LOD_MIN_TRIS 512   /* no level smaller than this */
+#define LOD_MAX_ERROR 0.05 /* of meshopt_simplifyScale (the largest side of the box) */
+
+/* Build m's chain now, on this thread. 0, or -1 out of memory (m keeps the levels made so
+ * far and is still fine to draw). */
+int lod_build(struct mesh *m, struct err *e);
+
+/* Build the chains of meshes[0..n) on a background thread; lod_finish waits for it. The
+ * meshes must not move or be freed before lod_finish. */
+struct lod_job;
+int lod_start(struct mesh *meshes, int n, struct lod_job **out, struct err *e);
+/* Has the job finished every chain? (NULL: yes.) */
+bool lod_done(const struct lod_job *j);
+/* Wait for the job and free it (NULL: nothing); cancel: stop after the level being built (a
+ * viewer quitting), the meshes keep the levels finished so far. */
+void lod_finish(struct lod_job *j, bool cancel);
+/* Free m's levels (mesh_free does it). */
+void lod_free(struct mesh *m);
+
+/* Levels ready to draw, level 0 included (1 when m has no chain). */
+int lod_level_count(const struct mesh *m);
+/* Level k (0 = m itself), k < lod_level_count(m). */
+const struct mesh *lod_level(const struct mesh *m, int k);
+/* Level k's error in m's object-space units (0 for level 0). */
+double lod_level_error(const struct mesh *m, int k);
+
+/* Pixels of the framebuffer per world unit at the nearest point of a sphere (world space),
+ * for a framebuffer fb_h pixels high: where a level's error is largest on screen. */
+double lod_pixels_per_unit(const struct camera *cam, int fb_h, vec3 center, double radius);
+/* The level to draw (see the top of this file); px_per_unit: pixels per object-space unit
+ * (lod_pixels_per_unit times the model matrix's largest scale). */
+int lod_choose(const struct mesh *m, enum lod_mode mode, float ratio, float max_px,
+               double px_per_unit);
+
+#endif

@@ -1,0 +1,84 @@
+/* cmd_render.c: `rastty render` — one frame of one model or scene to an image file. */
+#include "cmd.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "file.h"
+#include "image.h"
+#include "light.h"
+#include "pipeline.h"
+#include "prepare.h"
+#include "scene.h"
+#include "span.h"
+#include "ssaa.h"
+#include "texfind.h"
+#include "timing.h"
+
+int cmd_render(const struct options *o, struct err *e)
+{
+    char q[FILE_QUOTE_SIZE];
+    if (!image_color_ext_ok(o->out))
+        return err_set(e, "rastty render: --out %s: use a .ppm or .png file name",
+                       file_quote(o->out, q, sizeof q)), 2;
+    struct scene scene;
+    double l0 = timing_now_ms();
+    if (prepare_scene(o, o->inputs[0], &scene, NULL, 0, e))
+        return 2;
+    double load_ms = timing_now_ms() - l0;
+    struct camera cam;
+    struct render_opts ro;
+    /* --glyphs: the pixels are that glyph set's (cell.h), as a terminal would show them */
+    struct cell_geom geom = cell_geom(o->glyphs);
+    double pixel_aspect = cell_pixel_aspect(&geom); /* 1: half blocks' pixels are square */
+    prepare_camera(o, &scene, (double)o->width * pixel_aspect / o->height, o->frame, &cam, &ro);
+    struct fb fb;
+    struct ssaa ss = {0};
+    struct pipeline *p = pipeline_new();
+    struct frame_stats st;
+    struct skybox tmp = {0};
+    const struct skybox *sky;
+    double *ms = NULL;
+    int rc = 1;
+    if (!p)
+        err_set(e, "out of memory");
+    else if (!(ms = malloc((size_t)o->repeat * sizeof *ms)))
+        err_set(e, "out of memory");
+    else if (prepare_sky(o, &scene, &ro, &tmp, &sky, e) == 0 &&
+             fb_init(&fb, o->width, o->height, ro.view == VIEW_OVERDRAW, e) == 0) {
+        fb.pixel_aspect = pixel_aspect;
+        if (o->light_camera) /* after the sky: its sun stays toward the world light */
+            light_use_camera(&ro, &cam);
+        int drawn = 0;
+        for (; drawn < o->repeat; drawn++) { /* --repeat: the same frame again, for timing */
+            if (ssaa_draw(&ss, p, scene.items, scene.n_items, sky, &cam, &ro, &fb, &st, e))
+                break;
+            ms[drawn] = st.render_ms;
+        }
+        if (drawn == o->repeat && image_write_color(o->out, &fb, e) == 0 &&
+            (!o->depth_out || image_write_pfm(o->depth_out, &fb, e) == 0))
+            rc = 0;
+        if (o->stats && drawn > 0) {
+            prepare_print_stats(&st);
+            fprintf(stderr, "camera: --eye %.9g,%.9g,%.9g --target %.9g,%.9g,%.9g --up %.9g,%.9g,%.9g "
+                            "--fov %.9g --near %.9g --far %.9g\n",
+                    cam.eye.x, cam.eye.y, cam.eye.z, cam.target.x, cam.target.y, cam.target.z,
+                    cam.up.x, cam.up.y, cam.up.z, cam.fov_deg, cam.near, cam.far);
+            double med = timing_median(ms, drawn); /* sorts ms: ms[0] is the fastest */
+            fprintf(stderr,
+                    "frames=%d median_ms=%.4f min_ms=%.4f load_ms=%.2f simd=%s threads=%d "
+                    "split=%s\n",
+                    drawn, med, ms[0], load_ms, st.kernel, st.threads,
+                    st.threads < 2 ? "none" : st.slices ? "slices" : "tiles");
+        }
+        fb_free(&fb);
+    }
+    free(ms);
+    ssaa_free(&ss);
+    pipeline_destroy(p);
+    skybox_free(&tmp);
+    scene_free(&scene);
+    return rc;
+}

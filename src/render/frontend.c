@@ -1,0 +1,325 @@
+/* frontend.c: the front end of one thread of drawing (see frontend.h). */
+#include "frontend.h"
+
+#include <assert.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "clip.h"
+#include "line.h"
+#include "setup.h"
+
+int frontend_init(struct frontend *fe, uint32_t batch_cap, struct err *e)
+{
+    memset(fe, 0, sizeof *fe);
+    if (batch_init(&fe->batch[0], batch_cap, e) || batch_init(&fe->batch[1], batch_cap, e) ||
+        !(fe->vq_idx = malloc(3 * (size_t)fe->batch[0].cap * sizeof *fe->vq_idx)) ||
+        !(fe->vq_out = malloc(3 * (size_t)fe->batch[0].cap * sizeof *fe->vq_out))) {
+        frontend_free(fe);
+        return err_set(e, "out of memory for the front end's batches");
+    }
+    fe->vq_cap = 3 * fe->batch[0].cap;
+    return 0;
+}
+
+void frontend_free(struct frontend *fe)
+{
+    for (int i = 0; i < fe->n_items; i++)
+        free(fe->items[i].v);
+    free(fe->items);
+    batch_free(&fe->batch[0]);
+    batch_free(&fe->batch[1]);
+    free(fe->vq_idx);
+    free(fe->vq_out);
+    memset(fe, 0, sizeof *fe);
+}
+
+void frontend_begin(struct frontend *fe, const struct frame *f, struct workers *w,
+                    struct span_ctx *ctx, int n_ctx)
+{
+    fe->workers = w && workers_count(w) > 0 ? w : NULL;
+    fe->ctx = ctx;
+    fe->n_ctx = n_ctx;
+    fe->flush_at = fe->workers ? FRONTEND_FLUSH_THREADS : FRONTEND_FLUSH_ONE_THREAD;
+    batch_reset(&fe->batch[fe->cur]);
+    for (int k = 0; k < n_ctx; k++)
+        ctx[k] = f->span;
+}
+
+/* flat shading: light.h's terms once per triangle, face normal from the file's winding, V
+ * from the centroid */
+static void flat_terms(const struct vertex_uniforms *u, const struct vertex_out *a,
+                       const struct vertex_out *b, const struct vertex_out *c, float ns,
+                       struct shade_tri *st)
+{
+    vec3 p0 = v3(a->wpos[0], a->wpos[1], a->wpos[2]);
+    vec3 p1 = v3(b->wpos[0], b->wpos[1], b->wpos[2]);
+    vec3 p2 = v3(c->wpos[0], c->wpos[1], c->wpos[2]);
+    vec3 nd = v3_norm(v3_cross(v3_sub(p1, p0), v3_sub(p2, p0)));
+    vec3 centroid = v3_scale(v3_add(v3_add(p0, p1), p2), 1.0 / 3.0);
+    float n[3] = {(float)nd.x, (float)nd.y, (float)nd.z};
+    float cw[3] = {(float)centroid.x, (float)centroid.y, (float)centroid.z};
+    vertex_light(u, n, cw, ns, st->flat_d, st->flat_s);
+}
+
+/* the batch the pool is drawing, if any: join it, count its triangles, empty it */
+static void drain(struct frontend *fe, struct frame *f)
+{
+    if (!fe->in_flight)
+        return;
+    struct batch *b = &fe->batch[!fe->cur];
+    f->stats->tris_empty += (uint64_t)batch_draw_finish(b, fe->workers);
+    batch_reset(b);
+    fe->in_flight = false;
+}
+
+/* the queued vertices shaded (the back end reads their varyings) */
+static void shade_queued(struct frontend *fe, const struct frame *f)
+{
+    if (fe->vq_n)
+        f->k->vertex_shade_many(fe->vq_mesh, &f->u, fe->vq_idx, fe->vq_out, fe->vq_n);
+    fe->vq_n = 0;
+}
+
+/* the back end for what the front end has set up: one thread draws it now; with threads
+ * the pool starts on it (after the batch before it) and the front end goes on with the
+ * other batch */
+static int flush(struct frontend *fe, struct frame *f, struct err *e)
+{
+    shade_queued(fe, f); /* (while the pool still draws the batch before) */
+    drain(fe, f);
+    struct batch *b = &fe->batch[fe->cur];
+    if (batch_draw_start(b, f->k->raster[f->o->raster], f->fb->w, f->fb->h, fe->workers,
+                         fe->ctx, e))
+        return -1;
+    if (!fe->workers) {
+        f->stats->tris_empty += (uint64_t)batch_draw_finish(b, fe->workers);
+        batch_reset(b);
+    } else {
+        fe->in_flight = true;
+        fe->cur = !fe->cur;
+    }
+    return 0;
+}
+
+/* append one triangle (a source triangle or a piece of one) to the batch */
+static void add_setup(struct frontend *fe, struct frame *f, const struct vertex_out *a,
+                      const struct vertex_out *b, const struct vertex_out *c, uint32_t shade)
+{
+    struct batch *bt = &fe->batch[fe->cur];
+    struct setup_tri *t = &bt->tris[bt->n_tris];
+    if (setup_triangle(a, b, c, f->fb->w, f->fb->h, t) != SETUP_DRAW)
+        return;
+    t->shade = shade;
+    bt->n_tris++;
+    f->stats->tris_drawn++;
+}
+
+/* a triangle through a clipping plane: its pieces, set up and appended (rare: out of the
+ * front end's loop, which keeps its registers for the common path) */
+static __attribute__((noinline)) void clip_and_add(struct frontend *fe, struct frame *f,
+                                                   struct vertex_out *v[3], uint32_t planes,
+                                                   int n_var, uint32_t shade)
+{
+    struct batch *bt = &fe->batch[fe->cur];
+    struct vertex_out *poly = &bt->verts[bt->n_verts];
+    const struct vertex_out *cv[3] = {v[0], v[1], v[2]};
+    int n = clip_triangle(cv, planes, n_var, f->u.guard_x, f->u.guard_y, poly);
+    for (int k = 0; k < n; k++)
+        if (!poly[k].projected) /* a vertex made by clipping */
+            vertex_project(&poly[k], f->fb->w, f->fb->h);
+    bt->n_verts += (uint32_t)n;
+    for (int k = 1; k + 1 < n; k++)
+        add_setup(fe, f, &poly[0], &poly[k], &poly[k + 1], shade);
+}
+
+/* world position and varyings, once per vertex a drawn triangle uses: now, or queued for
+ * vertex_shade_many (VERTEX_QUEUED) when it does them faster together and `now` is false */
+static void shade_vertices(struct frontend *fe, const struct mesh *m, const struct frame *f,
+                           uint32_t i, struct vertex_out *v[3], bool now)
+{
+    const bool queue = !now && vertex_shade_batched(m, &f->u);
+    for (int k = 0; k < 3; k++) {
+        if (v[k]->shaded == VERTEX_SHADED)
+            continue;
+        f->stats->verts_lit += v[k]->shaded == VERTEX_UNSHADED;
+        if (queue && v[k]->shaded == VERTEX_UNSHADED) {
+            assert(fe->vq_n < fe->vq_cap); /* three per set-up triangle, emptied per batch */
+            v[k]->shaded = VERTEX_QUEUED;
+            fe->vq_mesh = m;
+            fe->vq_idx[fe->vq_n] = m->tris[i][k];
+            fe->vq_out[fe->vq_n++] = v[k];
+        } else if (!queue) { /* (a queued vertex is shaded twice: the same floats) */
+            vertex_shade(m, &f->u, m->tris[i][k], v[k]);
+        }
+    }
+}
+
+/* the shading record of the last material seen: triangles come in runs of one material */
+struct shade_proto {
+    int mat;
+    struct shade_tri st;
+};
+
+/* append triangle i's shading record to the batch; its index */
+static uint32_t add_shade(struct batch *bt, const struct frame *f, const struct draw_item *item,
+                          const struct mesh *m, uint32_t i, struct vertex_out *v[3],
+                          struct shade_proto *proto)
+{
+    uint16_t mi = m->tri_material[i];
+    if (mi != proto->mat) {
+        struct shade_tri *st = &proto->st;
+        proto->mat = mi;
+        st->mat = &m->materials[mi];
+        st->tex = NULL;
+        if (f->o->textures)
+            st->tex = item->texture_override ? item->texture_override
+                      : st->mat->texture >= 0 ? &m->textures[st->mat->texture]
+                                              : NULL;
+        st->vcolor = m->colors != NULL;
+        light_base_color(st->mat, item->kd_override, st->tex || st->vcolor, st->base);
+    }
+    uint32_t shade = bt->n_shades++;
+    struct shade_tri *st = &bt->shades[shade];
+    *st = proto->st;
+    if (f->span.mode == SHADE_FLAT)
+        flat_terms(&f->u, v[0], v[1], v[2], st->mat->ns, st);
+    return shade;
+}
+
+int frontend_triangles(struct frontend *fe, struct frame *f, const struct draw_item *item,
+                       const struct mesh *m, struct vertex_out *vo, bool depth_only,
+                       uint32_t i0, uint32_t i1, uint32_t verts_from, struct err *e)
+{
+    uint32_t verts_done = verts_from; /* (a slice: the lowest vertex its triangles use) */
+    const struct render_opts *o = f->o;
+    struct frame_stats *stats = f->stats;
+    struct batch *bt = &fe->batch[fe->cur];
+    int n_var = depth_only ? 0 : m->colors ? VARY_COLOR + 3 : vertex_varying_count(o->shade, o->view, f->u.lights.grey);
+    struct shade_proto proto = {.mat = -1};
+    /* counted in locals, added once: through the stats pointer every count would be a
+     * memory update the compiler must keep in order with the batch's stores */
+    uint64_t n_rejected = 0, n_culled = 0, n_no_centre = 0;
+    const int fb_w = f->fb->w, fb_h = f->fb->h;
+    for (uint32_t i = i0; i < i1; i++) {
+        const uint32_t *c = m->tris[i];
+        if (verts_done < m->n_verts) { /* the vertex stage just ahead of the triangles */
+            uint32_t hi = c[0] > c[1] ? c[0] : c[1];
+            hi = c[2] > hi ? c[2] : hi;
+            if (hi >= verts_done) {
+                uint32_t to = verts_done + FRONTEND_VERTEX_CHUNK;
+                to = hi + 1 > to ? hi + 1 : to;
+                to = to < m->n_verts ? to : m->n_verts;
+                f->k->vertex_run(m, &f->u, vo, verts_done, to);
+                verts_done = to;
+            }
+        }
+        struct vertex_out *v[3] = {&vo[c[0]], &vo[c[1]], &vo[c[2]]};
+        uint32_t all = v[0]->outcode & v[1]->outcode & v[2]->outcode;
+        uint32_t any = v[0]->outcode | v[1]->outcode | v[2]->outcode;
+        if ((all & VERTEX_OUT_FRUSTUM) || (any & VERTEX_INVALID)) {
+            n_rejected++;
+            continue;
+        }
+        /* an unclipped triangle whose box holds no pixel centre goes first: at terminal
+         * sizes most triangles of a dense mesh do */
+        int64_t box[4] = {0, 0, -1, -1};
+        bool unclipped = !(any & VERTEX_NEEDS_CLIP);
+        if (unclipped && !setup_box(v[0], v[1], v[2], fb_w, fb_h, box)) {
+            n_no_centre++; /* whatever its facing: its determinant is never computed */
+            continue;
+        }
+        /* culling: once per source triangle, never per clipped piece */
+        if (!depth_only && o->cull != CULL_NONE &&
+            setup_culled(o->cull, setup_front_facing(v[0], v[1], v[2]))) {
+            n_culled++;
+            continue;
+        }
+        if (!batch_has_room(bt) || bt->n_tris >= fe->flush_at) {
+            if (flush(fe, f, e))
+                return -1;
+            bt = &fe->batch[fe->cur]; /* with threads, the other one */
+        }
+        if (unclipped) {
+            /* set up first: most triangles of a dense mesh hold no pixel centre, and their
+             * vertices need no lighting and the triangle no shading record */
+            struct setup_tri *t = &bt->tris[bt->n_tris];
+            if (setup_triangle_in_box(v[0], v[1], v[2], box, t) != SETUP_DRAW) {
+                n_no_centre++;
+                continue;
+            }
+            shade_vertices(fe, m, f, i, v, false);
+            t->shade = depth_only ? bt->n_shades : add_shade(bt, f, item, m, i, v, &proto);
+            bt->n_tris++;
+            stats->tris_drawn++;
+            continue;
+        }
+        shade_vertices(fe, m, f, i, v, true); /* clipping interpolates the varyings */
+        uint32_t shade = depth_only ? bt->n_shades : add_shade(bt, f, item, m, i, v, &proto);
+        stats->tris_clipped++;
+        clip_and_add(fe, f, v, any & VERTEX_NEEDS_CLIP, n_var, shade);
+    }
+    shade_queued(fe, f);
+    stats->tris_in += i1 - i0;
+    stats->tris_rejected += n_rejected;
+    stats->tris_culled += n_culled;
+    stats->tris_no_centre += n_no_centre;
+    return 0;
+}
+
+void frontend_edges(const struct mesh *m, const struct vertex_out *vo,
+                       const struct render_opts *o, bool depth_test, bool overlay, struct fb *fb,
+                       struct frame_stats *stats)
+{
+    for (uint32_t i = 0; i < m->n_tris; i++) {
+        const struct vertex_out *v[3] = {&vo[m->tris[i][0]], &vo[m->tris[i][1]],
+                                         &vo[m->tris[i][2]]};
+        stats->tris_in += !overlay;
+        if ((v[0]->outcode & v[1]->outcode & v[2]->outcode & VERTEX_OUT_FRUSTUM) ||
+            ((v[0]->outcode | v[1]->outcode | v[2]->outcode) & VERTEX_INVALID)) {
+            stats->tris_rejected += !overlay;
+            continue;
+        }
+        if (o->cull != CULL_NONE && setup_culled(o->cull, setup_front_facing(v[0], v[1], v[2]))) {
+            stats->tris_culled += !overlay;
+            continue;
+        }
+        for (int k = 0; k < 3; k++)
+            line_draw_clip(fb, v[k]->clip, v[(k + 1) % 3]->clip, o->wire_color, depth_test);
+        stats->tris_drawn += !overlay;
+    }
+}
+
+struct vertex_out *frontend_item_verts(struct frontend *fe, int it, uint32_t n, struct err *e)
+{
+    if (it >= fe->n_items) {
+        struct frontend_item *ni = realloc(fe->items, (size_t)(it + 1) * sizeof *ni);
+        if (!ni)
+            return err_set(e, "out of memory for %d draw items", it + 1), NULL;
+        memset(ni + fe->n_items, 0, (size_t)(it + 1 - fe->n_items) * sizeof *ni);
+        fe->items = ni;
+        fe->n_items = it + 1;
+    }
+    struct frontend_item *iv = &fe->items[it];
+    if (n > iv->cap) { /* 64-byte aligned: each half of a vertex is one cache line */
+        void *nv = NULL;
+        if (posix_memalign(&nv, 64, (size_t)n * sizeof *iv->v))
+            return err_set(e, "out of memory for %u vertices", n), NULL;
+        free(iv->v); /* the vertex stage rewrites every vertex each frame: nothing to keep */
+        iv->v = nv;
+        iv->cap = n;
+    }
+    return iv->v;
+}
+
+int frontend_finish(struct frontend *fe, struct frame *f, struct err *e)
+{
+    int rc = flush(fe, f, e);
+    drain(fe, f);
+    return rc;
+}
+
+void frontend_abandon(struct frontend *fe, struct frame *f)
+{
+    drain(fe, f);
+}

@@ -1,0 +1,110 @@
+/* kernel_common.h: what the reference kernel and the vector bodies share — the per-row
+ * facts of the span methods and the varyings a triangle interpolates. Private to
+ * src/render/kernel/ (included by each kernel_*.c). */
+#ifndef RASTTY_KERNEL_COMMON_H
+#define RASTTY_KERNEL_COMMON_H
+
+#include <stdint.h>
+
+#include "setup.h"
+#include "shade.h"
+#include "span.h"
+#include "vertex.h"
+
+/* floor(a / b), b > 0 */
+static inline int64_t kernel_floor_div(int64_t a, int64_t b)
+{
+    int64_t q = a / b;
+    return q - (a % b < 0);
+}
+
+/* The first and last covered column of row y, from the edge functions (the same integers
+ * every rasterizer tests): the ends that span methods clamp their spans to. */
+static inline void kernel_row_extent(const struct setup_tri *t, int y, int *lo_out, int *hi_out)
+{
+    int64_t lo = t->x0, hi = t->x1;
+    for (int k = 0; k < 3; k++) {
+        int64_t a = t->e_dx[k], e = t->e[k] + (int64_t)(y - t->y0) * t->e_dy[k];
+        if (a > 0) { /* e + (x - x0) a >= 0  <=>  x >= x0 - floor(e / a) */
+            int64_t b = t->x0 - kernel_floor_div(e, a);
+            lo = b > lo ? b : lo;
+        } else if (a < 0) { /* x <= x0 + floor(e / -a) */
+            int64_t b = t->x0 + kernel_floor_div(e, -a);
+            hi = b < hi ? b : hi;
+        }
+    }
+    *lo_out = (int)lo, *hi_out = (int)hi;
+}
+
+/* The varyings exactly (one division) at column offset X of the row whose denominator and
+ * numerator bases are qr, ar; qdx, adx their steps per column. */
+static inline void kernel_exact_at(float qr, float qdx, const float *ar, const float *adx,
+                                   float X, int n_var, float *var_out)
+{
+    float rq = 1.0f / (qr + qdx * X);
+    for (int k = 0; k < n_var; k++)
+        var_out[k] = (ar[k] + adx[k] * X) * rq;
+}
+
+/* varyings a triangle's pixels interpolate in a shading mode */
+static inline int kernel_n_var(const struct span_ctx *s, enum shade_mode mode)
+{
+    /* (the depth-only pass has no shading record: never look at s->st there) */
+    return mode == SHADE_WIRE        ? 0
+           : s->st->vcolor           ? VARY_COLOR + 3
+           : vertex_varying_count(mode, VIEW_COLOR, s->shade->lights.grey);
+}
+
+/* ---- the vector bodies' framebuffer writes ---- */
+
+/* pixel_quantize (pixel.h) of every lane (0..255 in each) */
+SIMD_INLINE vi kernel_quantize_v(vf c)
+{
+    c = vf_max(c, vf_set(0)); /* c > 0 ? c : 0 (NaN: 0) */
+    c = vf_min(c, vf_set(1)); /* c < 1 ? c : 1 */
+    return vi_trunc(c * vf_set(255.0f) + vf_set(0.5f));
+}
+
+/* The colours of SIMD_LANES pixels side by side from p on, each lane's r | g << 8 | b << 16
+ * (kernel_quantize_v's). AVX2: each 128-bit half's four pixels as 12 bytes side by side (one
+ * byte shuffle), stored as 16 bytes whose last 4 the next store overwrites, then 8 + 4;
+ * else each lane's 4 bytes in order, each overwriting the byte the one before wrote past
+ * its pixel, and the last lane's 3. Never writes past the group's pixels. */
+SIMD_INLINE void kernel_store_rgb_v(uint8_t *p, vi px)
+{
+#ifdef __AVX2__
+    typedef char v16c __attribute__((vector_size(16)));
+    const v16c pick = {0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1};
+#if SIMD_LANES == 8
+    v16c lo = (v16c)__builtin_ia32_pshufb128((v16c)_mm256_castsi256_si128((__m256i)px), pick);
+    v16c hi = (v16c)__builtin_ia32_pshufb128((v16c)_mm256_extracti128_si256((__m256i)px, 1),
+                                             pick);
+    __builtin_memcpy(p, &lo, 16);
+    __builtin_memcpy(p + 12, &hi, 8);
+    __builtin_memcpy(p + 20, (const char *)&hi + 8, 4);
+#else
+    v16c lo = (v16c)__builtin_ia32_pshufb128((v16c)px, pick);
+    __builtin_memcpy(p, &lo, 8);
+    __builtin_memcpy(p + 8, (const char *)&lo + 8, 4);
+#endif
+#else
+    for (int l = 0; l < SIMD_LANES - 1; l++) {
+        uint32_t w = (uint32_t)px[l];
+        uint8_t le[4] = {(uint8_t)w, (uint8_t)(w >> 8), (uint8_t)(w >> 16), 0};
+        __builtin_memcpy(p + 3 * l, le, 4);
+    }
+    const uint32_t w = (uint32_t)px[SIMD_LANES - 1];
+    p[3 * SIMD_LANES - 3] = (uint8_t)w, p[3 * SIMD_LANES - 2] = (uint8_t)(w >> 8),
+                      p[3 * SIMD_LANES - 1] = (uint8_t)(w >> 16);
+#endif
+}
+
+/* One lane's colour (r | g << 8 | b << 16) at p: 2 + 1 bytes */
+static inline void kernel_store_rgb(uint8_t *p, uint32_t w)
+{
+    uint8_t rg[2] = {(uint8_t)w, (uint8_t)(w >> 8)};
+    __builtin_memcpy(p, rg, 2);
+    p[2] = (uint8_t)(w >> 16);
+}
+
+#endif

@@ -1,0 +1,288 @@
+/* lod.c: the chain of simplified meshes (meshoptimizer) and the level a frame draws
+ * (see lod.h). */
+#include "lod.h"
+
+#include <math.h>
+#include <pthread.h>
+#include <signal.h>
+#include <stdatomic.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <meshoptimizer.h>
+
+struct mesh_lod {
+    atomic_int n_ready;                 /* levels[0 .. n_ready) are complete */
+    struct mesh levels[LOD_MAX_LEVELS]; /* levels[k] is level k + 1 */
+    double error[LOD_MAX_LEVELS];       /* levels[k]'s error, object-space units */
+};
+
+struct lod_job {
+    pthread_t thread;
+    struct mesh *meshes;
+    int n;
+    atomic_bool cancel, done;
+};
+
+_Static_assert(sizeof(unsigned int) == sizeof(uint32_t), "meshoptimizer indices are ours");
+
+/* A level's geometry: the triangles idx[0 .. n_idx) of src, with only the vertices they use,
+ * in order of first use; materials, textures and bounds are the source mesh's (borrowed). */
+static int make_level(const struct mesh *root, const struct mesh *src, const uint32_t *idx,
+                      size_t n_idx, struct mesh *out)
+{
+    memset(out, 0, sizeof *out);
+    uint32_t *remap = malloc((size_t)src->n_verts * sizeof *remap);
+    if (!remap)
+        return -1;
+    size_t nv = meshopt_optimizeVertexFetchRemap(remap, idx, n_idx, src->n_verts);
+    uint32_t nt = (uint32_t)(n_idx / 3);
+    out->verts = malloc(nv * sizeof *out->verts);
+    out->vert_material = malloc(nv * sizeof *out->vert_material);
+    out->tris = malloc((size_t)nt * sizeof *out->tris);
+    out->tri_material = malloc((size_t)nt * sizeof *out->tri_material);
+    if (src->colors)
+        out->colors = malloc(nv * sizeof *out->colors);
+    if (!out->verts || !out->vert_material || !out->tris || !out->tri_material ||
+        (src->colors && !out->colors)) {
+        free(remap);
+        free(out->verts);
+        free(out->vert_material);
+        free(out->tris);
+        free(out->tri_material);
+        free(out->colors);
+        memset(out, 0, sizeof *out);
+        return -1;
+    }
+    for (uint32_t v = 0; v < src->n_verts; v++) {
+        uint32_t d = remap[v];
+        if (d == UINT32_MAX)
+            continue;
+        out->verts[d] = src->verts[v];
+        out->vert_material[d] = src->vert_material[v];
+        if (out->colors)
+            memcpy(out->colors[d], src->colors[v], 3);
+    }
+    for (uint32_t t = 0; t < nt; t++) {
+        for (int k = 0; k < 3; k++)
+            out->tris[t][k] = remap[idx[3 * (size_t)t + (size_t)k]];
+        /* a triangle's corners share its material: seams are never crossed (lod.h) */
+        out->tri_material[t] = out->vert_material[out->tris[t][0]];
+    }
+    free(remap);
+    out->n_verts = (uint32_t)nv;
+    out->n_tris = nt;
+    out->materials = root->materials;
+    out->n_materials = root->n_materials;
+    out->textures = root->textures;
+    out->n_textures = root->n_textures;
+    out->has_uvs = root->has_uvs;
+    out->has_normals = root->has_normals;
+    memcpy(out->bbox_min, root->bbox_min, sizeof out->bbox_min);
+    memcpy(out->bbox_max, root->bbox_max, sizeof out->bbox_max);
+    memcpy(out->center, root->center, sizeof out->center);
+    out->radius = root->radius;
+    return 0;
+}
+
+static bool finite_positions(const struct mesh *m)
+{
+    for (uint32_t v = 0; v < m->n_verts; v++)
+        for (int k = 0; k < 3; k++)
+            if (!isfinite(m->verts[v].pos[k]))
+                return false;
+    return true;
+}
+
+static float extent(const struct mesh *m)
+{
+    return meshopt_simplifyScale(m->verts[0].pos, m->n_verts, sizeof *m->verts);
+}
+
+static bool eligible(const struct mesh *m)
+{
+    return m->n_tris >= 2 * LOD_MIN_TRIS && m->vert_material && !m->lod;
+}
+
+/* Level after level, each from the one before, until a stop rule of lod.h says no. */
+static int build_chain(struct mesh *m, struct mesh_lod *l, const atomic_bool *cancel)
+{
+    if (!finite_positions(m)) /* the simplifier's quadrics cannot hold them: no levels */
+        return 0;
+    float scale0 = extent(m);
+    if (!(scale0 > 0) || !isfinite(scale0)) /* all at one point, or too far apart */
+        return 0;
+    uint32_t *idx = malloc((size_t)m->n_tris * 3 * sizeof *idx);
+    if (!idx)
+        return -1;
+    const struct mesh *src = m;
+    double error = 0;
+    int rc = 0;
+    for (int k = 0; k < LOD_MAX_LEVELS && !(cancel && atomic_load(cancel)); k++) {
+        size_t target = src->n_tris / 2;
+        float scale = k == 0 ? scale0 : extent(src);
+        double budget = (LOD_MAX_ERROR * scale0 - error) / scale; /* relative, what is left */
+        if (target < LOD_MIN_TRIS || !(budget > 0))
+            break;
+        float rel = 0;
+        size_t n = meshopt_simplify(idx, &src->tris[0][0], (size_t)src->n_tris * 3,
+                                    src->verts[0].pos, src->n_verts, sizeof *src->verts,
+                                    target * 3, (float)budget, 0, &rel);
+        if (n / 3 > (size_t)src->n_tris * 3 / 4 || n / 3 < LOD_MIN_TRIS)
+            break; /* stalled: seams and borders everywhere, or the error budget is spent */
+        if (make_level(m, src, idx, n, &l->levels[k])) {
+            rc = -1;
+            break;
+        }
+        error += (double)rel * scale;
+        l->error[k] = error;
+        atomic_store_explicit(&l->n_ready, k + 1, memory_order_release);
+        src = &l->levels[k];
+    }
+    free(idx);
+    return rc;
+}
+
+static int attach(struct mesh *m)
+{
+    m->lod = calloc(1, sizeof *m->lod);
+    if (!m->lod)
+        return -1;
+    atomic_init(&m->lod->n_ready, 0);
+    return 0;
+}
+
+int lod_build(struct mesh *m, struct err *e)
+{
+    if (!eligible(m))
+        return 0;
+    if (attach(m) || build_chain(m, m->lod, NULL))
+        return err_set(e, "out of memory for the levels of detail of %u triangles",
+                       (unsigned)m->n_tris);
+    return 0;
+}
+
+static void *job_main(void *arg)
+{
+    struct lod_job *j = arg;
+    for (int i = 0; i < j->n && !atomic_load(&j->cancel); i++)
+        if (j->meshes[i].lod)
+            build_chain(&j->meshes[i], j->meshes[i].lod, &j->cancel); /* out of memory: fewer
+                                                                          levels, still fine */
+    atomic_store(&j->done, true);
+    return NULL;
+}
+
+int lod_start(struct mesh *meshes, int n, struct lod_job **out, struct err *e)
+{
+    *out = NULL;
+    int want = 0;
+    for (int i = 0; i < n; i++)
+        if (eligible(&meshes[i])) {
+            if (attach(&meshes[i]))
+                return err_set(e, "out of memory");
+            want++;
+        }
+    if (!want)
+        return 0;
+    struct lod_job *j = calloc(1, sizeof *j);
+    if (!j)
+        return err_set(e, "out of memory");
+    j->meshes = meshes;
+    j->n = n;
+    atomic_init(&j->cancel, false);
+    atomic_init(&j->done, false);
+    /* the builder takes no signals: the terminal's handlers belong to the main thread */
+    sigset_t all, old;
+    sigfillset(&all);
+    pthread_sigmask(SIG_SETMASK, &all, &old);
+    int rc = pthread_create(&j->thread, NULL, job_main, j);
+    pthread_sigmask(SIG_SETMASK, &old, NULL);
+    if (rc) { /* no thread: build here */
+        job_main(j);
+        free(j);
+        return 0;
+    }
+    *out = j;
+    return 0;
+}
+
+bool lod_done(const struct lod_job *j)
+{
+    return !j || atomic_load(&j->done);
+}
+
+void lod_finish(struct lod_job *j, bool cancel)
+{
+    if (!j)
+        return;
+    if (cancel)
+        atomic_store(&j->cancel, true);
+    pthread_join(j->thread, NULL);
+    free(j);
+}
+
+void lod_free(struct mesh *m)
+{
+    if (!m->lod)
+        return;
+    int n = atomic_load(&m->lod->n_ready);
+    for (int k = 0; k < n; k++) {
+        struct mesh *l = &m->lod->levels[k];
+        free(l->verts);
+        free(l->tris);
+        free(l->tri_material);
+        free(l->vert_material);
+        free(l->colors);
+    }
+    free(m->lod);
+    m->lod = NULL;
+}
+
+int lod_level_count(const struct mesh *m)
+{
+    return m->lod ? 1 + atomic_load_explicit(&m->lod->n_ready, memory_order_acquire) : 1;
+}
+
+const struct mesh *lod_level(const struct mesh *m, int k)
+{
+    return k == 0 ? m : &m->lod->levels[k - 1];
+}
+
+double lod_level_error(const struct mesh *m, int k)
+{
+    return k == 0 ? 0 : m->lod->error[k - 1];
+}
+
+double lod_pixels_per_unit(const struct camera *cam, int fb_h, vec3 center, double radius)
+{
+    if (cam->ortho_height > 0)
+        return fb_h / cam->ortho_height;
+    vec3 fwd = v3_norm(v3_sub(cam->target, cam->eye));
+    double z = v3_dot(v3_sub(center, cam->eye), fwd) - radius; /* the nearest view depth */
+    z = z > cam->near ? z : cam->near;
+    return fb_h / (2 * z * tan(cam->fov_deg * (M_PI / 360.0)));
+}
+
+int lod_choose(const struct mesh *m, enum lod_mode mode, float ratio, float max_px,
+               double px_per_unit)
+{
+    int n = lod_level_count(m);
+    if (mode == LOD_OFF || n == 1)
+        return 0;
+    if (mode == LOD_RATIO) { /* nearest by ratio: |log(kept / wanted)| smallest */
+        double want = (double)ratio * m->n_tris;
+        int best = 0;
+        double best_d = INFINITY;
+        for (int k = 0; k < n; k++) {
+            double d = fabs(log(lod_level(m, k)->n_tris / want));
+            if (d < best_d)
+                best = k, best_d = d;
+        }
+        return best;
+    }
+    int k = 0;
+    while (k + 1 < n && lod_level_error(m, k + 1) * px_per_unit < max_px)
+        k++;
+    return k;
+}

@@ -1,0 +1,608 @@
+/* view.c: the interactive viewer's loop (see view.h): terminal events in, frames out.
+ *
+ * One turn of the loop: wait for input (or the next frame's time), turn each event into a
+ * view_state call (view_state.c) and act on what it returns, advance held keys and the
+ * spin, and draw a frame when the picture changed and the pacing (pace.c) lets one go out.
+ * Everything that touches the terminal, the scenes or the renderer is here; the model and
+ * the status line's text are pure and tested without a terminal. */
+#include "view.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "prepare.h"
+#include "encode.h"
+#include "image.h"
+#include "input.h"
+#include "pace.h"
+#include "pipeline.h"
+#include "scene.h"
+#include "ssaa.h"
+#include "termcaps.h"
+#include "tty.h"
+#include "view_hud.h"
+#include "view_shot.h"
+#include "view_state.h"
+
+#ifndef RASTTY_DATADIR
+#define RASTTY_DATADIR "/usr/local/share/rastty"
+#endif
+
+#define VIEW_MAX_SCENES OPTIONS_MAX_INPUTS
+#define HUD_PERIOD_S 0.5 /* while animating, refresh the status line at most this often */
+#define DRAIN_S 1.0      /* Ctrl-Z: wait this long (+ the transfer) for the answer in flight */
+#define MAX_SHOTS 16
+
+struct view {
+    const struct options *o;
+    struct scene *scenes[VIEW_MAX_SCENES];
+    const char *paths[VIEW_MAX_SCENES];
+    char texture[VIEW_MAX_SCENES][64]; /* for the status line: file used, "MTL" or "" */
+    int n_scenes, cur;
+    struct view_state s;
+    /* output */
+    struct tty tty;
+    struct fb fb;
+    struct encode_screen es;
+    struct encode_opts eo;
+    enum palette_mode mode; /* the terminal's colour mode (the pacing may draw in 256) */
+    struct pace pace;
+    struct pipeline *pipe;
+    struct ssaa ssaa;       /* --ssaa's big framebuffer */
+    struct skybox default_sky;
+    int fb_cols, fb_rows;   /* cells used by the picture */
+    enum cell_glyphs glyphs; /* the glyph set fb was sized for */
+    bool help_drawn;        /* the help overlay is on the screen */
+    bool drawn;             /* fb holds a frame (for screenshots) */
+    bool lod_pending;       /* the scene's levels of detail are still being built */
+    /* stats for the status line */
+    struct frame_stats st;
+    struct encode_stats est;
+    double encode_ms, fps, last_frame_at, next_hud_at;
+    char hud_text[512];
+    /* everything for one update (status line, overlay, frame, DSR) goes out in one write */
+    char *out;
+    size_t out_len, out_cap;
+    char shots[MAX_SHOTS][VIEW_SHOT_MAX];
+    int n_shots;
+};
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+static int ms(double s)
+{
+    return s > 0 ? (int)(s * 1e3) + 1 : 0;
+}
+
+/* Append to the pending output; grows rarely (the frame bound is reserved on resize). */
+static void out_add(struct view *v, const char *bytes, size_t n)
+{
+    if (v->out_len + n > v->out_cap) {
+        size_t cap = (v->out_len + n) * 2;
+        char *nb = realloc(v->out, cap);
+        if (!nb)
+            return; /* drop this piece; the next full frame repairs the screen */
+        v->out = nb;
+        v->out_cap = cap;
+    }
+    memcpy(v->out + v->out_len, bytes, n);
+    v->out_len += n;
+}
+
+static int out_flush(struct view *v)
+{
+    int rc = v->out_len ? tty_write(v->out, v->out_len) : 0;
+    v->out_len = 0;
+    return rc;
+}
+
+/* ---- scenes ---- */
+
+/* Does the viewer draw its procedural sky behind this scene? When the scene sets neither a
+ * sky nor a background, and no --background was given (render and dump keep black). */
+static bool default_sky_used(const struct view *v)
+{
+    const struct scene *s = v->scenes[v->cur];
+    return !s->has_sky && !s->has_background && !v->o->background_set;
+}
+
+/* The sky for the current scene; the default one has its sun toward the first world light. */
+static const struct skybox *scene_sky(struct view *v)
+{
+    const struct scene *s = v->scenes[v->cur];
+    if (s->has_sky)
+        return &s->sky;
+    if (!default_sky_used(v))
+        return NULL;
+    if (v->default_sky.n_levels == 0) {
+        struct err ignored;
+        if (skybox_procedural(&v->default_sky, v->s.ro.lights[0].dir, &ignored))
+            return NULL;
+    }
+    return &v->default_sky;
+}
+
+/* camera, lights and background for the current scene; the camera becomes "home" */
+static void enter_scene(struct view *v)
+{
+    const struct scene *s = v->scenes[v->cur];
+    double aspect = v->fb.w > 0 ? fb_aspect(&v->fb) : 2.0;
+    struct camera cam;
+    struct render_opts ro;
+    /* a model alone is framed, unless the command line placed the camera */
+    prepare_camera(v->o, s, aspect, !v->o->camera_set, &cam, &ro);
+    view_state_scene(&v->s, &cam, &ro, v3_len(v3_sub(s->bound_hi, s->bound_lo)));
+    v->lod_pending = !scene_lod_done(s);
+    skybox_free(&v->default_sky); /* its sun follows the scene's first light */
+}
+
+/* ---- output ---- */
+
+static int resize(struct view *v, struct err *e)
+{
+    tty_refresh_size(&v->tty);
+    int rows = v->tty.rows - 1; /* the status line */
+    if (v->o->no_hud)
+        rows = v->tty.rows;
+    int cols = v->tty.cols;
+    cols = cols > ENCODE_MAX_COLS ? ENCODE_MAX_COLS : cols;
+    rows = rows > ENCODE_MAX_ROWS ? ENCODE_MAX_ROWS : rows;
+    if (cols < 1 || rows < 1) {
+        v->fb_cols = v->fb_rows = 0;
+        v->glyphs = v->s.glyphs;
+        return 0;
+    }
+    struct cell_geom g = cell_geom(v->s.glyphs);
+    if (cols != v->fb_cols || rows != v->fb_rows || g.glyphs != v->glyphs) {
+        fb_free(&v->fb);
+        encode_screen_free(&v->es);
+        v->drawn = false;
+        if (fb_init(&v->fb, cell_fb_w(&g, cols), cell_fb_h(&g, rows), true, e) ||
+            encode_screen_init(&v->es, cols, rows, e))
+            return -1;
+        v->fb.pixel_aspect = cell_pixel_aspect(&g);
+        v->fb_cols = cols;
+        v->fb_rows = rows;
+        v->glyphs = g.glyphs;
+        v->eo.glyphs = g.glyphs;
+    }
+    encode_screen_invalidate(&v->es);
+    out_add(v, "\033[0m\033[2J", 8);
+    v->help_drawn = false;
+    v->s.dirty = v->s.hud_dirty = true;
+    return 0;
+}
+
+static void hud_draw(struct view *v, double t)
+{
+    if (v->o->no_hud || v->tty.rows < 1)
+        return;
+    char text[512], pos[32];
+    struct view_hud_info in = {
+        .scene = v->scenes[v->cur]->name, .scene_i = v->cur, .n_scenes = v->n_scenes,
+        .texture = v->texture[v->cur][0] ? v->texture[v->cur] : NULL, .mode = v->eo.mode,
+        .fps = v->fps, .render_ms = v->st.render_ms, .encode_ms = v->encode_ms,
+        .bytes = v->est.bytes, .st = &v->st, .lod_building = v->lod_pending};
+    char pacing[96];
+    pace_describe(&v->pace, v->est.max_err, pacing, sizeof pacing);
+    in.pacing = pacing;
+    view_hud_compose(&v->s, &in, v->tty.cols, t, text, sizeof text);
+    if (!v->s.hud_dirty && strcmp(text, v->hud_text) == 0)
+        return;
+    snprintf(v->hud_text, sizeof v->hud_text, "%s", text);
+    /* exactly cols-1 characters: padded so a longer old text is erased, and the last cell of
+     * the last row is never written (some terminals scroll when it is) */
+    int width = v->tty.cols - 1, len = (int)strlen(text);
+    len = len > width ? width : len;
+    int k = snprintf(pos, sizeof pos, "\033[%d;1H", v->tty.rows);
+    out_add(v, pos, (size_t)k);
+    out_add(v, v->eo.mode == PALETTE_NONE ? "\033[0m" : "\033[0;30;47m",
+            v->eo.mode == PALETTE_NONE ? 4 : 10);
+    out_add(v, text, (size_t)(len > 0 ? len : 0));
+    static const char spaces[64] = "                                                                ";
+    for (int pad = width - len; pad > 0; pad -= 64)
+        out_add(v, spaces, (size_t)(pad < 64 ? pad : 64));
+    out_add(v, "\033[0m", 4);
+    v->s.hud_dirty = false;
+}
+
+/* The help box, drawn once when it opens (and after the screen was cleared); frames leave
+ * its cells alone (encode_opts' hold) until it closes. */
+static void help_draw(struct view *v)
+{
+    struct view_hud_rect r = view_hud_help_rect(v->fb_cols, v->fb_rows);
+    const char *sgr = v->eo.mode == PALETTE_NONE ? "" : "\033[0;97;44m";
+    for (int i = 0; i < r.rows; i++) {
+        /* a blank margin above and below the lines (input_help_line is NULL past the last) */
+        const char *text = i > 0 ? input_help_line(i - 1) : NULL;
+        char pos[32], line[256];
+        int k = snprintf(pos, sizeof pos, "\033[%d;%dH", r.row + i + 1, r.col + 1);
+        snprintf(line, sizeof line, "  %-*.*s  ", r.text_w, r.text_w, text ? text : "");
+        out_add(v, pos, (size_t)k);
+        out_add(v, sgr, strlen(sgr));
+        out_add(v, line, (size_t)r.cols); /* clipped to the picture: never wraps */
+    }
+    out_add(v, "\033[0m", 4);
+    v->help_drawn = true;
+}
+
+static int draw_frame(struct view *v, double t, struct err *e)
+{
+    if (v->fb_cols == 0) { /* no room for a picture (one row and a HUD): only the HUD */
+        v->s.dirty = false;
+        v->last_frame_at = t;
+        hud_draw(v, t);
+        return out_flush(v) ? err_set(e, "rastty: cannot write to the terminal") : 0;
+    }
+    const struct scene *s = v->scenes[v->cur];
+    struct render_opts ro;
+    view_frame_opts(&v->s, &ro);
+    if (ssaa_draw(&v->ssaa, v->pipe, s->items, s->n_items, scene_sky(v), &v->s.cam, &ro, &v->fb,
+                  &v->st, e))
+        return -1;
+    v->drawn = true;
+    v->eo.mode = pace_mode(&v->pace, v->mode);
+    v->eo.budget = pace_budget(&v->pace);
+    v->eo.diff = true;
+    struct view_hud_rect help = view_hud_help_rect(v->fb_cols, v->fb_rows);
+    v->eo.hold_col = help.col, v->eo.hold_row = help.row;
+    v->eo.hold_cols = v->s.help ? help.cols : 0, v->eo.hold_rows = v->s.help ? help.rows : 0;
+    double t0 = now_s();
+    size_t n;
+    const char *bytes = encode_fb(&v->es, &v->fb, &v->eo, &n, &v->est);
+    v->encode_ms = (now_s() - t0) * 1e3;
+    if (v->last_frame_at > 0) {
+        double inst = 1.0 / (t - v->last_frame_at > 1e-4 ? t - v->last_frame_at : 1e-4);
+        v->fps = v->fps > 0 ? 0.8 * v->fps + 0.2 * inst : inst;
+    }
+    v->last_frame_at = t;
+    /* the status line first: what a key changed shows before the frame has arrived */
+    if (t >= v->next_hud_at || v->s.hud_dirty) {
+        hud_draw(v, t);
+        v->next_hud_at = t + HUD_PERIOD_S;
+    }
+    if (v->s.help && !v->help_drawn)
+        help_draw(v);
+    out_add(v, bytes, n);
+    /* a still picture the budget left unfinished is refined by the next frames */
+    v->s.dirty = v->est.cells_pending > 0;
+    if (v->out_len == 0)
+        return 0;
+    out_add(v, TTY_SYNC_REQUEST, sizeof TTY_SYNC_REQUEST - 1);
+    size_t total = v->out_len;
+    if (out_flush(v))
+        return err_set(e, "rastty: cannot write to the terminal");
+    pace_sent(&v->pace, t, total, v->est.demand + (total - n), v->fb_cols * v->fb_rows);
+    return 0;
+}
+
+/* A bare DSR: measures the round trip before the first frame (and after Ctrl-Z). */
+static void probe(struct view *v)
+{
+    if (tty_write(TTY_SYNC_REQUEST, sizeof TTY_SYNC_REQUEST - 1) == 0)
+        pace_sent(&v->pace, now_s(), sizeof TTY_SYNC_REQUEST - 1, 0, v->fb_cols * v->fb_rows);
+}
+
+/* ---- screenshots ---- */
+
+static void screenshot(struct view *v, double t)
+{
+    if (!v->drawn || v->n_shots == MAX_SHOTS) {
+        view_message(&v->s, v->drawn ? "too many screenshots" : "nothing drawn yet", t);
+        return;
+    }
+    char png[32], ans[32];
+    int k = 1;
+    for (; k < 1000; k++) {
+        snprintf(png, sizeof png, "rastty-%03d.png", k);
+        snprintf(ans, sizeof ans, "rastty-%03d.ans", k);
+        if (access(png, F_OK) != 0 && access(ans, F_OK) != 0)
+            break;
+    }
+    struct err e = {""};
+    struct encode_screen es;
+    int rc = image_write_png(png, &v->fb, &e);
+    if (rc == 0 && (rc = encode_screen_init(&es, v->fb_cols, v->fb_rows, &e)) == 0) {
+        struct encode_opts eo = {.mode = v->eo.mode, .mark_frames = true, .lf_newline = true,
+                                 .glyphs = v->eo.glyphs};
+        size_t n;
+        const char *bytes = encode_fb(&es, &v->fb, &eo, &n, NULL);
+        FILE *f = fopen(ans, "wb");
+        if (!f || fwrite(bytes, 1, n, f) != n || fclose(f) != 0) {
+            if (f)
+                fclose(f);
+            rc = err_set(&e, "%s: cannot write: %s", ans, strerror(errno));
+        }
+        encode_screen_free(&es);
+    }
+    if (rc) {
+        view_message(&v->s, e.msg, t);
+        return;
+    }
+    struct view_shot_info in = {.model = v->paths[v->cur], .texture = v->o->texture,
+                                .width = v->fb.w, .height = v->fb.h, .out = png,
+                                .background_set = v->o->background_set,
+                                .background = v->o->render.background,
+                                .sky = default_sky_used(v)};
+    view_shot_command(&v->s, &in, v->shots[v->n_shots++], VIEW_SHOT_MAX);
+    char msg[128];
+    snprintf(msg, sizeof msg, "saved %s and %s (the render command is printed at exit)", png, ans);
+    view_message(&v->s, msg, t);
+}
+
+/* ---- the loop ---- */
+
+static int act(struct view *v, enum view_action a, double t, bool *quit, struct err *e)
+{
+    switch (a) {
+    case VIEW_QUIT: *quit = true; break;
+    case VIEW_NEXT_SCENE:
+    case VIEW_PREV_SCENE:
+        v->cur = (v->cur + (a == VIEW_NEXT_SCENE ? 1 : v->n_scenes - 1)) % v->n_scenes;
+        enter_scene(v);
+        break;
+    case VIEW_HELP_OPENED: v->help_drawn = false; break;
+    case VIEW_HELP_CLOSED: { /* uncover the picture: those cells must be drawn again */
+        struct view_hud_rect r = view_hud_help_rect(v->fb_cols, v->fb_rows);
+        encode_screen_damage(&v->es, r.col, r.row, r.cols, r.rows);
+        break;
+    }
+    case VIEW_SCREENSHOT: screenshot(v, t); break;
+    case VIEW_NONE: break;
+    }
+    (void)e;
+    return 0;
+}
+
+/* Ctrl-Z and q: collect the answer to the frame in flight first, or it reaches the shell's
+ * prompt after the stop or the exit ("^[[0n", and `fg` typed after it becomes `nfg`). A
+ * quit signal does not wait: the terminal may be gone or stalled. */
+static void drain_answers(struct view *v)
+{
+    double r = v->pace.rate > 0 ? v->pace.rate : PACE_SLOWEST_RATE;
+    double end = now_s() + DRAIN_S + (double)v->pace.sent_bytes / r;
+    struct tty_event ev;
+    while (v->pace.inflight && !tty_signalled()) {
+        double t = now_s();
+        if (t >= end)
+            break;
+        if (tty_next_event(&v->tty, ms(end - t), &ev) == TTY_SYNC_REPLY)
+            pace_answer(&v->pace, now_s());
+    }
+}
+
+static int loop(struct view *v, struct err *e)
+{
+    bool quit = false;
+    double last = now_s();
+    if (!v->pace.answers)
+        probe(v);
+    while (!quit && !tty_signalled()) {
+        double t = now_s();
+        pace_tick(&v->pace, t);
+        bool want = v->s.dirty || view_animating(&v->s, t);
+        double wait = 0;
+        bool ready = pace_ready(&v->pace, t, &wait);
+        int timeout = -1;
+        if (want)
+            timeout = ready ? 0 : ms(wait);
+        if (v->s.message_until > t) {
+            int m = ms(v->s.message_until - t);
+            timeout = timeout < 0 || m < timeout ? m : timeout;
+        } else if (v->s.message[0]) {
+            v->s.message[0] = '\0';
+            v->s.hud_dirty = true;
+        }
+        if (v->lod_pending && scene_lod_done(v->scenes[v->cur])) {
+            v->lod_pending = false; /* the levels are in: draw with them */
+            v->s.dirty = v->s.hud_dirty = true;
+            timeout = 0;
+        } else if (v->lod_pending && (timeout < 0 || timeout > 50)) {
+            timeout = 50; /* look again soon */
+        }
+        if (v->s.hud_dirty && !v->s.dirty) /* draw it before waiting (a message ended, say);
+                                              * with a frame due it goes out with the frame */
+            timeout = 0;
+        struct tty_event ev;
+        for (int n = 0; n < 256; n++) {
+            enum tty_event_kind k = tty_next_event(&v->tty, n == 0 ? timeout : 0, &ev);
+            if (k == TTY_NONE)
+                break;
+            double te = now_s();
+            if (k == TTY_KEY && act(v, view_key(&v->s, input_command(ev.key), te), te, &quit, e))
+                return -1;
+            else if (k == TTY_MOUSE)
+                view_mouse(&v->s, &ev, te);
+            else if (k == TTY_RESIZE && resize(v, e))
+                return -1;
+            else if (k == TTY_SYNC_REPLY)
+                pace_answer(&v->pace, te);
+        }
+        if (tty_stop_requested()) {
+            drain_answers(v);
+            if (tty_suspend(&v->tty)) { /* back from Ctrl-Z: repaint everything */
+                if (tty_signalled())
+                    break;
+                pace_forget(&v->pace);
+                if (resize(v, e))
+                    return -1;
+                probe(v);
+            }
+        }
+        t = now_s();
+        view_advance(&v->s, last, t);
+        last = t;
+        if (quit)
+            break;
+        if (v->s.glyphs != v->glyphs && resize(v, e)) /* g: a new grid, a new screen */
+            return -1;
+        if (v->s.dirty && pace_ready(&v->pace, t, NULL)) {
+            if (draw_frame(v, t, e))
+                return tty_signalled() ? 0 : -1; /* a quit signal cut the write short */
+        } else if (v->s.hud_dirty && !v->s.dirty) {
+            hud_draw(v, t);
+            out_flush(v);
+        }
+    }
+    return 0;
+}
+
+/* The status line's texture field for a loaded scene. */
+static void texture_label(struct view *v, int i, const char *conv)
+{
+    const struct scene *s = v->scenes[i];
+    const char *path = v->o->texture ? v->o->texture : conv;
+    if (path) {
+        const char *base = strrchr(path, '/');
+        base = base ? base + 1 : path;
+        err_quote(base, strlen(base), sizeof v->texture[i] - 4, v->texture[i],
+                  sizeof v->texture[i]);
+        return;
+    }
+    v->texture[i][0] = '\0';
+    for (int m = 0; m < s->n_meshes; m++)
+        if (s->meshes[m].n_textures)
+            snprintf(v->texture[i], sizeof v->texture[i], "MTL");
+    for (int k = 0; k < s->n_items; k++)
+        if (s->items[k].texture_override)
+            snprintf(v->texture[i], sizeof v->texture[i], "scene file");
+}
+
+static int load_scenes(struct view *v, struct err *e)
+{
+    static char demo[4200];
+    if (v->o->n_inputs == 0) {
+        if (prepare_find_asset("demo.rsc", demo, sizeof demo))
+            return err_set(e, "rastty: cannot find the demo scene (looked in $RASTTY_ASSETS, "
+                              "assets/ next to the binary, ./assets and %s); run 'make' first",
+                           RASTTY_DATADIR);
+        v->paths[0] = demo;
+        v->n_scenes = 1;
+    } else {
+        for (int i = 0; i < v->o->n_inputs; i++)
+            v->paths[i] = v->o->inputs[i];
+        v->n_scenes = v->o->n_inputs;
+    }
+    for (int i = 0; i < v->n_scenes; i++) {
+        v->scenes[i] = calloc(1, sizeof(struct scene));
+        if (!v->scenes[i])
+            return err_set(e, "out of memory");
+        char found[4200];
+        if (prepare_scene(v->o, v->paths[i], v->scenes[i], found, sizeof found, e))
+            return -1;
+        texture_label(v, i, found[0] ? found : NULL);
+    }
+    return 0;
+}
+
+#define QUERY_MS 500 /* a terminal that does not answer DSR within this is not asked again */
+
+/* The colour mode: --colors (or RASTTY_COLORS, or the config file, which main put there),
+ * else what the environment says (termcaps.h); *ask_out: 256 or 16 and nothing explicit,
+ * so the terminal itself may know better. Inside tmux, tmux's record of its client. */
+static enum palette_mode colour_mode(const struct options *o, bool *ask_out)
+{
+    enum palette_mode m;
+    *ask_out = false;
+    if (o->colors && palette_mode_parse(o->colors, &m, NULL) == 0)
+        return m;
+    m = termcaps_detect_env(NULL);
+    if (m != PALETTE_256 && m != PALETTE_16)
+        return m;
+    char features[512];
+    int rgb = termcaps_tmux_features(features, sizeof features) == 0 ? termcaps_tmux_rgb(features)
+                                                                     : -1;
+    if (rgb >= 0) /* a client is attached: tmux knows whether it passes 24-bit colour on */
+        return rgb ? PALETTE_TRUECOLOR : m;
+    *ask_out = true;
+    return m;
+}
+
+/* Ask the terminal (termcaps.h, TERMCAPS_QUERY); its DSR answer also measures the round
+ * trip for the pacing. */
+static void ask_terminal(struct view *v)
+{
+    char reply[1024];
+    double t0 = now_s();
+    if (tty_query(TERMCAPS_QUERY, reply, sizeof reply, QUERY_MS) < 0)
+        return;
+    pace_sent(&v->pace, t0, sizeof TERMCAPS_QUERY - 1 + sizeof TTY_SYNC_REQUEST - 1, 0, 1);
+    pace_answer(&v->pace, now_s());
+    v->mode = termcaps_from_reply(v->mode, reply, NULL);
+}
+
+int view_run(const struct options *o, struct err *e)
+{
+    struct view *v = calloc(1, sizeof *v);
+    if (!v)
+        return err_set(e, "out of memory"), 1;
+    v->o = o;
+    int rc = 2;
+    if (load_scenes(v, e))
+        goto out;
+    /* the demo spins unless told not to; a model given on the command line does not */
+    bool spin = o->spin >= 0 ? o->spin : o->n_inputs == 0;
+    bool headlight = o->light_camera || (!o->light_set && !o->light_world);
+    struct camera cam;
+    camera_default(&cam);
+    struct render_opts ro = o->render;
+    if (!o->lod_set) /* the viewer draws what the terminal can show */
+        ro.lod = LOD_AUTO;
+    view_state_init(&v->s, &cam, &ro, spin, headlight,
+                    o->spin_timeout >= 0 ? o->spin_timeout : VIEW_SPIN_TIMEOUT_S, now_s());
+    v->s.glyphs = o->glyphs;
+    bool ask;
+    v->mode = colour_mode(o, &ask);
+    /* over ssh, default to a small tolerance: far fewer bytes, invisible change */
+    bool ssh = getenv("SSH_CONNECTION") || getenv("SSH_TTY");
+    v->eo.tolerance = o->tolerance >= 0 ? o->tolerance : ssh ? 3 : 0;
+    v->eo.dither = o->dither;
+    pace_init(&v->pace, o->fps, o->bandwidth);
+    rc = 1;
+    if (!(v->pipe = pipeline_new())) {
+        err_set(e, "out of memory");
+        goto out;
+    }
+    if (tty_open(&v->tty, e)) {
+        rc = 2;
+        goto out_tty;
+    }
+    if (ask)
+        ask_terminal(v);
+    v->eo.mode = v->mode;
+    if (resize(v, e) == 0) {
+        enter_scene(v);
+        rc = loop(v, e) ? 1 : 0;
+        if (rc == 0 && tty_quit_signal()) /* the shell convention for "killed by" */
+            rc = 128 + tty_quit_signal();
+        else /* q: the answer in flight goes to us, not to the shell's prompt */
+            drain_answers(v);
+    }
+out_tty:
+    tty_close(&v->tty);
+    for (int i = 0; i < v->n_shots; i++)
+        printf("screenshot: %s\n", v->shots[i]);
+out:
+    for (int i = 0; i < v->n_scenes; i++)
+        if (v->scenes[i]) {
+            scene_free(v->scenes[i]);
+            free(v->scenes[i]);
+        }
+    encode_screen_free(&v->es);
+    fb_free(&v->fb);
+    ssaa_free(&v->ssaa);
+    pipeline_destroy(v->pipe);
+    skybox_free(&v->default_sky);
+    free(v->out);
+    free(v);
+    return rc;
+}
