@@ -1,6 +1,12 @@
-/* main.c: rastty's entry point — parse the command line, hand over to a subcommand, print
- * the one error line if it failed. Follow a frame from here: cmd_render() (cmd_render.c)
- * loads a scene (scene.c -> obj.c), draws it (pipeline.c) and writes the image (image.c). */
+/* main.c: rastty's entry point — parse the command line (cli/options.c), hand over to a
+ * subcommand, print the one error line if it failed.
+ *
+ * Follow a frame from here as `rastty` draws the demo: view_run (viewer/view.c) loads the
+ * scene (cli/prepare.c: prepare_scene -> scene/scene.c), then its loop draws each frame —
+ * ssaa_draw -> pipeline_draw (render/pipeline.c) -> the frame's plan (render/plan_tiles.c
+ * or plan_slices.c: front end in render/frontend.c, back end in render/batch.c, the
+ * per-pixel kernels in render/kernel/) -> encode_fb (term/encode.c) -> tty_write
+ * (term/tty.c). The README's "One frame, step by step" walks it file by file. */
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>

@@ -18,9 +18,9 @@
  *                    test_vertex.c, test_skybox.c).
  * Each file defines one table, struct kernel, of its copies. Which table draws is decided
  * once, here (kernel_set), from render_opts.kernel (--kernel; $RASTTY_SIMD sets its
- * default), and the frame picks its functions from the tables once (kernel_choose_span: the per-pixel
- * function by method and by the triangle's size class) — no hot function asks which
- * instruction set it runs on.
+ * default), and the frame picks its functions from the tables once (kernel_choose_span: the
+ * per-pixel function by method, and by the triangle's size class) — no hot function asks
+ * which instruction set it runs on.
  *
  * Names inside the bodies: a function with the suffix _v works on SIMD_LANES pixels (or
  * vertices) at once, a vector per quantity, and gives in every lane exactly what the scalar

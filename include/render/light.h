@@ -21,7 +21,12 @@
  * The headlight (--light camera, the viewer's default, light_use_camera) is a key light from
  * over the viewer's shoulder, a fill from the other side and a sky/ground hemisphere
  * ambient, as model viewers light a model: every side the camera looks at is lit, none goes
- * black in profile. */
+ * black in profile.
+ *
+ * Names: a function ending in _v is the vector twin of the one without (simd.h: every lane
+ * gives exactly the scalar result; the reference kernel uses the scalar ones); _k means it
+ * takes k = light_pow_int(ns), computed once for many points; _channels that it computes
+ * the first nc colour channels (1 with grey lights) and copies channel 0 to the rest. */
 #ifndef RASTTY_LIGHT_H
 #define RASTTY_LIGHT_H
 
@@ -105,8 +110,9 @@ static inline float light_pow(float x, float n)
 
 /* light_terms' sums for the first nc channels (1 with grey lights, else 3); the others
  * copy channel 0 */
-static inline void light_terms_nc(const struct light_env *env, const float n[3], const float v[3],
-                                  float ns, const int nc, float d_out[3], float s_out[3])
+static inline void light_terms_channels(const struct light_env *env, const float n[3],
+                                        const float v[3], float ns, const int nc,
+                                        float d_out[3], float s_out[3])
 {
     float d[3] = {0, 0, 0}, s[3] = {0, 0, 0};
     for (int i = 0; i < env->n; i++) {
@@ -140,9 +146,9 @@ static inline void light_terms(const struct light_env *env, const float n[3], co
                                float ns, float d_out[3], float s_out[3])
 {
     if (env->grey)
-        light_terms_nc(env, n, v, ns, 1, d_out, s_out);
+        light_terms_channels(env, n, v, ns, 1, d_out, s_out);
     else
-        light_terms_nc(env, n, v, ns, 3, d_out, s_out);
+        light_terms_channels(env, n, v, ns, 3, d_out, s_out);
 }
 
 /* c = albedo * D + ks * S (unclamped) */
@@ -173,7 +179,7 @@ SIMD_INLINE void light_normalize_v(vf v[3])
 /* x^n in each lane, exactly as light_pow; k = light_pow_int(n), which callers compute once
  * for many pixels. A power of two is that many squarings (square-and-multiply would only add
  * a final 1 * x, which is exact). */
-static inline vf light_pow_v_k(vf x, int k, float n)
+static inline vf light_pow_k_v(vf x, int k, float n)
 {
     if (k == 32) { /* the default Ns: five squarings, no loop */
         x *= x, x *= x, x *= x, x *= x;
@@ -202,7 +208,7 @@ static inline vf light_pow_v_k(vf x, int k, float n)
 
 static inline vf light_pow_v(vf x, float n)
 {
-    return light_pow_v_k(x, light_pow_int(n), n);
+    return light_pow_k_v(x, light_pow_int(n), n);
 }
 
 /* One light's diffuse and specular factors for every lane's point: max(0, N.L) and
@@ -218,7 +224,7 @@ light_one_v(const float l[3], const vf n[3], const vf v[3], float ns, int pow_k,
     vf ndl = n[0] * vf_set(l[0]) + n[1] * vf_set(l[1]) + n[2] * vf_set(l[2]);
     vf ndh = (n[0] * h[0] + n[1] * h[1] + n[2] * h[2]) * ih;
     *dd_out = vf_max(ndl, vf_set(0));
-    *ss_out = light_pow_v_k(vf_max(ndh, vf_set(0)), pow_k, ns);
+    *ss_out = light_pow_k_v(vf_max(ndh, vf_set(0)), pow_k, ns);
 }
 
 /* the hemisphere ambient of channel k, up = (1 + n.y) / 2 */
@@ -228,10 +234,10 @@ static inline vf light_ambient_v(const struct light_env *env, vf up, int k)
     return sky == ground ? vf_set(sky) : vf_set(ground) + up * vf_set(sky - ground);
 }
 
-/* light_terms_v_k's sums for the first nc channels (1 with grey lights, else 3) */
+/* light_terms_k_v's sums for the first nc channels (1 with grey lights, else 3) */
 SIMD_INLINE void
-light_terms_v_nc(const struct light_env *env, const vf n[3], const vf v[3], float ns, int pow_k,
-                 const int nc, vf d_out[3], vf s_out[3])
+light_terms_channels_v(const struct light_env *env, const vf n[3], const vf v[3], float ns,
+                       int pow_k, const int nc, vf d_out[3], vf s_out[3])
 {
     vf up = vf_set(0.5f) + vf_set(0.5f) * n[1], dd, ss;
     if (env->n == 1) { /* one light (the default): no sums to keep, fewer registers */
@@ -264,20 +270,20 @@ light_terms_v_nc(const struct light_env *env, const vf n[3], const vf v[3], floa
  * every lane exactly what light_terms gives. Grey lights compute one channel (each copy
  * with a loop of known length: the terms stay in registers). */
 SIMD_INLINE void
-light_terms_v_k(const struct light_env *env, const vf n[3], const vf v[3], float ns, int pow_k,
+light_terms_k_v(const struct light_env *env, const vf n[3], const vf v[3], float ns, int pow_k,
                 vf d_out[3], vf s_out[3])
 {
     if (env->grey)
-        light_terms_v_nc(env, n, v, ns, pow_k, 1, d_out, s_out);
+        light_terms_channels_v(env, n, v, ns, pow_k, 1, d_out, s_out);
     else
-        light_terms_v_nc(env, n, v, ns, pow_k, 3, d_out, s_out);
+        light_terms_channels_v(env, n, v, ns, pow_k, 3, d_out, s_out);
 }
 
-/* light_terms_v_k with pow_k = light_pow_int(ns) */
+/* light_terms_k_v with pow_k = light_pow_int(ns) */
 static inline void light_terms_v(const struct light_env *env, const vf n[3], const vf v[3],
                                  float ns, vf d_out[3], vf s_out[3])
 {
-    light_terms_v_k(env, n, v, ns, light_pow_int(ns), d_out, s_out);
+    light_terms_k_v(env, n, v, ns, light_pow_int(ns), d_out, s_out);
 }
 
 #endif

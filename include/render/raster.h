@@ -2,7 +2,8 @@
  *
  * In:  struct setup_tri (setup.h: integer edge functions with the tie rule folded in, the
  *      pixel box) and a rectangle of the framebuffer to stay inside (the whole framebuffer
- *      today; one screen tile once the back end runs per tile on several threads).
+ *      with one thread; one 64x64 screen tile of the tiles plan's bins with several,
+ *      batch.h).
  * Out: runs of covered pixels, handed to span_draw (span.h), which does the per-pixel work.
  * A pixel (x, y) is covered when all three edge values at its centre are >= 0. Every
  * rasterizer decides this with the same exact 64-bit integers, so all of them find the same
@@ -20,8 +21,7 @@
  *   RASTER_TILED     8x8 blocks on absolute multiples of 8, each classified from the edge
  *                    values at its corners: empty (skipped), full (8 runs, no per-pixel
  *                    test) or partial (per-pixel tests). Cost: pays off on large triangles
- *                    where most blocks are full; the block grid is also the unit a
- *                    multi-threaded back end bins by.
+ *                    where most blocks are full.
  * None of them fails on valid input: coverage is exact integer arithmetic. */
 #ifndef RASTTY_RASTER_H
 #define RASTTY_RASTER_H

@@ -1,9 +1,10 @@
 /* setup.h: triangle setup — the last step of the front end, and interpolation setup for the
  * back end.
  *
- * Front end, once per SOURCE triangle: setup_face() decides its facing from clip space and
- * whether culling drops it. This is the only place culling happens, and it happens before
- * clipping, so a clipped piece whose snapped orientation flips is never dropped on its own.
+ * Front end, once per SOURCE triangle: setup_front_facing() decides its facing from clip
+ * space and setup_culled() whether culling drops it. This is the only place culling
+ * happens, and it happens before clipping, so a clipped piece whose snapped orientation
+ * flips is never dropped on its own.
  *
  * Front end, once per triangle that reaches the rasterizer (a source triangle, or a piece of
  * its clipped polygon): setup_triangle() turns three projected corners (vertex.h: window

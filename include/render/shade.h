@@ -155,7 +155,7 @@ shade_fragment_v(const struct shade_ctx *c, enum shade_mode mode, enum tex_filte
             light_normalize_v(vv);
         }
         light_normalize_v(n);
-        light_terms_v_k(&c->lights, n, vv, t->mat->ns, pow_k, d, sp);
+        light_terms_k_v(&c->lights, n, vv, t->mat->ns, pow_k, d, sp);
     }
     if (mode == SHADE_GOURAUD && c->lights.grey) { /* the test outside the loop: unrolled */
         const vf dg = var[VARY_GOURAUD_D], sg = var[VARY_GOURAUD_S(true)];

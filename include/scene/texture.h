@@ -15,7 +15,8 @@
  *   - texel (i, j) (j counted from the BOTTOM row) has its centre at ((i+0.5)/W, (j+0.5)/H).
  *   - wrap = repeat in both directions.
  *   - nearest: texel floor(u*W), floor(v*H); bilinear: the 4 texels around (u*W-0.5, v*H-0.5),
- *     weighted by the fractional parts. No mipmaps.
+ *     weighted by the fractional parts; trilinear: the two mip levels around the level of
+ *     detail (texture_lod), blended.
  *   - results are in [0,1] per channel (texel / 255). */
 #ifndef RASTTY_TEXTURE_H
 #define RASTTY_TEXTURE_H

@@ -1,16 +1,19 @@
-/* encode.h: framebuffer -> terminal bytes (ANSI half blocks), and the model of the screen.
+/* encode.h: framebuffer -> terminal bytes (ANSI: half blocks, or the other glyph sets of
+ * cell.h), diffed against the model of the screen (encode_screen.h).
  *
  * Pure: no terminal I/O. The caller owns a struct encode_screen (encode_screen_init/free) that
  * remembers what the terminal shows and holds the output buffer; encode_frame fills that
  * buffer and the tty layer writes it with one write(). Callers: the viewer, `dump`, `bench`.
  *
- * Picture: the framebuffer is cols x 2*rows pixels, row 0 on top. Cell (c, r) shows pixel
- * (c, 2r) in its top half and (c, 2r+1) in its bottom half. An odd height pads the last cell
- * row's bottom half with opts.pad_rgb.
- * Glyphs: U+2580 upper half (fg = top, bg = bottom), or U+2584 lower half (fg = bottom,
- * bg = top) when that needs fewer SGR changes given the current colours. A cell whose halves
- * are equal is always a space on that background, never U+2588: xterm and st draw block
- * elements from the font, and common fonts leave uncovered strips (a visible grid).
+ * Picture: the framebuffer is cols x rows cells of the glyph set's pixels (cell.h), row 0 on
+ * top; cellfit.c decides what each cell shows (for quadrants, sextants, braille and ascii:
+ * the two colours and the glyph that fit its pixels best). Half blocks, the default: cell
+ * (c, r) shows pixel (c, 2r) in its top half and (c, 2r+1) in its bottom half. An odd height
+ * pads the last cell row's bottom half with opts.pad_rgb.
+ * Glyphs (half blocks): U+2580 upper half (fg = top, bg = bottom), or U+2584 lower half
+ * (fg = bottom, bg = top) when that needs fewer SGR changes given the current colours. A cell
+ * whose halves are equal is always a space on that background, never U+2588: xterm and st draw
+ * block elements from the font, and common fonts leave uncovered strips (a visible grid).
  * Colour modes (palette.h): truecolor 38;2/48;2, 256 38;5/48;5 (16..255), 16 30-37/90-97 and
  * 40-47/100-107, none (one ramp character per cell from the mean luma of its two pixels;
  * no SGR, no synchronized output: only cursor positioning).
@@ -37,7 +40,8 @@
  * truecolor a decoded screen is never more than N per channel from the true frame, and in
  * 256/16 colours never more than max(N, that palette's quantisation error). On the skybox
  * photo panned by half a pixel per frame, N = 2/3/4 gives 148/112/86 KB per frame at
- * 49.5/45.8/43.2 dB PSNR, against 264 KB exact (160x48 cells; tests/bench_encode.c sweep).
+ * 49.5/45.8/43.2 dB PSNR, against 264 KB exact (160x48 cells; `rastty bench` prints such
+ * tables for any scene, make bench for the shared photo sky).
  *
  * Budget (opts.budget > 0 bytes, diff frames, not in none mode): a rate-distortion choice, as
  * video coders make. If the frame above fits, it is the frame. Otherwise every changed cell

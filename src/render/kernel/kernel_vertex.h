@@ -94,7 +94,7 @@ static void vertex_shade_lanes(const struct mesh *m, const struct vertex_uniform
             light_normalize_v(v);
         }
         vf d[3], s[3];
-        light_terms_v_k(&u->lights, nv, v, ns, light_pow_int(ns), d, s);
+        light_terms_k_v(&u->lights, nv, v, ns, light_pow_int(ns), d, s);
         for (int l = 0; l < SIMD_LANES; l++) {
             struct vertex_out *o = out[k + l];
             const struct mesh_vertex *mv = &m->verts[idx[k + l]];
