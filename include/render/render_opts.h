@@ -136,11 +136,7 @@ const char *render_view_name(enum debug_view v);
 const char *render_raster_name(enum raster_method m);
 const char *render_persp_name(enum persp_method m);
 const char *render_depth_name(enum depth_mode m);
-const char *render_ssaa_name(enum ssaa_method m);
 /* Parse a name back; -1 if unknown. */
 int render_enum_parse(const struct render_enum *t, const char *s);
-int render_shade_parse(const char *s);
-int render_cull_parse(const char *s);
-int render_filter_parse(const char *s);
 
 #endif
