@@ -10,6 +10,7 @@
 
 #include "mesh.h"
 #include "pipeline.h"
+#include "psnr.h"
 #include "ssaa.h"
 
 const char *const sweep_names[SWEEP_COUNT] = {"grazing", "depthrange", "magnitude",
@@ -965,8 +966,8 @@ static int sweep_minification(int w, int h, struct sweep_result *r, struct err *
     r->extra_is_theory = true;
     r->threshold = 6;
     snprintf(r->threshold_text, sizeof r->threshold_text,
-             "fails: RMS error > %.0f levels (PSNR < 32.6 dB) against the box filter",
-             r->threshold);
+             "fails: RMS error > %.0f levels (PSNR < %.1f dB) against the box filter",
+             r->threshold, psnr_db(r->threshold * r->threshold));
     r->xlog = true;
     static const char *const names[] = {"nearest", "bilinear", "ssaa2", "ssaa4", "ssaa8",
                                         "trilinear"};
