@@ -23,6 +23,7 @@
 #define RASTTY_RENDER_OPTS_H
 
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 
 #include "fb.h"
@@ -138,5 +139,9 @@ const char *render_persp_name(enum persp_method m);
 const char *render_depth_name(enum depth_mode m);
 /* Parse a name back; -1 if unknown. */
 int render_enum_parse(const struct render_enum *t, const char *s);
+/* A method axis as data (the chart's and the sweeps'): the int-sized enum field of o at
+ * offset `field` (offsetof(struct render_opts, raster) and the like). */
+int render_opts_get(const struct render_opts *o, size_t field);
+void render_opts_set(struct render_opts *o, size_t field, int v);
 
 #endif

@@ -89,14 +89,12 @@ struct run {
 
 static int axis_get(const struct render_opts *o, int a)
 {
-    int v;
-    memcpy(&v, (const char *)o + chart_axes[a].field, sizeof v);
-    return v;
+    return render_opts_get(o, chart_axes[a].field);
 }
 
 static void axis_set(struct render_opts *o, int a, int v)
 {
-    memcpy((char *)o + chart_axes[a].field, &v, sizeof v);
+    render_opts_set(o, chart_axes[a].field, v);
 }
 
 static void row_opts(const struct group *g, const struct chart_row *r, struct render_opts *o)

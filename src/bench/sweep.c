@@ -1321,7 +1321,7 @@ static void method_opts(const struct sweep_def *d, int m, struct render_opts *o)
     if (d->bilinear)
         o->filter = TEX_BILINEAR;
     if (d->axis) {
-        memcpy((char *)o + d->field, &m, sizeof m); /* an int-sized enum */
+        render_opts_set(o, d->field, m);
     } else {
         o->filter = d->combos[m].filter;
         o->ssaa = d->combos[m].ssaa;

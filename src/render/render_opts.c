@@ -84,3 +84,15 @@ int render_enum_parse(const struct render_enum *t, const char *s)
             return i;
     return -1;
 }
+
+int render_opts_get(const struct render_opts *o, size_t field)
+{
+    int v;
+    memcpy(&v, (const char *)o + field, sizeof v);
+    return v;
+}
+
+void render_opts_set(struct render_opts *o, size_t field, int v)
+{
+    memcpy((char *)o + field, &v, sizeof v);
+}
