@@ -8,7 +8,7 @@
  * with size limits).
  * Called by obj.c and mtl.c: each splits its text with lex_line_end, takes the keyword with
  * lex_keyword and keeps its own statement rules (which '#' ends a line of numbers, what a
- * name may contain).
+ * name may contain); ply.c and stl.c read their ASCII bodies word by word (lex_word).
  *
  * Conventions:
  *   - Text is a byte range [p, end): never read past end, never rely on a NUL (a NUL byte is
@@ -87,6 +87,33 @@ static inline const char *lex_rtrim(const char *p, const char *end)
     while (end > p && lex_is_ws(end[-1]))
         end--;
     return end;
+}
+
+/* The next token at or after p in [p, end), crossing lines: whitespace and '\n' are skipped,
+ * each '\n' counted in *line, and the token ends at whitespace or '\n'. Returns its start
+ * and sets *te_out to its end; NULL at the end of the text (*te_out = end). For formats
+ * whose numbers may wrap across lines (ASCII PLY and STL). */
+static inline const char *lex_word(const char *p, const char *end, unsigned long *line,
+                                   const char **te_out)
+{
+    for (;;) {
+        p = lex_skip_ws(p, end);
+        if (p < end && *p == '\n') {
+            ++*line;
+            p++;
+            continue;
+        }
+        break;
+    }
+    if (p >= end) {
+        *te_out = end;
+        return NULL;
+    }
+    const char *t = p;
+    while (p < end && !lex_is_ws(*p) && *p != '\n')
+        p++;
+    *te_out = p;
+    return t;
 }
 
 /* Is the token [t, te) exactly word? (strlen of a literal folds away when inlined.) */

@@ -66,12 +66,8 @@ mat4 m4_lookat(vec3 eye, vec3 target, vec3 up);
 mat4 m4_perspective(double fovy_deg, double aspect, double near, double far);
 /* glOrtho-style; the view volume is `height` tall (width = height * aspect), centred. */
 mat4 m4_ortho(double height, double aspect, double near, double far);
-/* Window transform: NDC (x,y) -> pixels with row 0 at the top; z -> depth in [0,1]. */
-mat4 m4_viewport(int width, int height);
 /* Inverse-transpose of the upper 3x3 (the normal matrix), in the upper 3x3 of the result.
  * A singular matrix yields all zeros. */
 mat4 m4_normal_matrix(mat4 model);
-/* General 4x4 inverse; returns 0, or -1 when singular (out untouched). */
-int m4_invert(mat4 a, mat4 *out);
 
 #endif

@@ -40,7 +40,9 @@
  *                 leaves an RMS error of s sqrt(1/m - 1/k^2) at k texels per pixel, so
  *                 nearest (m = 1) fails at once, --ssaa n (m = n^2) at
  *                 k = 1 / sqrt(1/n^2 - (t/s)^2). No mipmaps yet: the default fails here.
- * Sizes: any framebuffer (default 160x96); tests use small ones. */
+ * Sizes: any framebuffer (default 160x96); tests use small ones.
+ * Each sweep is one entry of a constant table in sweep.c (its words, range, methods,
+ * threshold, scene and theory), which sweep_run walks: a new sweep is an entry there. */
 #ifndef RASTTY_SWEEP_H
 #define RASTTY_SWEEP_H
 
@@ -81,8 +83,8 @@ struct sweep_result {
     bool xlog, ylog, reversed;           /* how to plot: log axes; param decreasing */
 };
 
-extern const char *const sweep_names[SWEEP_COUNT];
-int sweep_parse(const char *name); /* -1 if unknown */
+const char *sweep_name(enum sweep_kind k); /* "grazing" */
+int sweep_parse(const char *name);         /* -1 if unknown */
 
 /* Run sweep k at w x h. */
 int sweep_run(enum sweep_kind k, int w, int h, struct sweep_result *out, struct err *e);

@@ -23,6 +23,7 @@
 #define RASTTY_RENDER_OPTS_H
 
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 
 #include "fb.h"
@@ -136,11 +137,11 @@ const char *render_view_name(enum debug_view v);
 const char *render_raster_name(enum raster_method m);
 const char *render_persp_name(enum persp_method m);
 const char *render_depth_name(enum depth_mode m);
-const char *render_ssaa_name(enum ssaa_method m);
 /* Parse a name back; -1 if unknown. */
 int render_enum_parse(const struct render_enum *t, const char *s);
-int render_shade_parse(const char *s);
-int render_cull_parse(const char *s);
-int render_filter_parse(const char *s);
+/* A method axis as data (the chart's and the sweeps'): the int-sized enum field of o at
+ * offset `field` (offsetof(struct render_opts, raster) and the like). */
+int render_opts_get(const struct render_opts *o, size_t field);
+void render_opts_set(struct render_opts *o, size_t field, int v);
 
 #endif

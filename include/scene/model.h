@@ -36,7 +36,6 @@ enum model_format { MODEL_OBJ, MODEL_STL, MODEL_PLY, MODEL_IMPORT, MODEL_FORMAT_
 /* Which loader reads these bytes; -1 with "name: not a model (JPEG image)" and the like. */
 int model_detect(const char *data, size_t len, const char *path, enum model_format *fmt_out,
                  struct err *e);
-const char *model_format_name(enum model_format f);
 
 /* Detect and load from memory (ctx->path as above). On failure *out is zeroed. */
 int model_parse(const char *data, size_t len, const struct model_ctx *ctx, struct mesh *out,

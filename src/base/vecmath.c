@@ -93,18 +93,6 @@ mat4 m4_ortho(double height, double aspect, double near, double far)
     return r;
 }
 
-mat4 m4_viewport(int width, int height)
-{
-    mat4 r = m4_identity();
-    r.m[0][0] = width * 0.5;
-    r.m[0][3] = width * 0.5;
-    r.m[1][1] = -height * 0.5; /* NDC +Y is up; row 0 is the top row */
-    r.m[1][3] = height * 0.5;
-    r.m[2][2] = 0.5;
-    r.m[2][3] = 0.5;
-    return r;
-}
-
 mat4 m4_normal_matrix(mat4 a)
 {
     /* inverse-transpose of the 3x3 = cofactor matrix / determinant */
@@ -128,41 +116,4 @@ mat4 m4_normal_matrix(mat4 a)
     r.m[2][0] = c20 * inv, r.m[2][1] = c21 * inv, r.m[2][2] = c22 * inv;
     r.m[3][3] = 1;
     return r;
-}
-
-int m4_invert(mat4 a, mat4 *out)
-{
-    /* Gauss-Jordan with partial pivoting */
-    double w[4][8];
-    for (int i = 0; i < 4; i++)
-        for (int j = 0; j < 4; j++) {
-            w[i][j] = a.m[i][j];
-            w[i][j + 4] = (i == j);
-        }
-    for (int c = 0; c < 4; c++) {
-        int p = c;
-        for (int r = c + 1; r < 4; r++)
-            if (fabs(w[r][c]) > fabs(w[p][c]))
-                p = r;
-        if (w[p][c] == 0)
-            return -1;
-        for (int j = 0; j < 8; j++) {
-            double t = w[c][j];
-            w[c][j] = w[p][j];
-            w[p][j] = t;
-        }
-        double inv = 1.0 / w[c][c];
-        for (int j = 0; j < 8; j++)
-            w[c][j] *= inv;
-        for (int r = 0; r < 4; r++)
-            if (r != c && w[r][c] != 0) {
-                double f = w[r][c];
-                for (int j = 0; j < 8; j++)
-                    w[r][j] -= f * w[c][j];
-            }
-    }
-    for (int i = 0; i < 4; i++)
-        for (int j = 0; j < 4; j++)
-            out->m[i][j] = w[i][j + 4];
-    return 0;
 }

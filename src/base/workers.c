@@ -5,8 +5,9 @@
 #include <stdatomic.h>
 #include <stdbool.h>
 #include <stdlib.h>
-#include <time.h>
 #include <unistd.h>
+
+#include "timing.h"
 
 struct workers {
     int n;
@@ -31,13 +32,6 @@ struct start {
  * first spin on the atomic for up to SPIN_US, then sleep on the condition variable. */
 #define SPIN_US 200
 
-static double now_us(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec * 1e6 + (double)ts.tv_nsec / 1e3;
-}
-
 static inline void cpu_relax(void)
 {
 #if defined(__x86_64__) || defined(__i386__)
@@ -54,10 +48,10 @@ static bool spin_until(struct workers *w, bool (*cond)(struct workers *, unsigne
         if (cond(w, v))
             return true;
         if ((i & 255) == 255) {
-            double t = now_us();
+            double t = timing_now_ms();
             if (t0 == 0)
                 t0 = t;
-            else if (t - t0 > SPIN_US)
+            else if (t - t0 > SPIN_US * 1e-3)
                 return false;
         }
         cpu_relax();

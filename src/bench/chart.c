@@ -10,6 +10,7 @@
 #include "decode.h"
 #include "encode.h"
 #include "pipeline.h"
+#include "psnr.h"
 #include "scene.h"
 #include "ssaa.h"
 #include "timing.h"
@@ -88,14 +89,12 @@ struct run {
 
 static int axis_get(const struct render_opts *o, int a)
 {
-    int v;
-    memcpy(&v, (const char *)o + chart_axes[a].field, sizeof v);
-    return v;
+    return render_opts_get(o, chart_axes[a].field);
 }
 
 static void axis_set(struct render_opts *o, int a, int v)
 {
-    memcpy((char *)o + chart_axes[a].field, &v, sizeof v);
+    render_opts_set(o, chart_axes[a].field, v);
 }
 
 static void row_opts(const struct group *g, const struct chart_row *r, struct render_opts *o)
@@ -232,23 +231,20 @@ static int add_base_rows(struct run *x, struct group *g, struct err *e)
     return 0;
 }
 
-/* squared error and pixels off by more than 8 */
+/* PSNR over all channels, and the fraction of pixels with a channel off by more than 8 */
 static void compare(const uint8_t *a, const uint8_t *b, size_t n_px, double *psnr_out,
                     double *frac_out)
 {
-    double sse = 0;
     size_t off = 0;
     for (size_t i = 0; i < n_px; i++) {
         int worst = 0;
         for (int k = 0; k < 3; k++) {
             int d = abs((int)a[3 * i + k] - (int)b[3 * i + k]);
-            sse += (double)d * d;
             worst = d > worst ? d : worst;
         }
         off += worst > 8;
     }
-    double mse = sse / (3.0 * (double)n_px);
-    *psnr_out = mse > 0 ? 10 * log10(255.0 * 255.0 / mse) : INFINITY;
+    *psnr_out = psnr_db(psnr_sse(a, b, 3 * n_px) / (3.0 * (double)n_px));
     *frac_out = (double)off / (double)n_px;
 }
 
@@ -484,7 +480,7 @@ static struct agg aggregate(const struct chart *c, int w, int h, const int value
             continue;
         double ms = pilot ? r->pilot_ms : r->ms;
         log_ms += log(ms > 1e-6 ? ms : 1e-6);
-        g.mse += isinf(r->psnr_db) ? 0 : 255.0 * 255.0 * pow(10, -r->psnr_db / 10);
+        g.mse += psnr_mse(r->psnr_db);
         g.frac += r->frac_gt8;
         g.n++;
         /* a scene's rows are unique by methods: the next match is another scene */
@@ -513,7 +509,7 @@ static void choose_combos(const struct chart *c, int w, int h, int fast[CHART_AX
     for (int a = 0; a < CHART_AXES; a++)
         def[a] = axis_get(&d, a);
     struct agg g0 = aggregate(c, w, h, def, true);
-    double db0 = g0.mse > 0 ? 10 * log10(255.0 * 255.0 / g0.mse) : INFINITY;
+    double db0 = psnr_db(g0.mse);
     for (int a = 0; a < CHART_AXES; a++) {
         double fast_ms = g0.ms * CHART_FASTER, best_db = db0 + CHART_BETTER_DB;
         double best_frac = g0.frac;
@@ -525,7 +521,7 @@ static void choose_combos(const struct chart *c, int w, int h, int fast[CHART_AX
             struct agg g = aggregate(c, w, h, vals, true);
             if (!g.n || v == def[a])
                 continue;
-            double db = g.mse > 0 ? 10 * log10(255.0 * 255.0 / g.mse) : INFINITY;
+            double db = psnr_db(g.mse);
             if (g.ms < fast_ms)
                 fast_ms = g.ms, fast[a] = v;
             if (chart_axes[a].ideal_is_default)
@@ -795,7 +791,7 @@ static void draw_panel(const struct chart *c, struct plot *p, int w, int h, doub
             continue;
         struct agg g = aggregate(c, w, h, r->value, false);
         pts[n].ms = g.ms;
-        pts[n].psnr = g.mse > 0 ? 10 * log10(255.0 * 255.0 / g.mse) : INFINITY;
+        pts[n].psnr = psnr_db(g.mse);
         pts[n].row = r;
         n++;
     }

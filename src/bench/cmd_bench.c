@@ -19,6 +19,7 @@
 #include "light.h"
 #include "pipeline.h"
 #include "prepare.h"
+#include "psnr.h"
 #include "ssaa.h"
 #include "timing.h"
 
@@ -58,17 +59,6 @@ static const struct config configs[] = {
     {"256 budget 25K", PALETTE_256, true, 0, 25000},
 };
 enum { N_CONFIGS = sizeof configs / sizeof configs[0] };
-
-/* sum of squared channel differences */
-static double sq_err(const uint8_t *a, const uint8_t *b, size_t n)
-{
-    double s = 0;
-    for (size_t i = 0; i < n; i++) {
-        double d = (double)a[i] - b[i];
-        s += d * d;
-    }
-    return s;
-}
 
 struct track {
     struct encode_screen es;
@@ -194,9 +184,9 @@ static int bench_scene(const struct options *o, const char *path, int cols, int 
             t[i].enc_ms[k] = dt;
             if (decode_apply(&t[i].dec, bytes, n, e))
                 goto done;
-            double sq = sq_err(t[i].dec.rgb, fb.rgb, npx);
+            double sq = psnr_sse(t[i].dec.rgb, fb.rgb, npx);
             t[i].sq += sq;
-            double psnr = sq > 0 ? 10 * log10(255.0 * 255.0 * (double)npx / sq) : INFINITY;
+            double psnr = psnr_db(sq / (double)npx);
             t[i].worst_psnr = psnr < t[i].worst_psnr ? psnr : t[i].worst_psnr;
             for (size_t j = 0; j < npx; j++) {
                 int d = abs((int)t[i].dec.rgb[j] - (int)fb.rgb[j]);
@@ -214,8 +204,7 @@ static int bench_scene(const struct options *o, const char *path, int cols, int 
         double sum = 0;
         for (int k = 0; k < frames; k++)
             sum += t[i].bytes[k];
-        double mse = t[i].sq / ((double)npx * frames);
-        double psnr = mse > 0 ? 10 * log10(255.0 * 255.0 / mse) : INFINITY;
+        double psnr = psnr_db(t[i].sq / ((double)npx * frames));
         printf("  %-16s %10.0f %10.0f %10.0f %10.4f %10.2f %8.2f %11d\n", configs[i].name,
                timing_median(t[i].bytes, frames), sum / frames, timing_percentile(t[i].bytes, frames, 0.95),
                timing_median(t[i].enc_ms, frames), psnr, t[i].worst_psnr, t[i].max_dev);

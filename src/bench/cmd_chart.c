@@ -141,9 +141,14 @@ int cmd_bench_sweep(const struct options *o, struct err *e)
 {
     int k = sweep_parse(o->sweep);
     if (k < 0) {
-        char q[80];
-        return err_set(e, "rastty: --sweep: expected grazing, depthrange, magnitude, sliver, "
-                          "nearplane or minification, got '%s'",
+        char q[80], names[128] = ""; /* "grazing, ... or minification" */
+        for (int i = 0; i < SWEEP_COUNT; i++) {
+            size_t n = strlen(names);
+            snprintf(names + n, sizeof names - n, "%s%s",
+                     i == 0 ? "" : i == SWEEP_COUNT - 1 ? " or " : ", ",
+                     sweep_name((enum sweep_kind)i));
+        }
+        return err_set(e, "rastty: --sweep: expected %s, got '%s'", names,
                        err_quote(o->sweep, strlen(o->sweep), 60, q, sizeof q)), 2;
     }
     int w = o->width ? o->width : 160, h = o->width ? o->height : 96;

@@ -4,24 +4,15 @@
 #include "sweep.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "mesh.h"
 #include "pipeline.h"
+#include "psnr.h"
 #include "ssaa.h"
-
-const char *const sweep_names[SWEEP_COUNT] = {"grazing", "depthrange", "magnitude",
-                                              "sliver", "nearplane", "minification"};
-
-int sweep_parse(const char *name)
-{
-    for (int k = 0; k < SWEEP_COUNT; k++)
-        if (strcmp(name, sweep_names[k]) == 0)
-            return k;
-    return -1;
-}
 
 /* ---- building scenes ---- */
 
@@ -103,6 +94,14 @@ static int b_mesh(struct build *b, struct mesh *m, struct err *e)
     free(b->corners);
     memset(b, 0, sizeof *b);
     return rc;
+}
+
+/* a draw item of m where it stands (identity model), with the texture tex or the colour kd
+ * over its material's (either NULL: not) */
+static struct draw_item b_item(const struct mesh *m, const struct texture *tex, const float *kd)
+{
+    return (struct draw_item){.mesh = m, .model = m4_identity(), .texture_override = tex,
+                              .kd_override = kd};
 }
 
 /* 256 x 256, red = column, green = row from the bottom: bilinear sampling gives back the
@@ -224,123 +223,179 @@ static void bary2(const double a[2], const double b[2], const double c[2], const
     l_out[2] = 1 - l_out[0] - l_out[1];
 }
 
-static void methods_from(struct sweep_result *r, const struct render_enum *names)
-{
-    r->n_methods = names->n;
-    for (int m = 0; m < names->n; m++)
-        snprintf(r->method[m], sizeof r->method[m], "%s", names->names[m]);
-    r->default_method = 0; /* every axis's default is its value 0 */
-    for (int m = 0; m < SWEEP_MAX_METHODS; m++)
-        r->predicted[m] = NAN;
-}
+/* ---- the sweeps as data ---- */
+
+/* What one step draws. */
+struct sweep_frame {
+    const struct draw_item *items;
+    int n_items;
+    struct camera cam;
+};
+
+/* A method compared that is not one value of one axis: a filter with a supersampling
+ * factor (minification's). */
+struct sweep_combo {
+    const char *name; /* as a flag value: ssaa4 is --ssaa 4 */
+    enum tex_filter filter;
+    enum ssaa_method ssaa;
+};
+
+/* One sweep, as the table below (sweeps[]) holds it; sweep.h says what each one measures and
+ * why. sweep_run walks an entry: the result's words, steps and methods from here; the scene
+ * (init); for every step (step -1 first, when `reference`) its placement (step), drawn with
+ * every method and scored (measure); then the failure points, a theory column's predictions
+ * and the theory's words (predict); release last, whatever happened. A scene's state is
+ * ctx_size bytes, zeroed before init (release must take it in any state init leaves). */
+struct sweep_def {
+    const char *name;       /* --sweep NAME */
+    const char *what;       /* one line: the scene and the method axis */
+    const char *param_name; /* what is varied */
+    const char *error_name; /* what is measured */
+    const char *extra_name; /* a second measure, or NULL */
+    bool extra_is_theory;   /* extra predicts error: a method is predicted to fail at the
+                             * first step where it passes the threshold */
+    double threshold;       /* fails when error > threshold (or a NaN/inf appears) */
+    /* the threshold in words: a printf format given two doubles, the threshold (times 100
+     * when fails_percent) and the PSNR an RMS error of the threshold means (either may go
+     * unused) */
+    const char *fails;
+    bool fails_percent;
+    bool xlog, ylog, reversed; /* how to plot: log axes; param decreasing */
+    /* the range: the n_steps values in steps[], or, without steps, 10^(log0 + s / per_decade)
+     * for s = 0 .. n_steps-1 (a step may replace its value with the one it reached) */
+    const double *steps;
+    int n_steps;
+    double log0, per_decade;
+    bool reference;         /* first a step -1 (param 0), drawn with method 0 only: the
+                             * picture the steps are compared with */
+    /* the methods: every value of the render_opts field `field`, named by `axis` (the
+     * default is value 0); without an axis the n_combos combos, the default default_combo.
+     * Every method draws with render_opts_default, unlit, bilinear when `bilinear`. */
+    const struct render_enum *axis;
+    size_t field;
+    const struct sweep_combo *combos;
+    int n_combos, default_combo;
+    bool bilinear;
+    /* the scene */
+    size_t ctx_size;
+    int (*init)(void *ctx, int w, int h, struct err *e);
+    int (*step)(void *ctx, double *param, struct sweep_frame *out, struct err *e);
+    void (*measure)(void *ctx, const struct fb *fb, const struct render_opts *o, int s, int m,
+                    struct sweep_result *r);
+    /* the theory: in words when it needs no numbers, else written by predict (r->theory,
+     * and holds_until) once the steps are measured and the predictions made */
+    const char *theory;
+    void (*predict)(void *ctx, struct sweep_result *r);
+    void (*release)(void *ctx);
+};
+
+#define COUNT(a) ((int)(sizeof(a) / sizeof((a)[0])))
 
 /* ---- grazing ---- */
 
-static int sweep_grazing(int w, int h, struct sweep_result *r, struct err *e)
+static const double gz_deg[] = {90, 85, 80, 75, 60, 45, 30, 20, 15, 10, 7, 5, 3, 2, 1};
+/* the quad: corners (x, z) on y = 0 and their uvs; triangles 0 1 2 and 0 2 3 */
+static const double gz_x[4] = {-1, 1, 1, -1}, gz_z[4] = {1, 1, -1, -1};
+static const double gz_u[4] = {0.02, 0.98, 0.98, 0.02}, gz_v[4] = {0.02, 0.02, 0.98, 0.98};
+
+struct grazing {
+    int w, h;
+    struct mesh m;
+    struct texture tex;
+    struct draw_item item;
+    struct view_rays v;  /* this step's camera */
+    double corner[4][2]; /* the quad's corners in pixels */
+};
+
+static int grazing_init(void *ctx, int w, int h, struct err *e)
 {
-    static const double deg[] = {90, 85, 80, 75, 60, 45, 30, 20, 15, 10, 7, 5, 3, 2, 1};
-    r->what = "a 2x2 textured ground (two triangles) seen from 3 units, camera rolled 30 "
-              "degrees; --persp";
-    r->param_name = "degrees above the ground";
-    r->error_name = "mean texel error of the uv (256-texel ramp, against a ray cast)";
-    r->extra_name = "theory: affine's error, uv interpolated linearly between the projected "
-                    "corners (double)";
-    r->extra_is_theory = true;
-    r->threshold = 0.5;
-    snprintf(r->threshold_text, sizeof r->threshold_text,
-             "fails: mean uv error > %.1f texel (the sampled texel is off by half a texel on "
-             "average)", r->threshold);
-    r->xlog = r->ylog = true;
-    r->reversed = true;
-    methods_from(r, &render_persp_names);
-    r->n_steps = (int)(sizeof deg / sizeof deg[0]);
-    /* the quad: corners (x, z) on y = 0 and their uvs; triangles 0 1 2 and 0 2 3 */
-    static const double cx[4] = {-1, 1, 1, -1}, cz[4] = {1, 1, -1, -1};
-    static const double cu[4] = {0.02, 0.98, 0.98, 0.02}, cv[4] = {0.02, 0.02, 0.98, 0.98};
+    struct grazing *g = ctx;
+    g->w = w, g->h = h;
     struct build b = {0};
     for (int i = 0; i < 4; i++)
-        b_vert(&b, cx[i], 0, cz[i], cu[i], cv[i]);
+        b_vert(&b, gz_x[i], 0, gz_z[i], gz_u[i], gz_v[i]);
     b_tri(&b, 0, 1, 2);
     b_tri(&b, 0, 2, 3);
-    struct mesh m;
-    struct texture tex = {0};
-    struct rig rig;
-    int rc = -1;
-    if (b_mesh(&b, &m, e))
+    if (b_mesh(&b, &g->m, e) || ramp_texture(&g->tex, e))
         return -1;
-    if (ramp_texture(&tex, e) || rig_init(&rig, w, h, e))
-        goto out_mesh;
-    struct draw_item item = {.mesh = &m, .model = m4_identity(), .texture_override = &tex};
-    for (int s = 0; s < r->n_steps; s++) {
-        double th = deg[s] * M_PI / 180;
-        r->param[s] = deg[s];
-        struct camera cam;
-        camera_default(&cam);
-        cam.eye = v3(0, 3 * sin(th), 3 * cos(th));
-        cam.target = v3(0, 0, 0);
-        cam.up = v3(0.5, 0.866, 0);
-        struct view_rays v;
-        rays_init(&v, &cam, w, h);
-        double corner[4][2];
-        for (int i = 0; i < 4; i++)
-            project(&v, v3(cx[i], 0, cz[i]), &corner[i][0], &corner[i][1]);
-        for (int k = 0; k < r->n_methods; k++) {
-            struct render_opts o;
-            render_opts_default(&o);
-            o.shade = SHADE_UNLIT;
-            o.filter = TEX_BILINEAR;
-            o.persp = (enum persp_method)k;
-            if (rig_draw(&rig, &item, 1, &cam, &o, e))
-                goto out;
-            double sum = 0, sum_affine = 0;
-            long n = 0;
-            for (int py = 0; py < h; py++)
-                for (int px = 0; px < w; px++) {
-                    size_t i = (size_t)py * w + px;
-                    if (!fb_covered(&rig.fb, i))
-                        continue;
-                    /* the ray's hit on y = 0, and half a pixel around it: all inside */
-                    bool inside = true;
-                    double x = 0, z = 0;
-                    for (int q = 0; q < 5 && inside; q++) {
-                        double ox = q == 1 ? -0.5 : q == 2 ? 0.5 : 0;
-                        double oy = q == 3 ? -0.5 : q == 4 ? 0.5 : 0;
-                        vec3 d = ray_dir(&v, px + 0.5 + ox, py + 0.5 + oy);
-                        if (!(d.y < 0)) {
-                            inside = false;
-                            break;
-                        }
-                        double t = -v.eye.y / d.y;
-                        double hx = v.eye.x + t * d.x, hz = v.eye.z + t * d.z;
-                        inside = fabs(hx) < 1 && fabs(hz) < 1;
-                        if (q == 0)
-                            x = hx, z = hz;
-                    }
-                    if (!inside)
-                        continue;
-                    double tu = (0.02 + 0.96 * (x + 1) / 2) * 256 - 0.5;
-                    double tv = (0.02 + 0.96 * (1 - z) / 2) * 256 - 0.5;
-                    const uint8_t *c = rig.fb.rgb + 3 * i;
-                    sum += fmax(fabs(c[0] - floor(tu + 0.5)), fabs(c[1] - floor(tv + 0.5)));
-                    n++;
-                    if (k == PERSP_AFFINE) { /* the same, interpolated in screen space */
-                        int t1 = x + z >= 0 ? 1 : 2; /* triangle 0 1 2 or 0 2 3 */
-                        const int idx[3] = {0, t1, t1 + 1};
-                        double l[3], pc[2] = {px + 0.5, py + 0.5}, au = 0, av = 0;
-                        bary2(corner[idx[0]], corner[idx[1]], corner[idx[2]], pc, l);
-                        for (int j = 0; j < 3; j++)
-                            au += l[j] * cu[idx[j]], av += l[j] * cv[idx[j]];
-                        au = au * 256 - 0.5, av = av * 256 - 0.5;
-                        sum_affine += fmax(fabs(floor(au + 0.5) - floor(tu + 0.5)),
-                                           fabs(floor(av + 0.5) - floor(tv + 0.5)));
-                    }
+    g->item = b_item(&g->m, &g->tex, NULL);
+    return 0;
+}
+
+static int grazing_step(void *ctx, double *param, struct sweep_frame *f, struct err *e)
+{
+    (void)e;
+    struct grazing *g = ctx;
+    double th = *param * M_PI / 180;
+    camera_default(&f->cam);
+    f->cam.eye = v3(0, 3 * sin(th), 3 * cos(th));
+    f->cam.target = v3(0, 0, 0);
+    f->cam.up = v3(0.5, 0.866, 0);
+    rays_init(&g->v, &f->cam, g->w, g->h);
+    for (int i = 0; i < 4; i++)
+        project(&g->v, v3(gz_x[i], 0, gz_z[i]), &g->corner[i][0], &g->corner[i][1]);
+    f->items = &g->item;
+    f->n_items = 1;
+    return 0;
+}
+
+static void grazing_measure(void *ctx, const struct fb *fb, const struct render_opts *o, int s,
+                            int k, struct sweep_result *r)
+{
+    (void)o;
+    const struct grazing *g = ctx;
+    const struct view_rays *v = &g->v;
+    double sum = 0, sum_affine = 0;
+    long n = 0;
+    for (int py = 0; py < g->h; py++)
+        for (int px = 0; px < g->w; px++) {
+            size_t i = (size_t)py * g->w + px;
+            if (!fb_covered(fb, i))
+                continue;
+            /* the ray's hit on y = 0, and half a pixel around it: all inside */
+            bool inside = true;
+            double x = 0, z = 0;
+            for (int q = 0; q < 5 && inside; q++) {
+                double ox = q == 1 ? -0.5 : q == 2 ? 0.5 : 0;
+                double oy = q == 3 ? -0.5 : q == 4 ? 0.5 : 0;
+                vec3 d = ray_dir(v, px + 0.5 + ox, py + 0.5 + oy);
+                if (!(d.y < 0)) {
+                    inside = false;
+                    break;
                 }
-            r->error[s][k] = n ? sum / n : NAN; /* NAN: too small to measure */
-            r->extra[s][k] = k == PERSP_AFFINE ? (n ? sum_affine / n : NAN) : NAN;
-            r->nan[s][k] = count_nan(&rig.fb);
+                double t = -v->eye.y / d.y;
+                double hx = v->eye.x + t * d.x, hz = v->eye.z + t * d.z;
+                inside = fabs(hx) < 1 && fabs(hz) < 1;
+                if (q == 0)
+                    x = hx, z = hz;
+            }
+            if (!inside)
+                continue;
+            double tu = (0.02 + 0.96 * (x + 1) / 2) * 256 - 0.5;
+            double tv = (0.02 + 0.96 * (1 - z) / 2) * 256 - 0.5;
+            const uint8_t *c = fb->rgb + 3 * i;
+            sum += fmax(fabs(c[0] - floor(tu + 0.5)), fabs(c[1] - floor(tv + 0.5)));
+            n++;
+            if (k == PERSP_AFFINE) { /* the same, interpolated in screen space */
+                int t1 = x + z >= 0 ? 1 : 2; /* triangle 0 1 2 or 0 2 3 */
+                const int idx[3] = {0, t1, t1 + 1};
+                double l[3], pc[2] = {px + 0.5, py + 0.5}, au = 0, av = 0;
+                bary2(g->corner[idx[0]], g->corner[idx[1]], g->corner[idx[2]], pc, l);
+                for (int j = 0; j < 3; j++)
+                    au += l[j] * gz_u[idx[j]], av += l[j] * gz_v[idx[j]];
+                au = au * 256 - 0.5, av = av * 256 - 0.5;
+                sum_affine += fmax(fabs(floor(au + 0.5) - floor(tu + 0.5)),
+                                   fabs(floor(av + 0.5) - floor(tv + 0.5)));
+            }
         }
-    }
-    predict_from_extra(r, PERSP_AFFINE);
+    r->error[s][k] = n ? sum / n : NAN; /* NAN: too small to measure */
+    r->extra[s][k] = k == PERSP_AFFINE ? (n ? sum_affine / n : NAN) : NAN;
+    r->nan[s][k] = count_nan(fb);
+}
+
+static void grazing_predict(void *ctx, struct sweep_result *r)
+{
+    (void)ctx;
     snprintf(r->theory, sizeof r->theory,
              "affine interpolates uv linearly in screen space while 1/w varies across each "
              "triangle: exact from straight above (90 deg, w constant), then its error grows "
@@ -349,15 +404,13 @@ static int sweep_grazing(int w, int h, struct sweep_result *r, struct err *e)
              "exact every n pixels and bend in between: they fail later (shorter spans "
              "later); correct divides per pixel and never fails.",
              r->predicted[PERSP_AFFINE]);
-    rc = 0;
-out:
-    rig_free(&rig);
-out_mesh:
-    texture_free(&tex);
-    mesh_free(&m);
-    if (rc == 0)
-        finish(r);
-    return rc;
+}
+
+static void grazing_release(void *ctx)
+{
+    struct grazing *g = ctx;
+    texture_free(&g->tex);
+    mesh_free(&g->m);
 }
 
 /* ---- depthrange ---- */
@@ -400,23 +453,19 @@ static double depth_ties(const struct camera *cam, int w, int h, enum depth_mode
     return sum / ((double)w * h);
 }
 
-static int sweep_depthrange(int w, int h, struct sweep_result *r, struct err *e)
-{
-    r->what = "two parallel quads 0.01 apart, 20 units away (far plane 100), the farther "
-              "drawn first; --depth";
-    r->param_name = "far/near ratio (near = 100 / ratio)";
-    r->error_name = "fraction of pixels where the farther quad wins";
-    r->threshold = 0.01;
-    snprintf(r->threshold_text, sizeof r->threshold_text,
-             "fails: the farther quad wins in more than %.0f%% of the pixels", 100 * r->threshold);
-    r->xlog = true;
-    methods_from(r, &render_depth_names);
-    r->extra_name = "theory: the expected fraction, mean over the pixels of max(0, 1 - "
-                    "gap/step) in each method's stored measure";
-    r->extra_is_theory = true;
-    r->n_steps = 25;
-    double half_w = 1.3 * DR_DIST * tan(25 * M_PI / 180) * w / h + 2, half_h = half_w;
+
+struct depthrange {
+    int w, h;
     struct mesh m[2]; /* m[0] the farther quad (drawn first), m[1] the nearer */
+    struct draw_item items[2];
+    struct camera cam; /* this step's */
+};
+
+static int depthrange_init(void *ctx, int w, int h, struct err *e)
+{
+    struct depthrange *d = ctx;
+    d->w = w, d->h = h;
+    double half_w = 1.3 * DR_DIST * tan(25 * M_PI / 180) * w / h + 2, half_h = half_w;
     for (int q = 0; q < 2; q++) {
         struct build b = {0};
         double z = -(DR_DIST + (q == 0 ? DR_GAP : 0));
@@ -426,50 +475,49 @@ static int sweep_depthrange(int w, int h, struct sweep_result *r, struct err *e)
         b_vert(&b, -half_w, half_h, z + DR_SLOPE * half_h, 0, 0);
         b_tri(&b, 0, 1, 2);
         b_tri(&b, 0, 2, 3);
-        if (b_mesh(&b, &m[q], e)) {
-            if (q == 1)
-                mesh_free(&m[0]);
+        if (b_mesh(&b, &d->m[q], e))
             return -1;
-        }
     }
     static const float green[3] = {0, 1, 0}, red[3] = {1, 0, 0};
-    struct draw_item items[2] = {
-        {.mesh = &m[0], .model = m4_identity(), .kd_override = green},
-        {.mesh = &m[1], .model = m4_identity(), .kd_override = red},
-    };
-    struct rig rig;
-    int rc = -1;
-    if (rig_init(&rig, w, h, e))
-        goto out;
-    for (int s = 0; s < r->n_steps; s++) {
-        double ratio = pow(10, 1 + s / 4.0);
-        r->param[s] = ratio;
-        struct camera cam;
-        camera_default(&cam);
-        cam.eye = v3(0, 0, 0);
-        cam.target = v3(0, 0, -1);
-        cam.far = DR_FAR;
-        cam.near = DR_FAR / ratio;
-        for (int k2 = 0; k2 < r->n_methods; k2++) {
-            struct render_opts o;
-            render_opts_default(&o);
-            o.shade = SHADE_UNLIT;
-            o.depth = (enum depth_mode)k2;
-            if (rig_draw(&rig, items, 2, &cam, &o, e))
-                goto out;
-            long far = 0, n = 0;
-            for (size_t i = 0; i < (size_t)w * h; i++) {
-                const uint8_t *c = rig.fb.rgb + 3 * i;
-                n += c[0] > 0 || c[1] > 0;
-                far += c[1] > c[0];
-            }
-            r->error[s][k2] = n ? (double)far / n : 1;
-            r->nan[s][k2] = count_nan(&rig.fb);
-            r->extra[s][k2] = depth_ties(&cam, w, h, (enum depth_mode)k2);
-        }
+    d->items[0] = b_item(&d->m[0], NULL, green);
+    d->items[1] = b_item(&d->m[1], NULL, red);
+    return 0;
+}
+
+static int depthrange_step(void *ctx, double *param, struct sweep_frame *f, struct err *e)
+{
+    (void)e;
+    struct depthrange *d = ctx;
+    camera_default(&d->cam);
+    d->cam.eye = v3(0, 0, 0);
+    d->cam.target = v3(0, 0, -1);
+    d->cam.far = DR_FAR;
+    d->cam.near = DR_FAR / *param; /* param: the far/near ratio */
+    f->cam = d->cam;
+    f->items = d->items;
+    f->n_items = 2;
+    return 0;
+}
+
+static void depthrange_measure(void *ctx, const struct fb *fb, const struct render_opts *o,
+                               int s, int k, struct sweep_result *r)
+{
+    (void)o;
+    const struct depthrange *d = ctx;
+    long far = 0, n = 0;
+    for (size_t i = 0; i < (size_t)d->w * d->h; i++) {
+        const uint8_t *c = fb->rgb + 3 * i;
+        n += c[0] > 0 || c[1] > 0;
+        far += c[1] > c[0];
     }
-    for (int k2 = 0; k2 < r->n_methods; k2++)
-        predict_from_extra(r, k2);
+    r->error[s][k] = n ? (double)far / n : 1;
+    r->nan[s][k] = count_nan(fb);
+    r->extra[s][k] = depth_ties(&d->cam, d->w, d->h, (enum depth_mode)k);
+}
+
+static void depthrange_predict(void *ctx, struct sweep_result *r)
+{
+    (void)ctx;
     /* the closed form for the quads' centre: step = q D^2 (ratio - 1) / far */
     double kk = DR_FAR * DR_GAP / (0.99 * DR_DIST * DR_DIST);
     snprintf(r->theory, sizeof r->theory,
@@ -484,14 +532,13 @@ static int sweep_depthrange(int w, int h, struct sweep_result *r, struct err *e)
              "evaluates its plane as a float base plus a small part, setup.h), so their ties "
              "fall pixel by pixel as predicted.",
              1 + kk * 65535, 1 + kk * 16777216.0, r->predicted[DEPTH_Z16], r->predicted[DEPTH_Z]);
-    rc = 0;
-out:
-    rig_free(&rig);
-    mesh_free(&m[0]);
-    mesh_free(&m[1]);
-    if (rc == 0)
-        finish(r);
-    return rc;
+}
+
+static void depthrange_release(void *ctx)
+{
+    struct depthrange *d = ctx;
+    mesh_free(&d->m[0]);
+    mesh_free(&d->m[1]);
 }
 
 /* ---- magnitude ---- */
@@ -557,20 +604,71 @@ static void sphere(struct build *b, vec3 c, int stacks, int slices)
     }
 }
 
-static int sweep_magnitude(int w, int h, struct sweep_result *r, struct err *e)
+
+struct magnitude {
+    int w, h;
+    uint8_t *ref;  /* the sphere at the origin: covered pixels */
+    uint8_t *seen; /* enclosed_background's scratch */
+    int *stack;
+    struct mesh m; /* this step's sphere */
+    struct draw_item item;
+};
+
+static int magnitude_init(void *ctx, int w, int h, struct err *e)
 {
-    r->what = "a watertight sphere (radius 1, 32x16) whose float coordinates sit T units from "
-              "the origin, camera 3 units away following it; --raster";
-    r->param_name = "distance from the origin T";
-    r->error_name = "enclosed background pixels (cracks)";
-    r->extra_name = "jitter: pixels whose coverage differs from the sphere at the origin";
-    r->threshold = 0;
-    snprintf(r->threshold_text, sizeof r->threshold_text, "fails: any crack (error > 0)");
-    r->xlog = r->ylog = true;
-    methods_from(r, &render_raster_names);
+    struct magnitude *g = ctx;
+    g->w = w, g->h = h;
+    g->ref = malloc((size_t)w * h);
+    g->seen = malloc((size_t)w * h);
+    g->stack = malloc((size_t)w * h * sizeof *g->stack);
+    return g->ref && g->seen && g->stack ? 0 : err_set(e, "out of memory");
+}
+
+static int magnitude_step(void *ctx, double *param, struct sweep_frame *f, struct err *e)
+{
+    struct magnitude *g = ctx;
+    double t = *param; /* the distance; 0 for the reference */
+    vec3 c = v3(t / sqrt(3), t / sqrt(3), t / sqrt(3));
+    mesh_free(&g->m);
+    struct build b = {0};
+    sphere(&b, c, 16, 32);
+    if (b_mesh(&b, &g->m, e))
+        return -1;
+    static const float blue[3] = {0.2f, 0.6f, 0.9f};
+    g->item = b_item(&g->m, NULL, blue);
+    camera_default(&f->cam);
+    f->cam.target = v3((float)c.x, (float)c.y, (float)c.z); /* where the input says it is */
+    f->cam.eye = v3_add(f->cam.target, v3(0.3, 0.4, 3 - 0.05));
+    f->items = &g->item;
+    f->n_items = 1;
+    return 0;
+}
+
+static void magnitude_measure(void *ctx, const struct fb *fb, const struct render_opts *o,
+                              int s, int k, struct sweep_result *r)
+{
+    (void)o;
+    struct magnitude *g = ctx;
+    size_t n_px = (size_t)g->w * g->h;
+    if (s < 0) { /* the reference */
+        for (size_t i = 0; i < n_px; i++)
+            g->ref[i] = fb_covered(fb, i);
+        return;
+    }
+    long jitter = 0;
+    for (size_t i = 0; i < n_px; i++)
+        jitter += g->ref[i] != fb_covered(fb, i);
+    r->error[s][k] = (double)enclosed_background(fb, g->seen, g->stack);
+    r->extra[s][k] = (double)jitter;
+    r->nan[s][k] = count_nan(fb);
+}
+
+static void magnitude_predict(void *ctx, struct sweep_result *r)
+{
+    const struct magnitude *g = ctx;
     /* a coordinate x = T/sqrt(3) in float moves in steps of 2^(floor(log2 x) - 23); the
      * shape is gone when that step reaches a pixel (world size at the sphere's distance) */
-    double px_world = 2 * 3 * tan(25 * M_PI / 180) / h;
+    double px_world = 2 * 3 * tan(25 * M_PI / 180) / g->h;
     double runs_out = sqrt(3) * ldexp(1, (int)ceil(log2(px_world)) + 23);
     r->holds_until = runs_out;
     snprintf(r->theory, sizeof r->theory,
@@ -579,65 +677,15 @@ static int sweep_magnitude(int w, int h, struct sweep_result *r, struct err *e)
              "precision runs out when a coordinate's float step (2^-23 of it) reaches a pixel "
              "(%.3g units here): from T = %.3g on. Jitter starts earlier, once that step "
              "passes the 1/256-pixel snap.", px_world, runs_out);
-    r->n_steps = 15;
-    struct rig rig;
-    uint8_t *ref = malloc((size_t)w * h), *seen = malloc((size_t)w * h);
-    int *stack = malloc((size_t)w * h * sizeof *stack);
-    int rc = -1;
-    if (!ref || !seen || !stack) {
-        err_set(e, "out of memory");
-        free(ref), free(seen), free(stack);
-        return -1;
-    }
-    if (rig_init(&rig, w, h, e))
-        goto out;
-    static const float blue[3] = {0.2f, 0.6f, 0.9f};
-    for (int s = -1; s < r->n_steps; s++) { /* s = -1: the sphere at the origin */
-        double t = s < 0 ? 0 : pow(10, s / 2.0);
-        if (s >= 0)
-            r->param[s] = t;
-        vec3 c = v3(t / sqrt(3), t / sqrt(3), t / sqrt(3));
-        struct build b = {0};
-        sphere(&b, c, 16, 32);
-        struct mesh m;
-        if (b_mesh(&b, &m, e))
-            goto out;
-        struct draw_item item = {.mesh = &m, .model = m4_identity(), .kd_override = blue};
-        struct camera cam;
-        camera_default(&cam);
-        cam.target = v3((float)c.x, (float)c.y, (float)c.z); /* where the input says it is */
-        cam.eye = v3_add(cam.target, v3(0.3, 0.4, 3 - 0.05));
-        for (int k = 0; k < r->n_methods; k++) {
-            struct render_opts o;
-            render_opts_default(&o);
-            o.shade = SHADE_UNLIT;
-            o.raster = (enum raster_method)k;
-            if (rig_draw(&rig, &item, 1, &cam, &o, e)) {
-                mesh_free(&m);
-                goto out;
-            }
-            if (s < 0) {
-                if (k == 0)
-                    for (size_t i = 0; i < (size_t)w * h; i++)
-                        ref[i] = fb_covered(&rig.fb, i);
-                continue;
-            }
-            long jitter = 0;
-            for (size_t i = 0; i < (size_t)w * h; i++)
-                jitter += ref[i] != fb_covered(&rig.fb, i);
-            r->error[s][k] = (double)enclosed_background(&rig.fb, seen, stack);
-            r->extra[s][k] = (double)jitter;
-            r->nan[s][k] = count_nan(&rig.fb);
-        }
-        mesh_free(&m);
-    }
-    rc = 0;
-out:
-    rig_free(&rig);
-    free(ref), free(seen), free(stack);
-    if (rc == 0)
-        finish(r);
-    return rc;
+}
+
+static void magnitude_release(void *ctx)
+{
+    struct magnitude *g = ctx;
+    mesh_free(&g->m);
+    free(g->ref);
+    free(g->seen);
+    free(g->stack);
 }
 
 /* ---- sliver ---- */
@@ -651,116 +699,117 @@ out:
 #define SL_B 2
 #define SL_RING 3 /* points on each long side between the corners */
 
-static int sweep_sliver(int w, int h, struct sweep_result *r, struct err *e)
+
+static const double sl_axis_a[2] = {2, 1}, sl_axis_b[2] = {-1, 2}; /* A and B, pixels */
+
+struct sliver {
+    int w, h;
+    struct texture tex;
+    struct camera cam; /* orthographic, one unit a pixel */
+    double cx, cy;     /* C, pixels */
+    long a;            /* this step's half-length */
+    struct mesh m;     /* this step's fan */
+    struct draw_item item;
+};
+
+static int sliver_init(void *ctx, int w, int h, struct err *e)
 {
-    r->what = "a closed fan (centre + ring of 10 to 12) filling a rectangle 8.9 pixels across, "
-              "its corners and spokes on pixel centres; --raster";
-    r->param_name = "aspect ratio (length / width)";
-    r->error_name = "pixels covered other than once inside / never outside";
-    r->extra_name = "pixels inside whose uv is more than 8 texels off";
-    r->threshold = 0;
-    snprintf(r->threshold_text, sizeof r->threshold_text,
-             "fails: any hole, overdraw or stray pixel (error > 0)");
-    snprintf(r->theory, sizeof r->theory,
-             "coverage is decided by exact 64-bit edge functions on snapped vertices with the "
-             "tie rule, so a closed fan covers each pixel centre inside exactly once — those "
-             "on a spoke too — at any aspect ratio (pieces clipped by the guard band "
-             "included): never fails.");
-    r->xlog = true;
-    methods_from(r, &render_raster_names);
-    r->n_steps = 15;
-    struct texture tex = {0};
-    struct rig rig;
-    int rc = -1;
-    if (ramp_texture(&tex, e))
+    struct sliver *g = ctx;
+    g->w = w, g->h = h;
+    if (ramp_texture(&g->tex, e))
         return -1;
-    if (rig_init(&rig, w, h, e))
-        goto out;
-    struct camera cam;
-    camera_default(&cam);
-    cam.ortho_height = h; /* one unit = one pixel */
-    const double cx = floor(w / 2.0) + 0.5, cy = floor(h / 2.0) + 0.5; /* C, pixels */
-    const double A[2] = {2, 1}, B[2] = {-1, 2};
-    for (int s = 0; s < r->n_steps; s++) {
-        double want_aspect = pow(10, s / 2.0);
-        long a = 2 * lround(want_aspect * SL_B / 2); /* even: ring points on the lattice */
-        a = a < 2 ? 2 : a;
-        r->param[s] = (double)a / SL_B;
-        /* the ring as (t, s): each long side at t = -a, -a/2, 0, a/2, a, plus the point that
-         * makes a horizontal spoke (t = 4 on s = -2: C + (10, 0)) and one that makes a
-         * vertical spoke (t = 1 on s = 2: C + (0, 5)) when they fit */
-        long side[2][6];
-        int ns[2] = {0, 0};
-        for (int k = 0; k < 2; k++) {
-            long extra = k == 0 ? 4 : 1;
-            for (int i = 0; i <= SL_RING + 1; i++) {
-                long t = -a + 2 * a * i / (SL_RING + 1);
-                if (extra > t - 2 * a / (SL_RING + 1) && extra < t && extra > -a)
-                    side[k][ns[k]++] = extra;
-                side[k][ns[k]++] = t;
-            }
+    camera_default(&g->cam);
+    g->cam.ortho_height = h; /* one unit = one pixel */
+    g->cx = floor(w / 2.0) + 0.5, g->cy = floor(h / 2.0) + 0.5;
+    return 0;
+}
+
+/* param: the aspect ratio wanted, replaced by the one drawn (a / b, a even) */
+static int sliver_step(void *ctx, double *param, struct sweep_frame *f, struct err *e)
+{
+    struct sliver *g = ctx;
+    const double *A = sl_axis_a, *B = sl_axis_b, cx = g->cx, cy = g->cy;
+    int w = g->w, h = g->h;
+    double want_aspect = *param;
+    long a = 2 * lround(want_aspect * SL_B / 2); /* even: ring points on the lattice */
+    a = a < 2 ? 2 : a;
+    *param = (double)a / SL_B;
+    g->a = a;
+    /* the ring as (t, s): each long side at t = -a, -a/2, 0, a/2, a, plus the point that
+     * makes a horizontal spoke (t = 4 on s = -2: C + (10, 0)) and one that makes a
+     * vertical spoke (t = 1 on s = 2: C + (0, 5)) when they fit */
+    long side[2][6];
+    int ns[2] = {0, 0};
+    for (int k = 0; k < 2; k++) {
+        long extra = k == 0 ? 4 : 1;
+        for (int i = 0; i <= SL_RING + 1; i++) {
+            long t = -a + 2 * a * i / (SL_RING + 1);
+            if (extra > t - 2 * a / (SL_RING + 1) && extra < t && extra > -a)
+                side[k][ns[k]++] = extra;
+            side[k][ns[k]++] = t;
         }
-        long ring[12][2];
-        int n = 0;
-        for (int i = 0; i < ns[0]; i++) /* the side s = -b, t from -a to a */
-            ring[n][0] = side[0][i], ring[n++][1] = -SL_B;
-        for (int i = ns[1] - 1; i >= 0; i--) /* the side s = +b, back */
-            ring[n][0] = side[1][i], ring[n++][1] = SL_B;
-        struct build b = {0};
-        for (int i = -1; i < n; i++) {
-            double t = i < 0 ? 0 : (double)ring[i][0], q = i < 0 ? 0 : (double)ring[i][1];
-            double px = cx + t * A[0] + q * B[0], py = cy + t * A[1] + q * B[1];
-            b_vert(&b, px - w / 2.0, h / 2.0 - py, 0, 0.02 + 0.96 * (t / a + 1) / 2,
-                   0.02 + 0.96 * (q / SL_B + 1) / 2);
-        }
-        for (int i = 0; i < n; i++)
-            b_tri(&b, 0, (uint32_t)(1 + i), (uint32_t)(1 + (i + 1) % n));
-        struct mesh m;
-        if (b_mesh(&b, &m, e))
-            goto out;
-        struct draw_item item = {.mesh = &m, .model = m4_identity(), .texture_override = &tex};
-        for (int k = 0; k < r->n_methods; k++) {
-            struct render_opts o;
-            render_opts_default(&o);
-            o.shade = SHADE_UNLIT;
-            o.filter = TEX_BILINEAR;
-            o.raster = (enum raster_method)k;
-            if (rig_draw(&rig, &item, 1, &cam, &o, e)) {
-                mesh_free(&m);
-                goto out;
-            }
-            long bad = 0, off = 0;
-            for (int py = 0; py < h; py++)
-                for (int px = 0; px < w; px++) {
-                    /* (t, s) of the centre: exact multiples of 1/5 */
-                    double dx = px + 0.5 - cx, dy = py + 0.5 - cy;
-                    double t = (dx * A[0] + dy * A[1]) / 5, q = (dx * B[0] + dy * B[1]) / 5;
-                    if (fabs(fabs(q) - SL_B) < 1e-9 || fabs(fabs(t) - a) < 1e-9)
-                        continue; /* on the outline: the tie rule's call, either is right */
-                    int want = fabs(t) < a && fabs(q) < SL_B;
-                    size_t i = (size_t)py * w + px;
-                    long got = (long)rig.fb.overdraw[i];
-                    bad += labs(got - want);
-                    if (want && got == 1) {
-                        double tu = (0.02 + 0.96 * (t / a + 1) / 2) * 256 - 0.5;
-                        double tv = (0.02 + 0.96 * (q / SL_B + 1) / 2) * 256 - 0.5;
-                        const uint8_t *col = rig.fb.rgb + 3 * i;
-                        off += fabs(col[0] - tu) > 8 || fabs(col[1] - tv) > 8;
-                    }
-                }
-            r->error[s][k] = (double)bad;
-            r->extra[s][k] = (double)off;
-            r->nan[s][k] = count_nan(&rig.fb);
-        }
-        mesh_free(&m);
     }
-    rc = 0;
-out:
-    rig_free(&rig);
-    texture_free(&tex);
-    if (rc == 0)
-        finish(r);
-    return rc;
+    long ring[12][2];
+    int n = 0;
+    for (int i = 0; i < ns[0]; i++) /* the side s = -b, t from -a to a */
+        ring[n][0] = side[0][i], ring[n++][1] = -SL_B;
+    for (int i = ns[1] - 1; i >= 0; i--) /* the side s = +b, back */
+        ring[n][0] = side[1][i], ring[n++][1] = SL_B;
+    struct build b = {0};
+    for (int i = -1; i < n; i++) {
+        double t = i < 0 ? 0 : (double)ring[i][0], q = i < 0 ? 0 : (double)ring[i][1];
+        double px = cx + t * A[0] + q * B[0], py = cy + t * A[1] + q * B[1];
+        b_vert(&b, px - w / 2.0, h / 2.0 - py, 0, 0.02 + 0.96 * (t / a + 1) / 2,
+               0.02 + 0.96 * (q / SL_B + 1) / 2);
+    }
+    for (int i = 0; i < n; i++)
+        b_tri(&b, 0, (uint32_t)(1 + i), (uint32_t)(1 + (i + 1) % n));
+    mesh_free(&g->m);
+    if (b_mesh(&b, &g->m, e))
+        return -1;
+    g->item = b_item(&g->m, &g->tex, NULL);
+    f->cam = g->cam;
+    f->items = &g->item;
+    f->n_items = 1;
+    return 0;
+}
+
+static void sliver_measure(void *ctx, const struct fb *fb, const struct render_opts *o, int s,
+                           int k, struct sweep_result *r)
+{
+    (void)o;
+    const struct sliver *g = ctx;
+    const double *A = sl_axis_a, *B = sl_axis_b, cx = g->cx, cy = g->cy;
+    long a = g->a;
+    long bad = 0, off = 0;
+    for (int py = 0; py < g->h; py++)
+        for (int px = 0; px < g->w; px++) {
+            /* (t, s) of the centre: exact multiples of 1/5 */
+            double dx = px + 0.5 - cx, dy = py + 0.5 - cy;
+            double t = (dx * A[0] + dy * A[1]) / 5, q = (dx * B[0] + dy * B[1]) / 5;
+            if (fabs(fabs(q) - SL_B) < 1e-9 || fabs(fabs(t) - a) < 1e-9)
+                continue; /* on the outline: the tie rule's call, either is right */
+            int want = fabs(t) < a && fabs(q) < SL_B;
+            size_t i = (size_t)py * g->w + px;
+            long got = (long)fb->overdraw[i];
+            bad += labs(got - want);
+            if (want && got == 1) {
+                double tu = (0.02 + 0.96 * (t / a + 1) / 2) * 256 - 0.5;
+                double tv = (0.02 + 0.96 * (q / SL_B + 1) / 2) * 256 - 0.5;
+                const uint8_t *col = fb->rgb + 3 * i;
+                off += fabs(col[0] - tu) > 8 || fabs(col[1] - tv) > 8;
+            }
+        }
+    r->error[s][k] = (double)bad;
+    r->extra[s][k] = (double)off;
+    r->nan[s][k] = count_nan(fb);
+}
+
+static void sliver_release(void *ctx)
+{
+    struct sliver *g = ctx;
+    mesh_free(&g->m);
+    texture_free(&g->tex);
 }
 
 /* ---- nearplane ---- */
@@ -789,27 +838,22 @@ static int box_crossings(vec3 eye, vec3 d, double near, double far)
     return (t0 > near && t0 < far) + (t1 > near && t1 < far);
 }
 
-static int sweep_nearplane(int w, int h, struct sweep_result *r, struct err *e)
+
+static const double np_eye_z[] = {3, 2, 1.5, 1.2, 1.1, 1.05, 1.0, 0.95, 0.5, 0, -0.5, -0.9,
+                                  -0.95, -1.0, -1.05, -1.5, -3};
+
+struct nearplane {
+    int w, h;
+    struct mesh m;
+    struct draw_item item;
+    struct camera cam;  /* this step's */
+    struct view_rays v;
+};
+
+static int nearplane_init(void *ctx, int w, int h, struct err *e)
 {
-    static const double zs[] = {3, 2, 1.5, 1.2, 1.1, 1.05, 1.0, 0.95, 0.5, 0, -0.5, -0.9,
-                                -0.95, -1.0, -1.05, -1.5, -3};
-    r->what = "the camera flies through a closed 2x2x2 box (4x4 quads a face), looking ahead "
-              "and a little aside; --depth";
-    r->param_name = "eye z (the box spans -1..1)";
-    r->error_name = "pixels whose fragment count differs from the faces crossed before the "
-                    "near plane";
-    r->threshold = 0;
-    snprintf(r->threshold_text, sizeof r->threshold_text,
-             "fails: any hole, triangle drawn twice or pixel from behind the eye (error > 0); "
-             "nan also counts stored depths outside the method's range (w <= 0)");
-    snprintf(r->theory, sizeof r->theory,
-             "homogeneous clipping against near (z >= -w) before the divide leaves only "
-             "geometry in front of the eye, and shared clipped edges keep the tie rule, so "
-             "each pixel gets exactly one fragment per face its ray crosses beyond the near "
-             "plane: never fails.");
-    r->reversed = true;
-    methods_from(r, &render_depth_names);
-    r->n_steps = (int)(sizeof zs / sizeof zs[0]);
+    struct nearplane *g = ctx;
+    g->w = w, g->h = h;
     struct build b = {0};
     const int n = 4;
     for (int face = 0; face < 6; face++) { /* axis, sign; vertices shared along the edges */
@@ -834,64 +878,64 @@ static int sweep_nearplane(int w, int h, struct sweep_result *r, struct err *e)
                 b_tri(&b, idx[j][i], idx[j + 1][i + 1], idx[j + 1][i]);
             }
     }
-    struct mesh m;
-    if (b_mesh(&b, &m, e))
+    if (b_mesh(&b, &g->m, e))
         return -1;
-    struct draw_item item = {.mesh = &m, .model = m4_identity()};
-    struct rig rig;
-    int rc = -1;
-    if (rig_init(&rig, w, h, e))
-        goto out;
-    for (int s = 0; s < r->n_steps; s++) {
-        r->param[s] = zs[s];
-        struct camera cam;
-        camera_default(&cam);
-        cam.eye = v3(0.3, 0.2, zs[s]);
-        cam.target = v3_add(cam.eye, v3(0.15, 0.1, -1));
-        struct view_rays v;
-        rays_init(&v, &cam, w, h);
-        for (int k = 0; k < r->n_methods; k++) {
-            struct render_opts o;
-            render_opts_default(&o);
-            o.shade = SHADE_UNLIT;
-            o.depth = (enum depth_mode)k;
-            if (rig_draw(&rig, &item, 1, &cam, &o, e))
-                goto out;
-            long bad = 0, nan = 0;
-            for (int py = 0; py < h; py++)
-                for (int px = 0; px < w; px++) {
-                    int want = -1;
-                    bool clear = true;
-                    for (int q = 0; q < 5 && clear; q++) { /* the centre and 0.4 px around */
-                        double ox = q == 1 ? -0.4 : q == 2 ? 0.4 : 0;
-                        double oy = q == 3 ? -0.4 : q == 4 ? 0.4 : 0;
-                        int c = box_crossings(v.eye, ray_dir(&v, px + 0.5 + ox, py + 0.5 + oy),
-                                              cam.near * 1.001, cam.far);
-                        int c2 = box_crossings(v.eye, ray_dir(&v, px + 0.5 + ox, py + 0.5 + oy),
-                                               cam.near * 0.999, cam.far);
-                        clear = c == c2 && (want < 0 || c == want);
-                        want = c;
-                    }
-                    size_t i = (size_t)py * w + px;
-                    if (fb_covered(&rig.fb, i)) {
-                        double d = fb_depth_window(&rig.fb, i);
-                        nan += !isfinite(rig.fb.depth[i]) || !(d >= 0 && d <= 1) ||
-                               (o.depth == DEPTH_W && !(rig.fb.depth[i] > 0));
-                    }
-                    if (clear)
-                        bad += labs((long)rig.fb.overdraw[i] - want);
-                }
-            r->error[s][k] = (double)bad;
-            r->nan[s][k] = nan;
+    g->item = b_item(&g->m, NULL, NULL);
+    return 0;
+}
+
+static int nearplane_step(void *ctx, double *param, struct sweep_frame *f, struct err *e)
+{
+    (void)e;
+    struct nearplane *g = ctx;
+    camera_default(&g->cam);
+    g->cam.eye = v3(0.3, 0.2, *param);
+    g->cam.target = v3_add(g->cam.eye, v3(0.15, 0.1, -1));
+    rays_init(&g->v, &g->cam, g->w, g->h);
+    f->cam = g->cam;
+    f->items = &g->item;
+    f->n_items = 1;
+    return 0;
+}
+
+static void nearplane_measure(void *ctx, const struct fb *fb, const struct render_opts *o,
+                              int s, int k, struct sweep_result *r)
+{
+    const struct nearplane *g = ctx;
+    const struct view_rays *v = &g->v;
+    const struct camera *cam = &g->cam;
+    long bad = 0, nan = 0;
+    for (int py = 0; py < g->h; py++)
+        for (int px = 0; px < g->w; px++) {
+            int want = -1;
+            bool clear = true;
+            for (int q = 0; q < 5 && clear; q++) { /* the centre and 0.4 px around */
+                double ox = q == 1 ? -0.4 : q == 2 ? 0.4 : 0;
+                double oy = q == 3 ? -0.4 : q == 4 ? 0.4 : 0;
+                int c = box_crossings(v->eye, ray_dir(v, px + 0.5 + ox, py + 0.5 + oy),
+                                      cam->near * 1.001, cam->far);
+                int c2 = box_crossings(v->eye, ray_dir(v, px + 0.5 + ox, py + 0.5 + oy),
+                                       cam->near * 0.999, cam->far);
+                clear = c == c2 && (want < 0 || c == want);
+                want = c;
+            }
+            size_t i = (size_t)py * g->w + px;
+            if (fb_covered(fb, i)) {
+                double d = fb_depth_window(fb, i);
+                nan += !isfinite(fb->depth[i]) || !(d >= 0 && d <= 1) ||
+                       (o->depth == DEPTH_W && !(fb->depth[i] > 0));
+            }
+            if (clear)
+                bad += labs((long)fb->overdraw[i] - want);
         }
-    }
-    rc = 0;
-out:
-    rig_free(&rig);
-    mesh_free(&m);
-    if (rc == 0)
-        finish(r);
-    return rc;
+    r->error[s][k] = (double)bad;
+    r->nan[s][k] = nan;
+}
+
+static void nearplane_release(void *ctx)
+{
+    struct nearplane *g = ctx;
+    mesh_free(&g->m);
 }
 
 /* ---- minification ---- */
@@ -953,40 +997,40 @@ static void axis_weights(int x, double k, int method, double out[3])
         out[0] += c[t] * c[t], out[1] += c[t] * a[t], out[2] += a[t] * a[t];
 }
 
-static int sweep_minification(int w, int h, struct sweep_result *r, struct err *e)
+
+static const double mn_k[] = {1, 1.25, 1.5, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64};
+static const struct sweep_combo mn_methods[] = {
+    {"nearest", TEX_NEAREST, SSAA_1},   {"bilinear", TEX_BILINEAR, SSAA_1},
+    {"ssaa2", TEX_NEAREST, SSAA_2},     {"ssaa4", TEX_NEAREST, SSAA_4},
+    {"ssaa8", TEX_NEAREST, SSAA_8},     {"trilinear", TEX_TRILINEAR, SSAA_1},
+};
+/* each method's samples for axis_weights; -1: no closed form */
+static const int mn_theory[] = {0, 1, 2, 4, 8, -1};
+_Static_assert(COUNT(mn_theory) == COUNT(mn_methods), "a theory entry per method");
+
+struct minification {
+    int w, h;
+    uint8_t *px;               /* the texture: white noise */
+    double *sat;               /* its summed-area table, (MN_TEX+1)^2 per channel */
+    double (*wx)[3], (*wy)[3]; /* the theory's weights per column and per row */
+    double sigma;              /* the noise's deviation, levels */
+    struct texture tex;
+    struct camera cam;         /* orthographic, one unit a pixel */
+    double k;                  /* this step's texels per pixel */
+    struct mesh m;             /* this step's plane */
+    struct draw_item item;
+};
+
+static int minification_init(void *ctx, int w, int h, struct err *e)
 {
-    static const double ks[] = {1, 1.25, 1.5, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64};
-    r->what = "a plane facing the camera, textured with white noise (61x61 texels, uniform "
-              "0..255, repeated; texel grid on the pixel grid at 1); filter and --ssaa";
-    r->param_name = "texels per pixel";
-    r->error_name = "RMS error against the exact box filter of each pixel's texels, levels";
-    r->extra_name = "theory: s sqrt(mean of sum_t (c_t - a_t)^2), c the samples' and a the "
-                    "box's weight of each texel";
-    r->extra_is_theory = true;
-    r->threshold = 6;
-    snprintf(r->threshold_text, sizeof r->threshold_text,
-             "fails: RMS error > %.0f levels (PSNR < 32.6 dB) against the box filter",
-             r->threshold);
-    r->xlog = true;
-    static const char *const names[] = {"nearest", "bilinear", "ssaa2", "ssaa4", "ssaa8",
-                                        "trilinear"};
-    static const int theory_method[] = {0, 1, 2, 4, 8, -1}; /* -1: no closed form */
-    r->n_methods = 6;
-    for (int m = 0; m < r->n_methods; m++)
-        snprintf(r->method[m], sizeof r->method[m], "%s", names[m]);
-    r->default_method = 5;
-    r->n_steps = (int)(sizeof ks / sizeof ks[0]);
+    struct minification *g = ctx;
+    g->w = w, g->h = h;
     /* the texture: white noise from a fixed LCG, and its summed-area table */
-    uint8_t *px = malloc(MN_TEX * MN_TEX * 4);
-    double *sat = calloc((size_t)3 * (MN_TEX + 1) * (MN_TEX + 1), sizeof *sat);
-    double(*wx)[3] = malloc((size_t)w * sizeof *wx), (*wy)[3] = malloc((size_t)h * sizeof *wy);
-    struct texture tex = {0};
-    struct rig rig;
-    int rc = -1;
-    if (!px || !sat || !wx || !wy) {
-        free(px), free(sat), free(wx), free(wy);
+    uint8_t *px = g->px = malloc(MN_TEX * MN_TEX * 4);
+    double *sat = g->sat = calloc((size_t)3 * (MN_TEX + 1) * (MN_TEX + 1), sizeof *sat);
+    g->wx = malloc((size_t)w * sizeof *g->wx), g->wy = malloc((size_t)h * sizeof *g->wy);
+    if (!px || !sat || !g->wx || !g->wy)
         return err_set(e, "out of memory");
-    }
     uint32_t seed = 12345;
     double sum = 0, sum2 = 0;
     for (int i = 0; i < MN_TEX * MN_TEX; i++)
@@ -996,7 +1040,8 @@ static int sweep_minification(int w, int h, struct sweep_result *r, struct err *
             if (c < 3)
                 sum += px[4 * i + c], sum2 += (double)px[4 * i + c] * px[4 * i + c];
         }
-    double nv = 3.0 * MN_TEX * MN_TEX, sigma = sqrt(sum2 / nv - (sum / nv) * (sum / nv));
+    double nv = 3.0 * MN_TEX * MN_TEX;
+    g->sigma = sqrt(sum2 / nv - (sum / nv) * (sum / nv));
     const int s = MN_TEX + 1;
     for (int c = 0; c < 3; c++)
         for (int j = 1; j <= MN_TEX; j++) /* j counts rows from the bottom */
@@ -1006,69 +1051,77 @@ static int sweep_minification(int w, int h, struct sweep_result *r, struct err *
                 double *t = sat + (size_t)c * s * s;
                 t[j * s + i] = v + t[(j - 1) * s + i] + t[j * s + i - 1] - t[(j - 1) * s + i - 1];
             }
-    if (texture_from_rgba(MN_TEX, MN_TEX, px, &tex, e) || rig_init(&rig, w, h, e))
-        goto out_tex;
-    struct camera cam;
-    camera_default(&cam);
-    cam.ortho_height = h; /* one unit = one pixel */
-    for (int st = 0; st < r->n_steps; st++) {
-        double k = ks[st];
-        r->param[st] = k;
-        struct build b = {0};
-        double hw = w / 2.0, hh = h / 2.0, sc = k / MN_TEX;
-        b_vert(&b, -hw, -hh, 0, 0, 0);
-        b_vert(&b, hw, -hh, 0, w * sc, 0);
-        b_vert(&b, hw, hh, 0, w * sc, h * sc);
-        b_vert(&b, -hw, hh, 0, 0, h * sc);
-        b_tri(&b, 0, 1, 2);
-        b_tri(&b, 0, 2, 3);
-        struct mesh m;
-        if (b_mesh(&b, &m, e))
-            goto out;
-        struct draw_item item = {.mesh = &m, .model = m4_identity(), .texture_override = &tex};
-        for (int me = 0; me < r->n_methods; me++) {
-            struct render_opts o;
-            render_opts_default(&o);
-            o.shade = SHADE_UNLIT;
-            o.filter = me == 1 ? TEX_BILINEAR : me == 5 ? TEX_TRILINEAR : TEX_NEAREST;
-            o.ssaa = me >= 2 && me <= 4 ? (enum ssaa_method)(me - 1) : SSAA_1;
-            if (rig_draw(&rig, &item, 1, &cam, &o, e)) {
-                mesh_free(&m);
-                goto out;
+    if (texture_from_rgba(MN_TEX, MN_TEX, px, &g->tex, e))
+        return -1;
+    camera_default(&g->cam);
+    g->cam.ortho_height = h; /* one unit = one pixel */
+    return 0;
+}
+
+static int minification_step(void *ctx, double *param, struct sweep_frame *f, struct err *e)
+{
+    struct minification *g = ctx;
+    int w = g->w, h = g->h;
+    double k = g->k = *param;
+    struct build b = {0};
+    double hw = w / 2.0, hh = h / 2.0, sc = k / MN_TEX;
+    b_vert(&b, -hw, -hh, 0, 0, 0);
+    b_vert(&b, hw, -hh, 0, w * sc, 0);
+    b_vert(&b, hw, hh, 0, w * sc, h * sc);
+    b_vert(&b, -hw, hh, 0, 0, h * sc);
+    b_tri(&b, 0, 1, 2);
+    b_tri(&b, 0, 2, 3);
+    mesh_free(&g->m);
+    if (b_mesh(&b, &g->m, e))
+        return -1;
+    g->item = b_item(&g->m, &g->tex, NULL);
+    f->cam = g->cam;
+    f->items = &g->item;
+    f->n_items = 1;
+    return 0;
+}
+
+static void minification_measure(void *ctx, const struct fb *fb, const struct render_opts *o,
+                                 int st, int me, struct sweep_result *r)
+{
+    (void)o;
+    struct minification *g = ctx;
+    int w = g->w, h = g->h;
+    double k = g->k;
+    double se = 0;
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            double x0 = x * k, x1 = (x + 1) * k, y0 = (h - 1 - y) * k, y1 = (h - y) * k;
+            for (int c = 0; c < 3; c++) {
+                double v = box_integral(g->sat, c, x1, y1) - box_integral(g->sat, c, x0, y1) -
+                           box_integral(g->sat, c, x1, y0) + box_integral(g->sat, c, x0, y0);
+                double want = floor(v / (k * k) + 0.5);
+                double d = fb->rgb[3 * ((size_t)y * w + x) + c] - want;
+                se += d * d;
             }
-            double se = 0;
-            for (int y = 0; y < h; y++)
-                for (int x = 0; x < w; x++) {
-                    double x0 = x * k, x1 = (x + 1) * k, y0 = (h - 1 - y) * k, y1 = (h - y) * k;
-                    for (int c = 0; c < 3; c++) {
-                        double v = box_integral(sat, c, x1, y1) - box_integral(sat, c, x0, y1) -
-                                   box_integral(sat, c, x1, y0) + box_integral(sat, c, x0, y0);
-                        double want = floor(v / (k * k) + 0.5);
-                        double d = rig.fb.rgb[3 * ((size_t)y * w + x) + c] - want;
-                        se += d * d;
-                    }
-                }
-            r->error[st][me] = sqrt(se / (3.0 * w * h));
-            r->nan[st][me] = count_nan(&rig.fb);
-            if (theory_method[me] < 0) {
-                r->extra[st][me] = NAN;
-                continue;
-            }
-            /* theory: per pixel sum_t (c_t - a_t)^2 with c and a products of their axes */
-            for (int x = 0; x < w; x++)
-                axis_weights(x, k, theory_method[me], wx[x]);
-            for (int y = 0; y < h; y++) /* rows from the bottom, as texel rows count */
-                axis_weights(h - 1 - y, k, theory_method[me], wy[y]);
-            double mse = 0;
-            for (int y = 0; y < h; y++)
-                for (int x = 0; x < w; x++)
-                    mse += wx[x][0] * wy[y][0] - 2 * wx[x][1] * wy[y][1] + wx[x][2] * wy[y][2];
-            r->extra[st][me] = sigma * sqrt(fmax(0, mse / ((double)w * h)));
         }
-        mesh_free(&m);
+    r->error[st][me] = sqrt(se / (3.0 * w * h));
+    r->nan[st][me] = count_nan(fb);
+    if (mn_theory[me] < 0) {
+        r->extra[st][me] = NAN;
+        return;
     }
-    for (int me = 0; me < r->n_methods; me++)
-        predict_from_extra(r, me);
+    /* theory: per pixel sum_t (c_t - a_t)^2 with c and a products of their axes */
+    for (int x = 0; x < w; x++)
+        axis_weights(x, k, mn_theory[me], g->wx[x]);
+    for (int y = 0; y < h; y++) /* rows from the bottom, as texel rows count */
+        axis_weights(h - 1 - y, k, mn_theory[me], g->wy[y]);
+    double mse = 0;
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++)
+            mse += g->wx[x][0] * g->wy[y][0] - 2 * g->wx[x][1] * g->wy[y][1] +
+                   g->wx[x][2] * g->wy[y][2];
+    r->extra[st][me] = g->sigma * sqrt(fmax(0, mse / ((double)w * h)));
+}
+
+static void minification_predict(void *ctx, struct sweep_result *r)
+{
+    const struct minification *g = ctx;
     snprintf(r->theory, sizeof r->theory,
              "for white noise of deviation s = %.1f levels, a pixel whose samples weigh texel t "
              "by c_t where the box weighs it by a_t is off by s sqrt(sum (c_t - a_t)^2) RMS; "
@@ -1079,38 +1132,244 @@ static int sweep_minification(int w, int h, struct sweep_result *r, struct err *
              "pixels' footprints); it averages about as many texels as the footprint holds, "
              "so its error stays near the levels' own misalignment instead of growing with "
              "the texels skipped.",
-             sigma, r->predicted[0], r->predicted[1], r->predicted[2], r->predicted[3],
+             g->sigma, r->predicted[0], r->predicted[1], r->predicted[2], r->predicted[3],
              r->predicted[4]);
-    rc = 0;
-out:
-    rig_free(&rig);
-out_tex:
-    texture_free(&tex);
-    free(px);
-    free(sat);
-    free(wx);
-    free(wy);
-    if (rc == 0)
-        finish(r);
-    return rc;
+}
+
+static void minification_release(void *ctx)
+{
+    struct minification *g = ctx;
+    mesh_free(&g->m);
+    texture_free(&g->tex);
+    free(g->px);
+    free(g->sat);
+    free(g->wx);
+    free(g->wy);
+}
+
+/* ---- the table, and the walker ---- */
+
+#define STEPS(list) .steps = (list), .n_steps = COUNT(list)
+#define LOG_STEPS(n, from, per) .n_steps = (n), .log0 = (from), .per_decade = (per)
+#define AXIS(names, member) .axis = &(names), .field = offsetof(struct render_opts, member)
+#define SCENE(x)                                                                            \
+    .ctx_size = sizeof(struct x), .init = x##_init, .step = x##_step, .measure = x##_measure, \
+    .release = x##_release
+
+_Static_assert(COUNT(gz_deg) <= SWEEP_MAX_STEPS && COUNT(np_eye_z) <= SWEEP_MAX_STEPS &&
+               COUNT(mn_k) <= SWEEP_MAX_STEPS, "steps fit a sweep_result");
+_Static_assert(COUNT(mn_methods) <= SWEEP_MAX_METHODS, "methods fit a sweep_result");
+
+static const struct sweep_def sweeps[SWEEP_COUNT] = {
+    [SWEEP_GRAZING] = {
+        .name = "grazing",
+        .what = "a 2x2 textured ground (two triangles) seen from 3 units, camera rolled 30 "
+                "degrees; --persp",
+        .param_name = "degrees above the ground",
+        .error_name = "mean texel error of the uv (256-texel ramp, against a ray cast)",
+        .extra_name = "theory: affine's error, uv interpolated linearly between the projected "
+                      "corners (double)",
+        .extra_is_theory = true,
+        .threshold = 0.5,
+        .fails = "fails: mean uv error > %.1f texel (the sampled texel is off by half a texel "
+                 "on average)",
+        .xlog = true, .ylog = true, .reversed = true,
+        STEPS(gz_deg),
+        AXIS(render_persp_names, persp),
+        .bilinear = true,
+        SCENE(grazing),
+        .predict = grazing_predict,
+    },
+    [SWEEP_DEPTHRANGE] = {
+        .name = "depthrange",
+        .what = "two parallel quads 0.01 apart, 20 units away (far plane 100), the farther "
+                "drawn first; --depth",
+        .param_name = "far/near ratio (near = 100 / ratio)",
+        .error_name = "fraction of pixels where the farther quad wins",
+        .extra_name = "theory: the expected fraction, mean over the pixels of max(0, 1 - "
+                      "gap/step) in each method's stored measure",
+        .extra_is_theory = true,
+        .threshold = 0.01,
+        .fails = "fails: the farther quad wins in more than %.0f%% of the pixels",
+        .fails_percent = true,
+        .xlog = true,
+        LOG_STEPS(25, 1, 4.0), /* 10 .. 1e7 */
+        AXIS(render_depth_names, depth),
+        SCENE(depthrange),
+        .predict = depthrange_predict,
+    },
+    [SWEEP_MAGNITUDE] = {
+        .name = "magnitude",
+        .what = "a watertight sphere (radius 1, 32x16) whose float coordinates sit T units "
+                "from the origin, camera 3 units away following it; --raster",
+        .param_name = "distance from the origin T",
+        .error_name = "enclosed background pixels (cracks)",
+        .extra_name = "jitter: pixels whose coverage differs from the sphere at the origin",
+        .threshold = 0,
+        .fails = "fails: any crack (error > 0)",
+        .xlog = true, .ylog = true,
+        LOG_STEPS(15, 0, 2.0), /* 1 .. 1e7 */
+        .reference = true,
+        AXIS(render_raster_names, raster),
+        SCENE(magnitude),
+        .predict = magnitude_predict,
+    },
+    [SWEEP_SLIVER] = {
+        .name = "sliver",
+        .what = "a closed fan (centre + ring of 10 to 12) filling a rectangle 8.9 pixels "
+                "across, its corners and spokes on pixel centres; --raster",
+        .param_name = "aspect ratio (length / width)",
+        .error_name = "pixels covered other than once inside / never outside",
+        .extra_name = "pixels inside whose uv is more than 8 texels off",
+        .threshold = 0,
+        .fails = "fails: any hole, overdraw or stray pixel (error > 0)",
+        .xlog = true,
+        LOG_STEPS(15, 0, 2.0), /* 1 .. 1e7, each the nearest the lattice draws */
+        AXIS(render_raster_names, raster),
+        .bilinear = true,
+        SCENE(sliver),
+        .theory = "coverage is decided by exact 64-bit edge functions on snapped vertices with "
+                  "the tie rule, so a closed fan covers each pixel centre inside exactly once — "
+                  "those on a spoke too — at any aspect ratio (pieces clipped by the guard band "
+                  "included): never fails.",
+    },
+    [SWEEP_NEARPLANE] = {
+        .name = "nearplane",
+        .what = "the camera flies through a closed 2x2x2 box (4x4 quads a face), looking "
+                "ahead and a little aside; --depth",
+        .param_name = "eye z (the box spans -1..1)",
+        .error_name = "pixels whose fragment count differs from the faces crossed before the "
+                      "near plane",
+        .threshold = 0,
+        .fails = "fails: any hole, triangle drawn twice or pixel from behind the eye (error > "
+                 "0); nan also counts stored depths outside the method's range (w <= 0)",
+        .reversed = true,
+        STEPS(np_eye_z),
+        AXIS(render_depth_names, depth),
+        SCENE(nearplane),
+        .theory = "homogeneous clipping against near (z >= -w) before the divide leaves only "
+                  "geometry in front of the eye, and shared clipped edges keep the tie rule, so "
+                  "each pixel gets exactly one fragment per face its ray crosses beyond the "
+                  "near plane: never fails.",
+    },
+    [SWEEP_MINIFICATION] = {
+        .name = "minification",
+        .what = "a plane facing the camera, textured with white noise (61x61 texels, uniform "
+                "0..255, repeated; texel grid on the pixel grid at 1); filter and --ssaa",
+        .param_name = "texels per pixel",
+        .error_name = "RMS error against the exact box filter of each pixel's texels, levels",
+        .extra_name = "theory: s sqrt(mean of sum_t (c_t - a_t)^2), c the samples' and a the "
+                      "box's weight of each texel",
+        .extra_is_theory = true,
+        .threshold = 6,
+        .fails = "fails: RMS error > %.0f levels (PSNR < %.1f dB) against the box filter",
+        .xlog = true,
+        STEPS(mn_k),
+        .combos = mn_methods, .n_combos = COUNT(mn_methods), .default_combo = 5,
+        SCENE(minification),
+        .predict = minification_predict,
+    },
+};
+
+const char *sweep_name(enum sweep_kind k)
+{
+    return sweeps[k].name;
+}
+
+int sweep_parse(const char *name)
+{
+    for (int k = 0; k < SWEEP_COUNT; k++)
+        if (strcmp(name, sweeps[k].name) == 0)
+            return k;
+    return -1;
+}
+
+/* the result's words, steps and methods from the table */
+static void describe(const struct sweep_def *d, enum sweep_kind k, struct sweep_result *r)
+{
+    memset(r, 0, sizeof *r);
+    r->kind = k;
+    r->name = d->name;
+    r->what = d->what;
+    r->param_name = d->param_name;
+    r->error_name = d->error_name;
+    r->extra_name = d->extra_name;
+    r->extra_is_theory = d->extra_is_theory;
+    r->threshold = d->threshold;
+    snprintf(r->threshold_text, sizeof r->threshold_text, d->fails,
+             d->fails_percent ? 100 * d->threshold : d->threshold,
+             psnr_db(d->threshold * d->threshold));
+    r->holds_until = INFINITY;
+    r->xlog = d->xlog, r->ylog = d->ylog, r->reversed = d->reversed;
+    r->n_steps = d->n_steps;
+    for (int s = 0; s < d->n_steps; s++)
+        r->param[s] = d->steps ? d->steps[s] : pow(10, d->log0 + s / d->per_decade);
+    r->n_methods = d->axis ? d->axis->n : d->n_combos;
+    for (int m = 0; m < r->n_methods; m++)
+        snprintf(r->method[m], sizeof r->method[m], "%s",
+                 d->axis ? d->axis->names[m] : d->combos[m].name);
+    r->default_method = d->axis ? 0 : d->default_combo; /* every axis's default is value 0 */
+    for (int m = 0; m < SWEEP_MAX_METHODS; m++)
+        r->predicted[m] = NAN;
+}
+
+/* the options method m draws with */
+static void method_opts(const struct sweep_def *d, int m, struct render_opts *o)
+{
+    render_opts_default(o);
+    o->shade = SHADE_UNLIT;
+    if (d->bilinear)
+        o->filter = TEX_BILINEAR;
+    if (d->axis) {
+        render_opts_set(o, d->field, m);
+    } else {
+        o->filter = d->combos[m].filter;
+        o->ssaa = d->combos[m].ssaa;
+    }
 }
 
 int sweep_run(enum sweep_kind k, int w, int h, struct sweep_result *out, struct err *e)
 {
-    memset(out, 0, sizeof *out);
-    out->holds_until = INFINITY;
-    out->kind = k;
-    out->name = sweep_names[k];
-    switch (k) {
-    case SWEEP_GRAZING: return sweep_grazing(w, h, out, e);
-    case SWEEP_DEPTHRANGE: return sweep_depthrange(w, h, out, e);
-    case SWEEP_MAGNITUDE: return sweep_magnitude(w, h, out, e);
-    case SWEEP_SLIVER: return sweep_sliver(w, h, out, e);
-    case SWEEP_NEARPLANE: return sweep_nearplane(w, h, out, e);
-    case SWEEP_MINIFICATION: return sweep_minification(w, h, out, e);
-    case SWEEP_COUNT: break;
+    if ((unsigned)k >= SWEEP_COUNT)
+        return err_set(e, "no such sweep");
+    const struct sweep_def *d = &sweeps[k];
+    if ((d->axis ? d->axis->n : d->n_combos) > SWEEP_MAX_METHODS)
+        return err_set(e, "sweep %s: too many methods", d->name);
+    describe(d, k, out);
+    void *ctx = calloc(1, d->ctx_size);
+    if (!ctx)
+        return err_set(e, "out of memory");
+    struct rig rig;
+    int rc = -1;
+    if (rig_init(&rig, w, h, e) || d->init(ctx, w, h, e))
+        goto out;
+    for (int s = d->reference ? -1 : 0; s < out->n_steps; s++) {
+        double ref_param = 0;
+        struct sweep_frame f;
+        if (d->step(ctx, s < 0 ? &ref_param : &out->param[s], &f, e))
+            goto out;
+        for (int m = 0; m < (s < 0 ? 1 : out->n_methods); m++) {
+            struct render_opts o;
+            method_opts(d, m, &o);
+            if (rig_draw(&rig, f.items, f.n_items, &f.cam, &o, e))
+                goto out;
+            d->measure(ctx, &rig.fb, &o, s, m, out);
+        }
     }
-    return err_set(e, "no such sweep");
+    finish(out);
+    if (d->extra_is_theory)
+        for (int m = 0; m < out->n_methods; m++)
+            predict_from_extra(out, m);
+    if (d->predict)
+        d->predict(ctx, out);
+    else
+        snprintf(out->theory, sizeof out->theory, "%s", d->theory);
+    rc = 0;
+out:
+    d->release(ctx);
+    free(ctx);
+    rig_free(&rig);
+    return rc;
 }
 
 /* ---- output ---- */

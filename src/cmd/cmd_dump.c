@@ -18,7 +18,6 @@
 #include <string.h>
 #include <sys/ioctl.h>
 #include <sys/stat.h>
-#include <time.h>
 #include <unistd.h>
 
 #include "cast.h"
@@ -218,7 +217,7 @@ int cmd_dump(const struct options *o, struct err *e)
         const char *bytes = encode_fb(&es, &fb, &eo, &n, &es_stats);
         double encode_ms = timing_now_ms() - t0;
         const char *name = strrchr(o->inputs[0], '/') ? strrchr(o->inputs[0], '/') + 1 : o->inputs[0];
-        if (cast && ((k == 0 && (cast_header(out, cols, rows, (long)time(NULL), name) ||
+        if (cast && ((k == 0 && (cast_header(out, cols, rows, timing_wall_s(), name) ||
                                  cast_event(out, 0, "\033[?25l", 6))) ||
                      cast_event(out, k / o->fps, bytes, n) ||
                      (k == frames - 1 && cast_event(out, (k + 1) / o->fps, "\033[?25h", 6)))) {

@@ -76,7 +76,6 @@ const char *render_view_name(enum debug_view v) { return view_names[v]; }
 const char *render_raster_name(enum raster_method m) { return raster_names[m]; }
 const char *render_persp_name(enum persp_method m) { return persp_names[m]; }
 const char *render_depth_name(enum depth_mode m) { return depth_names[m]; }
-const char *render_ssaa_name(enum ssaa_method m) { return ssaa_names[m]; }
 
 int render_enum_parse(const struct render_enum *t, const char *s)
 {
@@ -86,6 +85,14 @@ int render_enum_parse(const struct render_enum *t, const char *s)
     return -1;
 }
 
-int render_shade_parse(const char *s) { return render_enum_parse(&render_shade_names, s); }
-int render_cull_parse(const char *s) { return render_enum_parse(&render_cull_names, s); }
-int render_filter_parse(const char *s) { return render_enum_parse(&render_filter_names, s); }
+int render_opts_get(const struct render_opts *o, size_t field)
+{
+    int v;
+    memcpy(&v, (const char *)o + field, sizeof v);
+    return v;
+}
+
+void render_opts_set(struct render_opts *o, size_t field, int v)
+{
+    memcpy((char *)o + field, &v, sizeof v);
+}

@@ -33,7 +33,6 @@
 #include <string.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
-#include <time.h>
 #include <unistd.h>
 #include <fcntl.h>
 
@@ -48,6 +47,7 @@
 #include "material.h"
 #include "model.h"
 #include "mtl.h"
+#include "timing.h"
 
 #define IMPORT_MAX_SECONDS 60
 #define IMPORT_MAX_MEMORY ((rlim_t)2 << 30)
@@ -636,13 +636,6 @@ static void child(const char *data, size_t len, const char *name, bool others, i
     _exit(0);
 }
 
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
-}
-
 static uint32_t le32(const char *p)
 {
     const uint8_t *u = (const uint8_t *)p;
@@ -702,10 +695,10 @@ int import_read(const char *data, size_t len, const struct model_ctx *ctx, struc
     }
     close(fds[1]);
     struct blob in = {0};
-    double deadline = now_s() + IMPORT_MAX_SECONDS + 5;
+    double deadline = timing_now_s() + IMPORT_MAX_SECONDS + 5;
     bool timed_out = false;
     for (;;) {
-        double left = deadline - now_s();
+        double left = deadline - timing_now_s();
         if (left <= 0) {
             timed_out = true;
             break;

@@ -10,13 +10,6 @@
 #include "file.h"
 #include "imgdec.h"
 
-static const char *const format_names[MODEL_FORMAT_COUNT] = {"OBJ", "STL", "PLY", "assimp"};
-
-const char *model_format_name(enum model_format f)
-{
-    return format_names[f];
-}
-
 static bool starts(const char *d, size_t n, const char *s)
 {
     size_t k = strlen(s);

@@ -133,48 +133,24 @@ static int parse_floats(struct oparse *P, const char *kw, const char *p, const c
     return n;
 }
 
-static int add_position(struct oparse *P, const char *p, const char *end)
+/* A vertex attribute line (v, vt, vn): up to `want` numbers, at least `need` (the rest 0),
+ * appended to the array *a of *n vectors of `want` floats, capacity *cap; `kind` names them
+ * in the limit's message. */
+static inline int add_vector(struct oparse *P, const char *kw, const char *p, const char *end,
+                             int want, int need, float **a, size_t *n, size_t *cap,
+                             const char *kind)
 {
-    float v[3];
-    if (parse_floats(P, "v", p, end, v, 3, 3) < 0)
+    float v[3] = {0, 0, 0};
+    if (parse_floats(P, kw, p, end, v, want, need) < 0)
         return -1;
-    if ((long long)P->n_pos >= OBJ_MAX_INDEX)
-        return fail(P, "too many positions (limit 2^31-1)");
-    float *np = grow(P->pos, &P->cap_pos, P->n_pos + 1, 3 * sizeof *np);
-    if (!np)
+    if ((long long)*n >= OBJ_MAX_INDEX)
+        return err_set(P->e, "%s:%lu: too many %s (limit 2^31-1)", P->where, P->line, kind);
+    float *na = grow(*a, cap, *n + 1, (size_t)want * sizeof *na);
+    if (!na)
         return oom(P);
-    P->pos = np;
-    memcpy(&np[P->n_pos++ * 3], v, sizeof v);
-    return 0;
-}
-
-static int add_uv(struct oparse *P, const char *p, const char *end)
-{
-    float v[2] = {0, 0};
-    if (parse_floats(P, "vt", p, end, v, 2, 1) < 0)
-        return -1;
-    if ((long long)P->n_uv >= OBJ_MAX_INDEX)
-        return fail(P, "too many uvs (limit 2^31-1)");
-    float *np = grow(P->uv, &P->cap_uv, P->n_uv + 1, 2 * sizeof *np);
-    if (!np)
-        return oom(P);
-    P->uv = np;
-    memcpy(&np[P->n_uv++ * 2], v, sizeof v);
-    return 0;
-}
-
-static int add_normal(struct oparse *P, const char *p, const char *end)
-{
-    float v[3];
-    if (parse_floats(P, "vn", p, end, v, 3, 3) < 0)
-        return -1;
-    if ((long long)P->n_nrm >= OBJ_MAX_INDEX)
-        return fail(P, "too many normals (limit 2^31-1)");
-    float *np = grow(P->nrm, &P->cap_nrm, P->n_nrm + 1, 3 * sizeof *np);
-    if (!np)
-        return oom(P);
-    P->nrm = np;
-    memcpy(&np[P->n_nrm++ * 3], v, sizeof v);
+    *a = na;
+    memcpy(&na[*n * (size_t)want], v, (size_t)want * sizeof *v);
+    ++*n;
     return 0;
 }
 
@@ -461,11 +437,11 @@ static int parse_line(struct oparse *P, const char *p, const char *end)
     if (kn <= 2) {
         /* numbers and indices: '#' anywhere ends the line (see num_end) */
         if (lex_tok_is(kw, kwe, "v"))
-            return add_position(P, p, end);
+            return add_vector(P, "v", p, end, 3, 3, &P->pos, &P->n_pos, &P->cap_pos, "positions");
         if (lex_tok_is(kw, kwe, "vt"))
-            return add_uv(P, p, end);
+            return add_vector(P, "vt", p, end, 2, 1, &P->uv, &P->n_uv, &P->cap_uv, "uvs");
         if (lex_tok_is(kw, kwe, "vn"))
-            return add_normal(P, p, end);
+            return add_vector(P, "vn", p, end, 3, 3, &P->nrm, &P->n_nrm, &P->cap_nrm, "normals");
         if (lex_tok_is(kw, kwe, "f"))
             return parse_face(P, p, end);
         P->n_lines += lex_tok_is(kw, kwe, "l");

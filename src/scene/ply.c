@@ -238,22 +238,11 @@ static int data_err(struct pparse *P, const char *msg)
 /* next ASCII token, crossing lines */
 static int ascii_token(struct pparse *P, const char **t, const char **te)
 {
-    for (;;) {
-        while (P->d < P->end && lex_is_ws((char)*P->d))
-            P->d++;
-        if (P->d < P->end && *P->d == '\n') {
-            P->line++;
-            P->d++;
-            continue;
-        }
-        break;
-    }
-    if (P->d >= P->end)
+    const char *we, *w = lex_word((const char *)P->d, (const char *)P->end, &P->line, &we);
+    P->d = (const uint8_t *)we;
+    if (!w)
         return data_err(P, "unexpected end of file");
-    *t = (const char *)P->d;
-    while (P->d < P->end && !lex_is_ws((char)*P->d) && *P->d != '\n')
-        P->d++;
-    *te = (const char *)P->d;
+    *t = w, *te = we;
     return 0;
 }
 

@@ -176,22 +176,11 @@ struct ascii {
 /* next word (crossing lines, counting them); false at the end of the text */
 static bool word(struct ascii *A, const char **t, const char **te)
 {
-    for (;;) {
-        while (A->p < A->end && lex_is_ws(*A->p))
-            A->p++;
-        if (A->p < A->end && *A->p == '\n') {
-            A->line++;
-            A->p++;
-            continue;
-        }
-        break;
-    }
-    if (A->p >= A->end)
+    const char *we, *w = lex_word(A->p, A->end, &A->line, &we);
+    A->p = we;
+    if (!w)
         return false;
-    *t = A->p;
-    while (A->p < A->end && !lex_is_ws(*A->p) && *A->p != '\n')
-        A->p++;
-    *te = A->p;
+    *t = w, *te = we;
     return true;
 }
 

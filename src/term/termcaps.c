@@ -10,11 +10,12 @@
 #include <strings.h>
 #include <sys/select.h>
 #include <sys/wait.h>
-#include <time.h>
 #include <unistd.h>
 
 #include <curses.h>
 #include <term.h>
+
+#include "timing.h"
 
 extern char **environ;
 
@@ -252,11 +253,9 @@ int termcaps_tmux_features(char *out, size_t n)
     close(fd[1]);
     size_t len = 0;
     bool eof = false;
-    struct timespec t0, t;
-    clock_gettime(CLOCK_MONOTONIC, &t0);
+    double t0 = timing_now_ms();
     for (;;) {
-        clock_gettime(CLOCK_MONOTONIC, &t);
-        long left = 1000 - (long)((t.tv_sec - t0.tv_sec) * 1000 + (t.tv_nsec - t0.tv_nsec) / 1000000);
+        long left = 1000 - (long)(timing_now_ms() - t0);
         fd_set rd;
         FD_ZERO(&rd);
         FD_SET(fd[0], &rd);

@@ -12,6 +12,8 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "timing.h"
+
 /* The signal handlers' state. Signal handlers can only reach globals; these are the only
  * mutable globals in rastty, written before the handlers are installed (saved termios) or
  * only as sig_atomic_t flags. */
@@ -268,12 +270,9 @@ int tty_query(const char *req, char *reply, size_t cap, int timeout_ms)
     reply[0] = '\0';
     if (tty_write(req, strlen(req)) || tty_write(TTY_SYNC_REQUEST, sizeof TTY_SYNC_REQUEST - 1))
         return -1;
-    struct timespec t0, t1;
-    clock_gettime(CLOCK_MONOTONIC, &t0);
+    double t0 = timing_now_ms();
     for (;;) {
-        clock_gettime(CLOCK_MONOTONIC, &t1);
-        int left = timeout_ms - (int)((t1.tv_sec - t0.tv_sec) * 1000 +
-                                      (t1.tv_nsec - t0.tv_nsec) / 1000000);
+        int left = timeout_ms - (int)(timing_now_ms() - t0);
         if (left <= 0 || quit_signal || !wait_input(STDIN_FILENO, left))
             return -1; /* no answer to DSR in time (what came is in reply) */
         char buf[256];

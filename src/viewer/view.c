@@ -11,7 +11,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 #include <unistd.h>
 
 #include "prepare.h"
@@ -23,6 +22,7 @@
 #include "scene.h"
 #include "ssaa.h"
 #include "termcaps.h"
+#include "timing.h"
 #include "tty.h"
 #include "view_hud.h"
 #include "view_shot.h"
@@ -70,13 +70,6 @@ struct view {
     char shots[MAX_SHOTS][VIEW_SHOT_MAX];
     int n_shots;
 };
-
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec + ts.tv_nsec * 1e-9;
-}
 
 static int ms(double s)
 {
@@ -256,10 +249,10 @@ static int draw_frame(struct view *v, double t, struct err *e)
     struct view_hud_rect help = view_hud_help_rect(v->fb_cols, v->fb_rows);
     v->eo.hold_col = help.col, v->eo.hold_row = help.row;
     v->eo.hold_cols = v->s.help ? help.cols : 0, v->eo.hold_rows = v->s.help ? help.rows : 0;
-    double t0 = now_s();
+    double t0 = timing_now_s();
     size_t n;
     const char *bytes = encode_fb(&v->es, &v->fb, &v->eo, &n, &v->est);
-    v->encode_ms = (now_s() - t0) * 1e3;
+    v->encode_ms = (timing_now_s() - t0) * 1e3;
     if (v->last_frame_at > 0) {
         double inst = 1.0 / (t - v->last_frame_at > 1e-4 ? t - v->last_frame_at : 1e-4);
         v->fps = v->fps > 0 ? 0.8 * v->fps + 0.2 * inst : inst;
@@ -289,7 +282,7 @@ static int draw_frame(struct view *v, double t, struct err *e)
 static void probe(struct view *v)
 {
     if (tty_write(TTY_SYNC_REQUEST, sizeof TTY_SYNC_REQUEST - 1) == 0)
-        pace_sent(&v->pace, now_s(), sizeof TTY_SYNC_REQUEST - 1, 0, v->fb_cols * v->fb_rows);
+        pace_sent(&v->pace, timing_now_s(), sizeof TTY_SYNC_REQUEST - 1, 0, v->fb_cols * v->fb_rows);
 }
 
 /* ---- screenshots ---- */
@@ -369,25 +362,25 @@ static int act(struct view *v, enum view_action a, double t, bool *quit, struct 
 static void drain_answers(struct view *v)
 {
     double r = v->pace.rate > 0 ? v->pace.rate : PACE_SLOWEST_RATE;
-    double end = now_s() + DRAIN_S + (double)v->pace.sent_bytes / r;
+    double end = timing_now_s() + DRAIN_S + (double)v->pace.sent_bytes / r;
     struct tty_event ev;
     while (v->pace.inflight && !tty_signalled()) {
-        double t = now_s();
+        double t = timing_now_s();
         if (t >= end)
             break;
         if (tty_next_event(&v->tty, ms(end - t), &ev) == TTY_SYNC_REPLY)
-            pace_answer(&v->pace, now_s());
+            pace_answer(&v->pace, timing_now_s());
     }
 }
 
 static int loop(struct view *v, struct err *e)
 {
     bool quit = false;
-    double last = now_s();
+    double last = timing_now_s();
     if (!v->pace.answers)
         probe(v);
     while (!quit && !tty_signalled()) {
-        double t = now_s();
+        double t = timing_now_s();
         pace_tick(&v->pace, t);
         bool want = v->s.dirty || view_animating(&v->s, t);
         double wait = 0;
@@ -417,7 +410,7 @@ static int loop(struct view *v, struct err *e)
             enum tty_event_kind k = tty_next_event(&v->tty, n == 0 ? timeout : 0, &ev);
             if (k == TTY_NONE)
                 break;
-            double te = now_s();
+            double te = timing_now_s();
             if (k == TTY_KEY && act(v, view_key(&v->s, input_command(ev.key), te), te, &quit, e))
                 return -1;
             else if (k == TTY_MOUSE)
@@ -438,7 +431,7 @@ static int loop(struct view *v, struct err *e)
                 probe(v);
             }
         }
-        t = now_s();
+        t = timing_now_s();
         view_advance(&v->s, last, t);
         last = t;
         if (quit)
@@ -532,11 +525,11 @@ static enum palette_mode colour_mode(const struct options *o, bool *ask_out)
 static void ask_terminal(struct view *v)
 {
     char reply[1024];
-    double t0 = now_s();
+    double t0 = timing_now_s();
     if (tty_query(TERMCAPS_QUERY, reply, sizeof reply, QUERY_MS) < 0)
         return;
     pace_sent(&v->pace, t0, sizeof TERMCAPS_QUERY - 1 + sizeof TTY_SYNC_REQUEST - 1, 0, 1);
-    pace_answer(&v->pace, now_s());
+    pace_answer(&v->pace, timing_now_s());
     v->mode = termcaps_from_reply(v->mode, reply, NULL);
 }
 
@@ -558,7 +551,7 @@ int view_run(const struct options *o, struct err *e)
     if (!o->lod_set) /* the viewer draws what the terminal can show */
         ro.lod = LOD_AUTO;
     view_state_init(&v->s, &cam, &ro, spin, headlight,
-                    o->spin_timeout >= 0 ? o->spin_timeout : VIEW_SPIN_TIMEOUT_S, now_s());
+                    o->spin_timeout >= 0 ? o->spin_timeout : VIEW_SPIN_TIMEOUT_S, timing_now_s());
     v->s.glyphs = o->glyphs;
     bool ask;
     v->mode = colour_mode(o, &ask);

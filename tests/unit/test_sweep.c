@@ -17,7 +17,7 @@ static struct sweep_result *run_at(struct test *t, enum sweep_kind k, int w, int
     struct sweep_result *r = malloc(sizeof *r);
     struct err e = {""};
     if (!r || sweep_run(k, w, h, r, &e)) {
-        test_fail(t, __FILE__, __LINE__, "sweep %s: %s", sweep_names[k], e.msg);
+        test_fail(t, __FILE__, __LINE__, "sweep %s: %s", sweep_name(k), e.msg);
         free(r);
         return NULL;
     }
