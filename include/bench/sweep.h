@@ -39,7 +39,9 @@
  *                 Theory: averaging m independent texels of a texture with deviation s
  *                 leaves an RMS error of s sqrt(1/m - 1/k^2) at k texels per pixel, so
  *                 nearest (m = 1) fails at once, --ssaa n (m = n^2) at
- *                 k = 1 / sqrt(1/n^2 - (t/s)^2). No mipmaps yet: the default fails here.
+ *                 k = 1 / sqrt(1/n^2 - (t/s)^2). Trilinear (the default) reads box-filtered
+ *                 mip levels: no closed form, its error stays near the levels'
+ *                 misalignment with the pixels' footprints instead of growing.
  * Sizes: any framebuffer (default 160x96); tests use small ones.
  * Each sweep is one entry of a constant table in sweep.c (its words, range, methods,
  * threshold, scene and theory), which sweep_run walks: a new sweep is an entry there. */

@@ -68,7 +68,7 @@ bool lod_done(const struct lod_job *j);
 /* Wait for the job and free it (NULL: nothing); cancel: stop after the level being built (a
  * viewer quitting), the meshes keep the levels finished so far. */
 void lod_finish(struct lod_job *j, bool cancel);
-/* Free m's levels (mesh_free does it). */
+/* Free m's levels (scene_free does it, before mesh_free). */
 void lod_free(struct mesh *m);
 
 /* Levels ready to draw, level 0 included (1 when m has no chain). */
