@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # tests/run.sh: run every test suite and end with ONE summary line "N passed, N failed, N skipped".
 # Each suite prints its own "N passed, N failed, N skipped" as its last line; this adds them up.
+# Each suite's output starts with "=== NAME (WALL s)": how long it took.
 #   tests/run.sh          unit tests, oracle (Mesa) tests, end-to-end tests  (build/)
 #   tests/run.sh --asan   unit + end-to-end tests of the sanitizer build     (build/asan/)
 #   tests/run.sh --all    both of the above (what `make test` runs)
@@ -10,11 +11,15 @@ mode=${1:-}
 total_p=0 total_f=0 total_s=0
 failed_suites=()
 
+now_ms() { echo $(( $(date +%s%N) / 1000000 )); }
+secs() { printf '%d.%d' $(( $1 / 1000 )) $(( $1 % 1000 / 100 )); } # ms as "12.3"
+
 run_suite() { # name command...
     local name=$1; shift
-    echo "=== $name"
-    local out rc
+    local out rc t0
+    t0=$(now_ms)
     out=$("$@" 2>&1); rc=$?
+    echo "=== $name ($(secs $(( $(now_ms) - t0 ))) s)"
     printf '%s\n' "$out"
     local line
     line=$(printf '%s\n' "$out" | grep -E '^[0-9]+ passed, [0-9]+ failed(, [0-9]+ skipped)?$' | tail -n 1)
