@@ -389,6 +389,10 @@ static int loop(struct view *v, struct err *e)
     while (!quit && !tty_signalled()) {
         double t = now_s();
         pace_tick(&v->pace, t);
+        /* the motion since the last turn first: a tap that ended meanwhile (the loop was late)
+         * still has its last stretch to draw, or it would wait for the next input */
+        view_advance(&v->s, last, t);
+        last = t;
         bool want = v->s.dirty || view_animating(&v->s, t);
         double wait = 0;
         bool ready = pace_ready(&v->pace, t, &wait);
