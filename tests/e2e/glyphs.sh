@@ -14,7 +14,7 @@ HEAD=$SHARED/african_head/african_head.obj
 SETS="half quadrant sextant braille ascii"
 SIL=build/e2e/silhouette
 if [ ! -x $SIL ] || [ tests/e2e/lib/silhouette.c -nt $SIL ]; then
-    mkdir -p build/e2e && cc -O2 -std=c11 -o $SIL tests/e2e/lib/silhouette.c
+    mkdir -p build/e2e && cc -O2 -std=c11 -o $SIL.$$ tests/e2e/lib/silhouette.c && mv -f $SIL.$$ $SIL
 fi
 
 # grid G: pixels per cell, "W H"

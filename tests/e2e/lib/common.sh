@@ -71,7 +71,8 @@ wait_for() {
 
 PPMSTAT=build/e2e/ppmstat
 if [ ! -x $PPMSTAT ] || [ tests/e2e/lib/ppmstat.c -nt $PPMSTAT ]; then
-    mkdir -p build/e2e && cc -O2 -std=c11 -o $PPMSTAT tests/e2e/lib/ppmstat.c
+    # suites run side by side (tests/run.sh): build beside it, then rename into place
+    mkdir -p build/e2e && cc -O2 -std=c11 -o $PPMSTAT.$$ tests/e2e/lib/ppmstat.c && mv -f $PPMSTAT.$$ $PPMSTAT
 fi
 ppmstat() { $PPMSTAT "$@"; }
 
