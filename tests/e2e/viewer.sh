@@ -30,9 +30,12 @@ picture() {
     capture "$1" "$OUT/$2.ans" $((rows - 1))
     decode "$OUT/$2.ans" "$OUT/$2.ppm" && ppmstat "$OUT/$2.ppm" "${3:-0,0,0}"
 }
-# the picture's rows of session $1 (status line dropped), for comparing
-screen() { tm capture-pane -t "$1" -e -p | head -n -1 | md5sum; }
-# wait until session $1's picture differs from $2 (a screen checksum)
+# the picture's rows of session $1 (status line dropped, colours kept), for comparing
+screen() {
+    local o; o=$(tm capture-pane -t "$1" -e -p; echo .)
+    o=${o%.}; o=${o%$'\n'}; printf '%s' "${o%$'\n'*}"
+}
+# wait until session $1's picture differs from $2 (a screen())
 changes() { wait_for 5 screen_differs "$1" "$2"; }
 screen_differs() { [ "$(screen "$1")" != "$2" ]; }
 # mouse report bytes (send-keys -H) that move the camera, then the still picture they lead to
@@ -374,6 +377,7 @@ spin_rules() {
     a=$(screen sn); sleep 0.5
     b=$(screen sn)
     [ "$a" = "$b" ] || { echo "--no-spin: the demo spins"; return 1; }
+    tm kill-session -t sd; tm kill-session -t sm; tm kill-session -t sn # sm spins on
 }
 check spin_rules spin_rules
 
