@@ -15,6 +15,13 @@ LDLIBS  += $(shell pkg-config --libs $(PKGS) 2>/dev/null || echo -lncursesw -lst
 # `make V=1` shows full command lines
 Q       := $(if $(V),,@)
 
+# One job per core unless the command line says -j (make -j1: one at a time); `make test`
+# then builds the plain and the sanitizer trees side by side. Only the top make sets it: the
+# sub-makes (asan-build, floor-build) share its job slots.
+ifeq ($(MAKELEVEL)$(filter -j%,$(MAKEFLAGS)),0)
+MAKEFLAGS += -j$(shell nproc 2>/dev/null || echo 1)
+endif
+
 # Layers (README, "The map"): src/LAYER/*.c with its headers in include/LAYER/. A file
 # includes its own layer and the layers below it, never above and never a sibling:
 #     main.c -> {cmd, viewer, bench} -> cli -> term -> render -> scene -> base
