@@ -6,8 +6,17 @@
  *
  * Spaces and units: object space, whatever units the file uses. Normals are unit length.
  * Missing normals (a corner without `vn`) are the area-weighted average of the face normals
- * (cross(p1-p0, p2-p0), unnormalised, from the file's winding) of every triangle that uses the
- * same position index, normalised; a position whose faces sum to zero gets (0,0,1).
+ * (cross(p1-p0, p2-p0), unnormalised, from the file's winding) of the triangles around the
+ * same position index that lie on the corner's side of every crease, normalised; a position
+ * whose faces sum to zero gets (0,0,1). A crease is an edge (two positions two triangles
+ * share) across which the face normals turn by more than the crease angle
+ * (mesh_source.crease_deg, MESH_CREASE_DEFAULT: auto-smooth, as Blender's and f3d's): at a
+ * position with no crease every triangle around it counts (the smooth normal of the
+ * conventions, the same bits as without creases); at one with creases the triangles around
+ * it fall into fans joined by their uncreased shared edges, and each fan has its own
+ * normal, so a cube keeps flat faces and sharp edges while a sphere stays smooth. Crease
+ * angle 0: flat faces everywhere (glTF's rule for primitives without normals); 180 or
+ * more: one smooth normal per position.
  * Missing uvs are (0,0). */
 #ifndef RASTTY_MESH_H
 #define RASTTY_MESH_H
@@ -75,7 +84,19 @@ struct mesh_source {
     const struct mesh_corner *corners; /* n_tris * 3, triangle by triangle */
     const uint16_t *tri_material; /* per triangle; NULL: all 0 */
     uint32_t n_tris;
+    bool crease_set;  /* crease_deg given; else MESH_CREASE_DEFAULT */
+    float crease_deg; /* generated normals split where faces turn by more (see the top) */
 };
+
+/* The crease angle of generated normals when nothing else is asked for (--crease) and the
+ * format has no rule of its own: faces meeting at more than this keep their edge sharp.
+ * 30 degrees is Blender's auto-smooth default and VTK's (f3d's) feature angle: CAD parts and
+ * boxes get their edges, a dense scan stays smooth but for a few spikes (the full-resolution
+ * bunny: 3% of its positions). The loaders' defaults: STL, PLY and assimp's formats this;
+ * OBJ 180, one smooth normal per position (the conventions' contract, which the Mesa oracle
+ * holds rastty to: its decimated bunny has faces folded onto each other, split at any
+ * angle); glTF 0, flat faces (its specification's rule). */
+#define MESH_CREASE_DEFAULT 30.0f
 
 /* Fill out's geometry (verts, tris, tri_material, vert_material, n_verts, n_tris, has_uvs,
  * has_normals, bounds) from src: one vertex per distinct (pos, uv, nrm, material) corner

@@ -16,11 +16,24 @@
 #ifndef RASTTY_MODEL_H
 #define RASTTY_MODEL_H
 
+#include <stdbool.h>
 #include <stddef.h>
 
 #include "err.h"
 #include "mesh.h"
 #include "texture.h"
+
+/* How models are read: the command line's choices (--crease, --up-axis,
+ * --allow-outside). Zero-initialised: the defaults. */
+enum model_up { MODEL_UP_AUTO, MODEL_UP_X, MODEL_UP_Y, MODEL_UP_Z, MODEL_UP_COUNT };
+struct model_opts {
+    bool crease_set;   /* --crease given */
+    float crease_deg;  /* generated normals' crease angle (mesh.h) */
+    enum model_up up;  /* which axis of the file is up: AUTO = the file's own (its metadata,
+                          else its format's convention: STL Z, the others Y) */
+    bool any_path;     /* --allow-outside: a model's references (glTF buffers and images, MTL
+                          libraries and maps) may name files outside the model's folder tree */
+};
 
 /* What every loader gets besides the bytes. */
 struct model_ctx {
@@ -29,6 +42,7 @@ struct model_ctx {
                                     memory: messages say "<memory>", no other file is opened */
     struct texture_cache *cache; /* textures load through it; NULL: the mesh owns them */
     struct warnings *warn;       /* NULL: warnings are dropped */
+    const struct model_opts *opts; /* NULL: the defaults */
 };
 
 enum model_format { MODEL_OBJ, MODEL_STL, MODEL_PLY, MODEL_IMPORT, MODEL_FORMAT_COUNT };
@@ -46,6 +60,12 @@ int model_parse_as(enum model_format f, const char *data, size_t len,
 /* Read the file (regular files only, FILE_MAX_MODEL) and model_parse it. */
 int model_load(const char *path, struct texture_cache *cache, struct warnings *w,
                struct mesh *out, struct err *e);
+/* The same with the reading options (NULL: the defaults). */
+int model_load_with(const char *path, const struct model_opts *opts,
+                    struct texture_cache *cache, struct warnings *w, struct mesh *out,
+                    struct err *e);
+/* The options in force for a context (never NULL). */
+const struct model_opts *model_opts_of(const struct model_ctx *ctx);
 
 /* The loaders (same contract as model_parse, format already chosen). */
 int obj_read(const char *data, size_t len, const struct model_ctx *ctx, struct mesh *out,

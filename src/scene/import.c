@@ -555,6 +555,8 @@ int import_build(const uint8_t *reply, size_t n, const struct model_ctx *ctx,
                               .uv = any_uv ? auv : NULL, .n_pos = n_pos,
                               .n_nrm = any_nrm ? n_pos : 0, .n_uv = any_uv ? n_pos : 0,
                               .corners = ac, .tri_material = tri_material, .n_tris = n_tris};
+    src.crease_set = true;
+    src.crease_deg = model_opts_of(ctx)->crease_set ? model_opts_of(ctx)->crease_deg : MESH_CREASE_DEFAULT;
     for (size_t i = 0; i < (size_t)n_tris * 3; i++) {
         if (!any_nrm)
             ac[i].nrm = MESH_NONE;

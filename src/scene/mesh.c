@@ -44,29 +44,163 @@ static int check_corners(const struct mesh_source *s, struct err *e)
     return 0;
 }
 
-/* Area-weighted normal sums per position over every triangle (file winding). */
-static double *position_normals(const struct mesh_source *s)
+/* The face normal of triangle t: cross(p1 - p0, p2 - p0), unnormalised (its length is twice
+ * the area: the sums below are area-weighted). */
+static void face_normal(const struct mesh_source *s, uint32_t t, double n[3])
 {
-    double *acc = calloc(s->n_pos, 3 * sizeof *acc);
-    if (!acc)
-        return NULL;
-    for (uint32_t t = 0; t < s->n_tris; t++) {
-        const struct mesh_corner *c = &s->corners[(size_t)t * 3];
-        const float *p0 = &s->pos[(size_t)c[0].pos * 3];
-        const float *p1 = &s->pos[(size_t)c[1].pos * 3];
-        const float *p2 = &s->pos[(size_t)c[2].pos * 3];
-        double a[3] = {(double)p1[0] - p0[0], (double)p1[1] - p0[1], (double)p1[2] - p0[2]};
-        double b[3] = {(double)p2[0] - p0[0], (double)p2[1] - p0[1], (double)p2[2] - p0[2]};
-        double n[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
-                       a[0] * b[1] - a[1] * b[0]};
-        for (int k = 0; k < 3; k++) {
-            double *d = &acc[(size_t)c[k].pos * 3];
-            d[0] += n[0];
-            d[1] += n[1];
-            d[2] += n[2];
+    const struct mesh_corner *c = &s->corners[(size_t)t * 3];
+    const float *p0 = &s->pos[(size_t)c[0].pos * 3];
+    const float *p1 = &s->pos[(size_t)c[1].pos * 3];
+    const float *p2 = &s->pos[(size_t)c[2].pos * 3];
+    double a[3] = {(double)p1[0] - p0[0], (double)p1[1] - p0[1], (double)p1[2] - p0[2]};
+    double b[3] = {(double)p2[0] - p0[0], (double)p2[1] - p0[1], (double)p2[2] - p0[2]};
+    n[0] = a[1] * b[2] - a[2] * b[1];
+    n[1] = a[2] * b[0] - a[0] * b[2];
+    n[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* Generated normals (mesh.h): per corner the index of its fan's normal in *sums_out (n
+ * fans, 3 doubles each, unnormalised), in *fan_out (3 per triangle). Fans are numbered
+ * position by position; a position without creases is one fan whose sum adds the same
+ * face normals in the same order as one smooth sum per position would (the same bits).
+ * -1 when out of memory. */
+struct fan_edge {
+    uint32_t q, j; /* the edge's other position, the incidence (index into the position's) */
+};
+
+static int fan_edge_cmp(const void *a, const void *b)
+{
+    const struct fan_edge *x = a, *y = b;
+    return x->q != y->q ? (x->q < y->q ? -1 : 1) : (x->j < y->j ? -1 : x->j > y->j);
+}
+
+static uint32_t uf_find(uint32_t *up, uint32_t i)
+{
+    while (up[i] != i)
+        i = up[i] = up[up[i]];
+    return i;
+}
+
+static int crease_fans(const struct mesh_source *s, double cos_crease, bool smooth,
+                       uint32_t **fan_out, double **sums_out, uint32_t *n_out)
+{
+    const uint32_t nt = s->n_tris;
+    const size_t nc = (size_t)nt * 3;
+    double *fn = malloc((size_t)nt * 3 * sizeof *fn);
+    uint32_t *off = calloc((size_t)s->n_pos + 1, sizeof *off);
+    uint32_t *inc = malloc(nc * sizeof *inc); /* incidences: corner index t * 3 + k */
+    uint32_t *fan = malloc(nc * sizeof *fan);
+    struct fan_edge *edges = NULL;
+    uint32_t *up = NULL, *local = NULL;
+    size_t cap = 0;
+    double *sums = NULL;
+    int rc = -1;
+    if (!fn || !off || !inc || !fan)
+        goto done;
+    for (uint32_t t = 0; t < nt; t++)
+        face_normal(s, t, &fn[(size_t)t * 3]);
+    for (size_t i = 0; i < nc; i++)
+        off[s->corners[i].pos + 1]++;
+    for (uint32_t p = 0; p < s->n_pos; p++)
+        off[p + 1] += off[p];
+    for (size_t i = 0; i < nc; i++) /* in corner order: each position's list is too */
+        inc[off[s->corners[i].pos]++] = (uint32_t)i;
+    for (uint32_t p = s->n_pos; p > 0; p--) /* (the fill moved each start to the next's) */
+        off[p] = off[p - 1];
+    off[0] = 0;
+    uint32_t n_fans = 0;
+    for (uint32_t p = 0; p < s->n_pos; p++) {
+        const uint32_t a = off[p], deg = off[p + 1] - a;
+        if (deg == 0)
+            continue;
+        if (smooth || deg == 1) {
+            for (uint32_t j = 0; j < deg; j++)
+                fan[inc[a + j]] = n_fans;
+            n_fans++;
+            continue;
+        }
+        if (2 * (size_t)deg > cap) {
+            cap = 4 * (size_t)deg;
+            struct fan_edge *ne = realloc(edges, cap * sizeof *ne);
+            uint32_t *nu = ne ? realloc(up, cap * sizeof *nu) : NULL;
+            uint32_t *nl = nu ? realloc(local, cap * sizeof *nl) : NULL;
+            if (ne)
+                edges = ne;
+            if (nu)
+                up = nu;
+            if (!nl)
+                goto done;
+            local = nl;
+        }
+        /* the two edges at p of each incidence, sorted by their other end: triangles that
+         * share an edge through p are neighbours in the list */
+        for (uint32_t j = 0; j < deg; j++) {
+            uint32_t ci = inc[a + j], t = ci / 3, k = ci % 3;
+            edges[2 * j] = (struct fan_edge){s->corners[(size_t)t * 3 + (k + 1) % 3].pos, j};
+            edges[2 * j + 1] = (struct fan_edge){s->corners[(size_t)t * 3 + (k + 2) % 3].pos, j};
+            up[j] = j;
+        }
+        qsort(edges, 2 * (size_t)deg, sizeof *edges, fan_edge_cmp);
+        bool crease = false;
+        for (size_t e = 1; e < 2 * (size_t)deg; e++) {
+            if (edges[e].q != edges[e - 1].q || edges[e].q == p)
+                continue;
+            uint32_t ja = edges[e - 1].j, jb = edges[e].j;
+            uint32_t ta = inc[a + ja] / 3, tb = inc[a + jb] / 3;
+            const double *na = &fn[(size_t)ta * 3], *nb = &fn[(size_t)tb * 3];
+            double la = sqrt(na[0] * na[0] + na[1] * na[1] + na[2] * na[2]);
+            double lb = sqrt(nb[0] * nb[0] + nb[1] * nb[1] + nb[2] * nb[2]);
+            double d = na[0] * nb[0] + na[1] * nb[1] + na[2] * nb[2];
+            if (ta != tb && la > 0 && lb > 0 && d < cos_crease * la * lb) {
+                crease = true; /* a degenerate face creases nothing */
+                continue;
+            }
+            up[uf_find(up, ja)] = uf_find(up, jb);
+        }
+        if (!crease) {
+            for (uint32_t j = 0; j < deg; j++)
+                fan[inc[a + j]] = n_fans;
+            n_fans++;
+            continue;
+        }
+        for (uint32_t j = 0; j < deg; j++) /* a triangle's two corners at p: one fan */
+            for (uint32_t i = j + 1; i < deg && inc[a + i] / 3 == inc[a + j] / 3; i++)
+                up[uf_find(up, i)] = uf_find(up, j);
+        for (uint32_t j = 0; j < deg; j++)
+            local[j] = UINT32_MAX;
+        for (uint32_t j = 0; j < deg; j++) { /* fans numbered in order of first corner */
+            uint32_t r = uf_find(up, j);
+            if (local[r] == UINT32_MAX)
+                local[r] = n_fans++;
+            fan[inc[a + j]] = local[r];
         }
     }
-    return acc;
+    sums = calloc(n_fans ? n_fans : 1, 3 * sizeof *sums);
+    if (!sums)
+        goto done;
+    for (size_t i = 0; i < nc; i++) { /* triangle by triangle: the order of the smooth sum */
+        double *d = &sums[(size_t)fan[i] * 3];
+        const double *n = &fn[(i / 3) * 3];
+        d[0] += n[0];
+        d[1] += n[1];
+        d[2] += n[2];
+    }
+    *fan_out = fan;
+    *sums_out = sums;
+    *n_out = n_fans;
+    fan = NULL;
+    sums = NULL;
+    rc = 0;
+done:
+    free(fn);
+    free(off);
+    free(inc);
+    free(fan);
+    free(edges);
+    free(up);
+    free(local);
+    free(sums);
+    return rc;
 }
 
 static void set_bounds(struct mesh *m)
@@ -140,6 +274,21 @@ int mesh_build(const struct mesh_source *s, struct mesh *out, struct err *e)
         out->has_normals |= s->corners[i].nrm != MESH_NONE;
         need_generated |= s->corners[i].nrm == MESH_NONE;
     }
+    /* generated normals: corner i's fan is fan[i], its normal key s->n_nrm + fan[i] (keys
+     * of given normals stay below) */
+    uint32_t *fan = NULL, n_fans = 0;
+    double *acc = NULL;
+    if (need_generated) {
+        if ((uint64_t)s->n_nrm + n_corners >= MESH_NONE)
+            return err_set(e, "mesh has too many normals (%u) for its %u triangles",
+                           (unsigned)s->n_nrm, (unsigned)s->n_tris);
+        double deg = s->crease_set ? s->crease_deg : MESH_CREASE_DEFAULT;
+        bool smooth = !(deg < 180);
+        double cos_crease = smooth ? -1 : cos((deg > 0 ? deg : 0) * (M_PI / 180.0));
+        if (crease_fans(s, cos_crease, smooth, &fan, &acc, &n_fans))
+            return err_set(e, "out of memory building a mesh of %u triangles",
+                           (unsigned)s->n_tris);
+    }
 
     /* Corners that share a position are chained from it (head[pos] -> next[...]): a new
      * corner only compares with the few vertices made from its own position, and the
@@ -161,8 +310,10 @@ int mesh_build(const struct mesh_source *s, struct mesh *out, struct err *e)
         out->tri_material[t] = mat;
         for (int k = 0; k < 3; k++) {
             const struct mesh_corner *c = &s->corners[(size_t)t * 3 + (size_t)k];
+            const uint32_t nrm = c->nrm != MESH_NONE ? c->nrm
+                                                     : s->n_nrm + fan[(size_t)t * 3 + (size_t)k];
             uint32_t v = head[c->pos];
-            for (int walk = 0; v && !(keys[v - 1].uv == c->uv && keys[v - 1].nrm == c->nrm &&
+            for (int walk = 0; v && !(keys[v - 1].uv == c->uv && keys[v - 1].nrm == nrm &&
                                       keys[v - 1].material == mat);
                  walk++) /* past MESH_CHAIN_MAX a duplicate vertex is made: harmless */
                 v = walk < MESH_CHAIN_MAX ? next[v - 1] : 0;
@@ -178,7 +329,7 @@ int mesh_build(const struct mesh_source *s, struct mesh *out, struct err *e)
                     next = nn;
                     cap_v = cap;
                 }
-                keys[n] = (struct vkey){c->pos, c->uv, c->nrm, mat};
+                keys[n] = (struct vkey){c->pos, c->uv, nrm, mat};
                 next[n] = head[c->pos];
                 head[c->pos] = ++n;
                 v = n;
@@ -196,8 +347,7 @@ int mesh_build(const struct mesh_source *s, struct mesh *out, struct err *e)
     out->vert_material = malloc((size_t)n * sizeof *out->vert_material);
     if (s->rgb && !(out->colors = malloc((size_t)n * sizeof *out->colors)))
         goto oom;
-    double *acc = NULL;
-    if (!out->verts || !out->vert_material || (need_generated && !(acc = position_normals(s))))
+    if (!out->verts || !out->vert_material)
         goto oom;
     for (uint32_t i = 0; i < n; i++) {
         const struct vkey *k = &keys[i];
@@ -209,23 +359,26 @@ int mesh_build(const struct mesh_source *s, struct mesh *out, struct err *e)
         } else {
             v->uv[0] = v->uv[1] = 0;
         }
-        if (k->nrm != MESH_NONE) {
+        if (k->nrm < s->n_nrm) {
             const float *f = &s->nrm[(size_t)k->nrm * 3];
             double d[3] = {f[0], f[1], f[2]};
             normalise_or_z(d, v->nrm);
         } else {
-            normalise_or_z(&acc[(size_t)k->pos * 3], v->nrm);
+            normalise_or_z(&acc[(size_t)(k->nrm - s->n_nrm) * 3], v->nrm);
         }
         out->vert_material[i] = (uint16_t)k->material;
         if (out->colors)
             memcpy(out->colors[i], &s->rgb[(size_t)k->pos * 3], 3);
     }
     free(acc);
+    free(fan);
     free(keys);
     set_bounds(out);
     return 0;
 
 oom:
+    free(acc);
+    free(fan);
     free(keys);
     free(next);
     free(head);

@@ -168,8 +168,21 @@ int model_parse(const char *data, size_t len, const struct model_ctx *ctx, struc
     return model_parse_as(f, data, len, ctx, out, e);
 }
 
+const struct model_opts *model_opts_of(const struct model_ctx *ctx)
+{
+    static const struct model_opts defaults = {0};
+    return ctx && ctx->opts ? ctx->opts : &defaults;
+}
+
 int model_load(const char *path, struct texture_cache *cache, struct warnings *w,
                struct mesh *out, struct err *e)
+{
+    return model_load_with(path, NULL, cache, w, out, e);
+}
+
+int model_load_with(const char *path, const struct model_opts *opts,
+                    struct texture_cache *cache, struct warnings *w, struct mesh *out,
+                    struct err *e)
 {
     memset(out, 0, sizeof *out);
     char *data;
@@ -180,7 +193,7 @@ int model_load(const char *path, struct texture_cache *cache, struct warnings *w
         return err_set(e, "%s: cannot read: %s", file_quote(path, q, sizeof q),
                        file_strerror(rc));
     }
-    struct model_ctx ctx = {.path = path, .cache = cache, .warn = w};
+    struct model_ctx ctx = {.path = path, .cache = cache, .warn = w, .opts = opts};
     rc = model_parse(data, len, &ctx, out, e);
     free(data);
     return rc;

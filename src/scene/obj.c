@@ -484,6 +484,9 @@ static int finish(struct oparse *P, struct mesh *out)
         .n_pos = (uint32_t)P->n_pos, .n_uv = (uint32_t)P->n_uv, .n_nrm = (uint32_t)P->n_nrm,
         .corners = P->corners, .tri_material = P->tri_slot, .n_tris = (uint32_t)P->n_tris,
     };
+    /* OBJ keeps the conventions' smooth normals (the Mesa contract) unless --crease */
+    src.crease_set = true;
+    src.crease_deg = model_opts_of(P->ctx)->crease_set ? model_opts_of(P->ctx)->crease_deg : 180;
     struct err be;
     if (mesh_build(&src, out, &be))
         return err_set(P->e, "%s: %s", P->where, be.msg);

@@ -558,6 +558,8 @@ static int finish(struct pparse *P, struct mesh *out)
         .n_uv = (uint32_t)n_uv, .n_nrm = (uint32_t)P->n_verts,
         .rgb = P->has_rgb ? P->rgb : NULL, .corners = P->corners, .n_tris = (uint32_t)P->n_tris,
     };
+    src.crease_set = true;
+    src.crease_deg = model_opts_of(P->ctx)->crease_set ? model_opts_of(P->ctx)->crease_deg : MESH_CREASE_DEFAULT;
     struct err be;
     int rc = mesh_build(&src, out, &be);
     free(uv);

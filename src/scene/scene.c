@@ -44,11 +44,14 @@ static void update_bounds(struct scene *s)
     s->bound_hi = hi;
 }
 
-int scene_load_model(const char *obj_path, struct scene *s, struct err *e)
+static int load_model(const char *obj_path, const struct model_opts *opts, struct scene *s,
+                      struct err *e)
 {
     memset(s, 0, sizeof *s);
+    if (opts)
+        s->load = *opts;
     set_name(s, obj_path);
-    if (model_load(obj_path, &s->textures, &s->warnings, &s->meshes[0], e)) {
+    if (model_load_with(obj_path, &s->load, &s->textures, &s->warnings, &s->meshes[0], e)) {
         scene_free(s);
         return -1;
     }
@@ -58,6 +61,11 @@ int scene_load_model(const char *obj_path, struct scene *s, struct err *e)
     s->n_items = 1;
     update_bounds(s);
     return 0;
+}
+
+int scene_load_model(const char *obj_path, struct scene *s, struct err *e)
+{
+    return load_model(obj_path, NULL, s, e);
 }
 
 int scene_set_texture(struct scene *s, const char *path, struct err *e)
@@ -222,7 +230,7 @@ static int st_model(struct parser *p, struct scene *s, char (*names)[MAX_PATH])
     }
     if (m < 0) {
         m = s->n_meshes;
-        if (model_load(path, &s->textures, &s->warnings, &s->meshes[m], p->e))
+        if (model_load_with(path, &s->load, &s->textures, &s->warnings, &s->meshes[m], p->e))
             return prefix_err(p);
         memcpy(names[m], path, MAX_PATH);
         s->n_meshes++;
@@ -332,9 +340,12 @@ static int statement(struct parser *p, struct scene *s, char (*names)[MAX_PATH])
     return perr(p, "unknown statement", kw);
 }
 
-int scene_load_file(const char *path, struct scene *s, struct err *e)
+static int load_file(const char *path, const struct model_opts *opts, struct scene *s,
+                     struct err *e)
 {
     memset(s, 0, sizeof *s);
+    if (opts)
+        s->load = *opts;
     set_name(s, path);
     char qpath[200];
     err_quote(path, strlen(path), 160, qpath, sizeof qpath);
@@ -391,12 +402,23 @@ int scene_load_file(const char *path, struct scene *s, struct err *e)
     return 0;
 }
 
-int scene_load(const char *path, struct scene *s, struct err *e)
+int scene_load_file(const char *path, struct scene *s, struct err *e)
+{
+    return load_file(path, NULL, s, e);
+}
+
+int scene_load_with(const char *path, const struct model_opts *opts, struct scene *s,
+                    struct err *e)
 {
     size_t n = strlen(path);
     if (n > 4 && strcmp(path + n - 4, ".rsc") == 0)
-        return scene_load_file(path, s, e);
-    return scene_load_model(path, s, e);
+        return load_file(path, opts, s, e);
+    return load_model(path, opts, s, e);
+}
+
+int scene_load(const char *path, struct scene *s, struct err *e)
+{
+    return scene_load_with(path, NULL, s, e);
 }
 
 int scene_build_lod(struct scene *s, bool wait, struct err *e)

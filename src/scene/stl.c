@@ -306,6 +306,8 @@ int stl_read(const char *data, size_t len, const struct model_ctx *ctx, struct m
             out->n_materials = 1;
             struct mesh_source src = {.pos = S.pos, .n_pos = S.n_pos, .corners = S.corners,
                                       .n_tris = S.n_tris};
+    src.crease_set = true;
+    src.crease_deg = model_opts_of(ctx)->crease_set ? model_opts_of(ctx)->crease_deg : MESH_CREASE_DEFAULT;
             struct err be;
             if (mesh_build(&src, out, &be))
                 rc = err_set(e, "%s: %s", where, be.msg);
