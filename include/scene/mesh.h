@@ -63,6 +63,8 @@ struct mesh {
                              the albedo by it (interpolated like a uv). */
     bool has_uvs;     /* some corner had a vt */
     bool has_normals; /* some corner had a vn (others may have generated normals) */
+    char file_up;     /* the file's up axis, 'x', 'y' or 'z' (its metadata, else its format's
+                         convention; 0: y). model.c turns the mesh so that it is +Y */
     float bbox_min[3], bbox_max[3]; /* over the positions used by triangles */
     float center[3], radius;        /* bounding sphere: bbox centre, farthest used vertex */
     struct mesh_lod *lod; /* simplified levels (lod.h), or NULL; a level's own is NULL */
@@ -107,6 +109,11 @@ struct mesh_source {
  * tri_material value must index them). Errors: no triangles, an index out of range, out of
  * memory; on failure the geometry fields are NULL/0. */
 int mesh_build(const struct mesh_source *src, struct mesh *out, struct err *e);
+/* Turn the mesh's positions and normals (a rotation: windings keep their facing) so that
+ * its axis `axis` ('x' or 'z'; anything else: nothing) points up (+Y): Z-up (x, y, z) ->
+ * (x, z, -y), the front (-Y) toward the default camera; X-up (x, y, z) -> (-y, x, z). The
+ * bounds follow. */
+void mesh_turn_up(struct mesh *m, char axis);
 /* Frees everything the mesh owns (its textures) and zeroes it; a zeroed mesh is fine. Its
  * levels of detail, if any were built, are lod_free's (scene_free calls both). */
 void mesh_free(struct mesh *m);

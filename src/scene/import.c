@@ -258,6 +258,15 @@ static int finite3(const float *v)
     return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]);
 }
 
+/* the determinant of the upper 3x3: negative for a mirroring transform */
+static double det3(const m44 *a)
+{
+    const double(*m)[4] = a->m;
+    return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+           m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+           m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+}
+
 static void add_mesh(struct walk *W, const struct aiMesh *am, const m44 *xf)
 {
     if (!(am->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) || !am->mVertices ||
@@ -272,7 +281,12 @@ static void add_mesh(struct walk *W, const struct aiMesh *am, const m44 *xf)
         return;
     }
     double nm[3][3];
-    normal_matrix(xf, nm);
+    normal_matrix(xf, nm); /* det(M) (M^-1)^T: under a mirror it points the normals inward */
+    const bool mirrored = det3(xf) < 0;
+    if (mirrored)
+        for (int r = 0; r < 3; r++)
+            for (int c = 0; c < 3; c++)
+                nm[r][c] = -nm[r][c];
     const struct aiVector3D *uvs = am->mTextureCoords[0];
     uint32_t base = W->n_pos;
     for (unsigned i = 0; i < am->mNumVertices; i++) {
@@ -314,8 +328,8 @@ static void add_mesh(struct walk *W, const struct aiMesh *am, const m44 *xf)
             ok &= f->mIndices[k] < am->mNumVertices;
         if (!ok)
             continue;
-        for (int k = 0; k < 3; k++) {
-            uint32_t v = base + f->mIndices[k];
+        for (int k = 0; k < 3; k++) { /* a mirror turns the winding: the corners back */
+            uint32_t v = base + f->mIndices[mirrored && k ? 3 - k : k];
             uint32_t c[3] = {v, uvs ? v : MESH_NONE, am->mNormals ? v : MESH_NONE};
             put(&W->corners, c, sizeof c);
         }
@@ -334,6 +348,44 @@ static void walk_node(struct walk *W, const struct aiNode *node, m44 xf, int dep
             add_mesh(W, W->sc->mMeshes[node->mMeshes[i]], &xf);
     for (unsigned i = 0; i < node->mNumChildren; i++)
         walk_node(W, node->mChildren[i], xf, depth + 1);
+}
+
+/* an int32 entry of the scene's metadata; 0 when it has none */
+static int meta_int(const struct aiScene *sc, const char *key, int32_t *out)
+{
+    const struct aiMetadata *md = sc->mMetaData;
+    for (unsigned i = 0; md && i < md->mNumProperties; i++)
+        if (md->mKeys[i].length == strlen(key) && memcmp(md->mKeys[i].data, key, md->mKeys[i].length) == 0 &&
+            md->mValues[i].mType == AI_INT32 && md->mValues[i].mData) {
+            memcpy(out, md->mValues[i].mData, sizeof *out);
+            return 1;
+        }
+    return 0;
+}
+
+/* FBX's axis settings (assimp keeps them as metadata and leaves the coordinates as the
+ * file has them): the file's right, up and front axes with their signs become x, y and z.
+ * Maya's Y-up (up 1, front 2, coord 0) is the identity, 3ds Max's Z-up (up 2, front 1 with
+ * sign -1) turns (x, y, z) to (x, z, -y), as mesh_turn_up does for STL. COLLADA's up_axis
+ * assimp applies itself. */
+static void file_axes(const struct aiScene *sc, m44 *xf)
+{
+    int32_t up, up_s, front, front_s, coord, coord_s;
+    if (!meta_int(sc, "UpAxis", &up) || !meta_int(sc, "UpAxisSign", &up_s) ||
+        !meta_int(sc, "FrontAxis", &front) || !meta_int(sc, "FrontAxisSign", &front_s) ||
+        !meta_int(sc, "CoordAxis", &coord) || !meta_int(sc, "CoordAxisSign", &coord_s))
+        return;
+    if (up < 0 || up > 2 || front < 0 || front > 2 || coord < 0 || coord > 2 || up == front ||
+        up == coord || front == coord)
+        return;
+    m44 m = {{{0}}};
+    m.m[0][coord] = coord_s < 0 ? -1 : 1;
+    m.m[1][up] = up_s < 0 ? -1 : 1;
+    m.m[2][front] = front_s < 0 ? -1 : 1;
+    m.m[3][3] = 1;
+    if (det3(&m) < 0) /* FBX's front sign is "parity": keep the basis right-handed */
+        m.m[2][front] = -m.m[2][front];
+    *xf = m;
 }
 
 /* materials: kd, then a texture reference: 0 none, 1 file (path follows), 2 embedded
@@ -407,6 +459,7 @@ int import_flatten(const char *data, size_t len, const char *name, bool others,
     }
     struct walk W = {.sc = sc};
     m44 id = {{{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}}};
+    file_axes(sc, &id);
     walk_node(&W, sc->mRootNode, id, 0);
     struct blob mats = {0};
     put_materials(&mats, sc);

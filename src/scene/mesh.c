@@ -386,6 +386,28 @@ oom:
     return err_set(e, "out of memory building a mesh of %u triangles", (unsigned)s->n_tris);
 }
 
+/* v with axis `axis` turned to +Y (mesh_turn_up) */
+static void turn3(float *v, char axis)
+{
+    float x = v[0], y = v[1], z = v[2];
+    if (axis == 'z')
+        v[0] = x, v[1] = z, v[2] = -y;
+    else if (axis == 'x')
+        v[0] = -y, v[1] = x, v[2] = z;
+}
+
+void mesh_turn_up(struct mesh *m, char axis)
+{
+    if (axis != 'x' && axis != 'z')
+        return;
+    for (uint32_t i = 0; i < m->n_verts; i++) {
+        turn3(m->verts[i].pos, axis);
+        turn3(m->verts[i].nrm, axis);
+    }
+    if (m->n_verts)
+        set_bounds(m);
+}
+
 void mesh_free(struct mesh *m)
 {
     drop_geometry(m);

@@ -142,6 +142,15 @@ int model_parse_as(enum model_format f, const char *data, size_t len,
     if (!c.cache)
         c.cache = &local;
     int rc = readers[f](data, len, &c, out, e);
+    if (rc == 0) { /* the file's up axis (or --up-axis) turned to +Y */
+        enum model_up up = model_opts_of(ctx)->up;
+        char axis = up == MODEL_UP_X   ? 'x'
+                    : up == MODEL_UP_Y ? 'y'
+                    : up == MODEL_UP_Z ? 'z'
+                    : out->file_up ? out->file_up
+                                   : 'y';
+        mesh_turn_up(out, axis);
+    }
     if (!ctx->cache) {
         for (int i = 0; i < local.n; i++) {
             bool moved = false;

@@ -311,6 +311,7 @@ int stl_read(const char *data, size_t len, const struct model_ctx *ctx, struct m
             struct err be;
             if (mesh_build(&src, out, &be))
                 rc = err_set(e, "%s: %s", where, be.msg);
+            out->file_up = 'z'; /* the 3D-printing convention (slicers, the OS previews) */
         }
     }
     free(S.pos);

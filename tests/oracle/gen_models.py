@@ -163,7 +163,9 @@ def tie(path, tex_path, size=64, tex=32):
 
 
 def grid_stl(obj_path, stl_path):
-    """Binary STL of an OBJ's faces (fanned (0, i, i+1)), normals from the winding."""
+    """Binary STL of an OBJ's faces (fanned (0, i, i+1)), normals from the winding. STL is
+    Z-up (the 3D-printing convention rastty follows): the Y-up OBJ's point (x, y, z) is
+    stored as (x, -z, y), which rastty turns back to (x, y, z) exactly (a swap and a sign)."""
     pos, tris = [], []
     for line in open(obj_path):
         w = line.split()
@@ -184,9 +186,9 @@ def grid_stl(obj_path, stl_path):
         u = [p1[i] - p0[i] for i in range(3)]
         v = [p2[i] - p0[i] for i in range(3)]
         n = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
-        out += struct.pack("<3f", *n)
+        out += struct.pack("<3f", n[0], -n[2], n[1])
         for p in (p0, p1, p2):
-            out += struct.pack("<3f", *p)
+            out += struct.pack("<3f", p[0], -p[2], p[1])
         out += b"\0\0"
     with open(stl_path, "wb") as f:
         f.write(out)

@@ -100,11 +100,12 @@ TEST(stl_ascii_welds_and_follows_facet_normals)
     CHECK_EQ_INT(m.n_tris, 2);
     CHECK_EQ_INT(m.n_verts, 4); /* (0,0,0) and (1,1,0) shared */
     CHECK(!m.has_uvs && !m.has_normals);
-    for (uint32_t i = 0; i < 2; i++) {
+    for (uint32_t i = 0; i < 2; i++) { /* STL is Z-up: the file's +z is drawn as +y */
         const float *a = CORNER(m, i, 0)->pos, *b = CORNER(m, i, 1)->pos, *c = CORNER(m, i, 2)->pos;
-        double z = (double)(b[0] - a[0]) * (c[1] - a[1]) - (double)(b[1] - a[1]) * (c[0] - a[0]);
-        CHECK(z > 0); /* counter-clockwise seen from +z, as the normals say */
-        CHECK_VEC3(CORNER(m, i, 0)->nrm, 0, 0, 1);
+        double y = (double)(b[2] - a[2]) * (c[0] - a[0]) - (double)(b[0] - a[0]) * (c[2] - a[2]);
+        CHECK(y > 0); /* counter-clockwise seen from the file's +z, as the normals say */
+        CHECK_VEC3(CORNER(m, i, 0)->nrm, 0, 1, 0);
+        CHECK(a[1] == 0 && b[1] == 0 && c[1] == 0);
     }
     CHECK_EQ_INT(m.n_materials, 1);
     mesh_free(&m);

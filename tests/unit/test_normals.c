@@ -6,7 +6,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <unistd.h>
+
+#include "camera.h"
 #include "model.h"
+#include "scene.h"
 #include "test.h"
 
 static int load_text(const char *text, const char *path, const struct model_opts *o,
@@ -213,4 +217,179 @@ TEST(uncreased_positions_keep_the_smooth_normals_bits)
     mesh_free(&a);
     mesh_free(&b);
     free(obj);
+}
+
+/* ---- which way is up ---- */
+
+static void bbox_is(struct test *t, const struct mesh *m, const float lo[3], const float hi[3],
+                    int line)
+{
+    for (int k = 0; k < 3; k++)
+        if (!(fabsf(m->bbox_min[k] - lo[k]) < 1e-6f && fabsf(m->bbox_max[k] - hi[k]) < 1e-6f))
+            test_fail(t, __FILE__, line, "axis %d: [%g, %g], expected [%g, %g]", k,
+                      m->bbox_min[k], m->bbox_max[k], lo[k], hi[k]);
+}
+#define BBOX_IS(m, x0, y0, z0, x1, y1, z1)                                                 \
+    bbox_is(t, (m), (const float[3]){x0, y0, z0}, (const float[3]){x1, y1, z1}, __LINE__)
+
+/* one triangle 1 wide (x), 2 deep (y) and 3 tall (z), in each format */
+static const char tall_stl[] = "solid t\nfacet normal 0 -1 0\nouter loop\nvertex 0 0 0\n"
+                               "vertex 1 0 0\nvertex 0 2 3\nendloop\nendfacet\nendsolid t\n";
+static const char tall_obj[] = "v 0 0 0\nv 1 0 0\nv 0 2 3\nf 1 2 3\n";
+static const char tall_ply[] = "ply\nformat ascii 1.0\n%s\nelement vertex 3\nproperty float x\n"
+                               "property float y\nproperty float z\nelement face 1\n"
+                               "property list uchar int vertex_indices\nend_header\n"
+                               "0 0 0\n1 0 0\n0 2 3\n3 0 1 2\n";
+
+TEST(stl_is_z_up)
+{
+    /* the 3D-printing convention: the file's z is drawn up (+Y), its -y toward the viewer */
+    struct mesh m;
+    struct err e;
+    REQUIRE(load_text(tall_stl, "t.stl", NULL, &m, &e) == 0);
+    BBOX_IS(&m, 0, 0, -2, 1, 3, 0);
+    CHECK(m.file_up == 'z');
+    /* its face normal (0, -3, 2) / sqrt 13, toward the viewer and up, is drawn as (0, 2, 3) */
+    CHECK_NEAR(m.verts[0].nrm[0], 0, 1e-6);
+    CHECK_NEAR(m.verts[0].nrm[1], 2 / sqrt(13), 1e-6);
+    CHECK_NEAR(m.verts[0].nrm[2], 3 / sqrt(13), 1e-6);
+    mesh_free(&m);
+    /* --up-axis y: as written */
+    struct model_opts o = {.up = MODEL_UP_Y};
+    REQUIRE(load_text(tall_stl, "t.stl", &o, &m, &e) == 0);
+    BBOX_IS(&m, 0, 0, 0, 1, 2, 3);
+    mesh_free(&m);
+}
+
+TEST(obj_and_ply_are_y_up_unless_told)
+{
+    struct mesh m;
+    struct err e;
+    REQUIRE(load_text(tall_obj, "t.obj", NULL, &m, &e) == 0);
+    BBOX_IS(&m, 0, 0, 0, 1, 2, 3);
+    mesh_free(&m);
+    struct model_opts z = {.up = MODEL_UP_Z}, x = {.up = MODEL_UP_X};
+    REQUIRE(load_text(tall_obj, "t.obj", &z, &m, &e) == 0);
+    BBOX_IS(&m, 0, 0, -2, 1, 3, 0);
+    mesh_free(&m);
+    REQUIRE(load_text(tall_obj, "t.obj", &x, &m, &e) == 0); /* (x, y, z) -> (-y, x, z) */
+    BBOX_IS(&m, -2, 0, 0, 0, 1, 3);
+    mesh_free(&m);
+    /* PLY: Y-up, unless a header comment or obj_info names the up axis */
+    static const char *const says_z[] = {"comment up_axis Z", "comment Z-up scan",
+                                         "obj_info UpAxis=Z", "comment +z up",
+                                         "comment zup", "comment Up axis: z"};
+    static const char *const says_nothing[] = {"comment made by hand", "comment zebra up",
+                                               "comment up to you", "obj_info x y z"};
+    char text[512];
+    for (size_t i = 0; i < sizeof says_z / sizeof *says_z; i++) {
+        snprintf(text, sizeof text, tall_ply, says_z[i]);
+        REQUIRE(load_text(text, "t.ply", NULL, &m, &e) == 0);
+        BBOX_IS(&m, 0, 0, -2, 1, 3, 0);
+        mesh_free(&m);
+    }
+    for (size_t i = 0; i < sizeof says_nothing / sizeof *says_nothing; i++) {
+        snprintf(text, sizeof text, tall_ply, says_nothing[i]);
+        REQUIRE(load_text(text, "t.ply", NULL, &m, &e) == 0);
+        BBOX_IS(&m, 0, 0, 0, 1, 2, 3);
+        mesh_free(&m);
+    }
+    /* --up-axis wins over the header */
+    struct model_opts y = {.up = MODEL_UP_Y};
+    snprintf(text, sizeof text, tall_ply, says_z[0]);
+    REQUIRE(load_text(text, "t.ply", &y, &m, &e) == 0);
+    BBOX_IS(&m, 0, 0, 0, 1, 2, 3);
+    mesh_free(&m);
+}
+
+TEST(collada_and_fbx_follow_their_axis_metadata)
+{
+    /* COLLADA's up_axis (assimp applies it) and FBX's axis settings (rastty applies them):
+     * a Z-up file's z drawn up */
+    static const char dae[] =
+        "<?xml version=\"1.0\"?>\n<COLLADA xmlns=\"http://www.collada.org/2005/11/"
+        "COLLADASchema\" version=\"1.4.1\"><asset><up_axis>Z_UP</up_axis></asset>"
+        "<library_geometries><geometry id=\"g\"><mesh><source id=\"p\"><float_array id=\"pa\" "
+        "count=\"9\">0 0 0 1 0 0 0 2 3</float_array><technique_common><accessor source=\"#pa\" "
+        "count=\"3\" stride=\"3\"><param name=\"X\" type=\"float\"/><param name=\"Y\" "
+        "type=\"float\"/><param name=\"Z\" type=\"float\"/></accessor></technique_common>"
+        "</source><vertices id=\"v\"><input semantic=\"POSITION\" source=\"#p\"/></vertices>"
+        "<triangles count=\"1\"><input semantic=\"VERTEX\" source=\"#v\" offset=\"0\"/><p>0 1 2"
+        "</p></triangles></mesh></geometry></library_geometries><library_visual_scenes>"
+        "<visual_scene id=\"s\"><node id=\"n\"><instance_geometry url=\"#g\"/></node>"
+        "</visual_scene></library_visual_scenes><scene><instance_visual_scene url=\"#s\"/>"
+        "</scene></COLLADA>\n";
+    static const char fbx[] =
+        "; FBX 7.4.0 project file\nFBXHeaderExtension:  {\n\tFBXHeaderVersion: 1003\n"
+        "\tFBXVersion: 7400\n}\nGlobalSettings:  {\n\tVersion: 1000\n\tProperties70:  {\n"
+        "\t\tP: \"UpAxis\", \"int\", \"Integer\", \"\",2\n"
+        "\t\tP: \"UpAxisSign\", \"int\", \"Integer\", \"\",1\n"
+        "\t\tP: \"FrontAxis\", \"int\", \"Integer\", \"\",1\n"
+        "\t\tP: \"FrontAxisSign\", \"int\", \"Integer\", \"\",-1\n"
+        "\t\tP: \"CoordAxis\", \"int\", \"Integer\", \"\",0\n"
+        "\t\tP: \"CoordAxisSign\", \"int\", \"Integer\", \"\",1\n\t}\n}\nObjects:  {\n"
+        "\tGeometry: 100, \"Geometry::tri\", \"Mesh\" {\n\t\tVertices: *9 {\n"
+        "\t\t\ta: 0,0,0,1,0,0,0,2,3\n\t\t}\n\t\tPolygonVertexIndex: *3 {\n\t\t\ta: 0,1,-3\n"
+        "\t\t}\n\t}\n\tModel: 200, \"Model::tri\", \"Mesh\" {\n\t\tVersion: 232\n\t}\n}\n"
+        "Connections:  {\n\tC: \"OO\",100,200\n\tC: \"OO\",200,0\n}\n";
+    struct mesh m;
+    struct err e;
+    REQUIRE(load_text(dae, NULL, NULL, &m, &e) == 0);
+    BBOX_IS(&m, 0, 0, -2, 1, 3, 0);
+    mesh_free(&m);
+    if (load_text(fbx, NULL, NULL, &m, &e)) {
+        test_fail(t, __FILE__, __LINE__, "%s", e.msg);
+        return;
+    }
+    BBOX_IS(&m, 0, 0, -2, 1, 3, 0);
+    mesh_free(&m);
+}
+
+TEST(scene_turn_up_cycles_the_axes_about_the_centre)
+{
+    /* the tall triangle as OBJ (Y-up as read): u draws its z up, then its x, then its y again */
+    char path[64];
+    snprintf(path, sizeof path, "/tmp/rastty-up-%d.obj", (int)getpid());
+    FILE *f = fopen(path, "w");
+    REQUIRE(f);
+    fputs(tall_obj, f);
+    fclose(f);
+    struct scene s;
+    struct err e;
+    REQUIRE(scene_load(path, &s, &e) == 0);
+    unlink(path);
+    CHECK(s.up == 'y');
+    vec3 c0 = v3_scale(v3_add(s.bound_lo, s.bound_hi), 0.5);
+    const char want[3] = {'z', 'x', 'y'};
+    /* extents (x, y, z) after each turn: z up is (1, 3, 2), x up (2, 1, 3), y up (1, 2, 3) */
+    const double ext[3][3] = {{1, 3, 2}, {2, 1, 3}, {1, 2, 3}};
+    for (int i = 0; i < 3; i++) {
+        CHECK_EQ_INT(scene_turn_up(&s), want[i]);
+        vec3 d = v3_sub(s.bound_hi, s.bound_lo), c = v3_scale(v3_add(s.bound_lo, s.bound_hi), 0.5);
+        CHECK_NEAR(d.x, ext[i][0], 1e-9);
+        CHECK_NEAR(d.y, ext[i][1], 1e-9);
+        CHECK_NEAR(d.z, ext[i][2], 1e-9);
+        CHECK_NEAR(v3_len(v3_sub(c, c0)), 0, 1e-9); /* about the centre: still framed */
+    }
+    scene_free(&s);
+}
+
+TEST(a_flat_model_is_never_framed_edge_on)
+{
+    /* a floor (thin in y) seen from the default direction (+z): a 3/4 view from above */
+    vec3 back = camera_flat_view(v3(0, 0, 1), v3(-1, -0.01, -1), v3(1, 0.01, 1));
+    CHECK_NEAR(back.x, 0, 1e-12);
+    CHECK_NEAR(back.y, sqrt(0.5), 1e-12);
+    CHECK_NEAR(back.z, sqrt(0.5), 1e-12);
+    /* a wall facing the camera, and a box: the view direction kept */
+    vec3 same = camera_flat_view(v3(0, 0, 1), v3(-1, -1, 0), v3(1, 1, 0));
+    CHECK(same.x == 0 && same.y == 0 && same.z == 1);
+    same = camera_flat_view(v3(0.6, 0, 0.8), v3(-1, -1, -1), v3(1, 1, 1));
+    CHECK(same.x == 0.6 && same.z == 0.8);
+    /* the STL square (the file's xy plane, drawn as a floor) framed: it shows */
+    struct camera cam;
+    camera_default(&cam);
+    camera_frame_box(&cam, v3(0, 0, -1), v3(1, 0, 0), 160.0 / 96);
+    vec3 dir = v3_norm(v3_sub(cam.eye, cam.target));
+    CHECK(dir.y > 0.7);
 }
