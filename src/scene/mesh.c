@@ -241,7 +241,11 @@ static void drop_geometry(struct mesh *m)
     free(m->tri_material);
     free(m->vert_material);
     free(m->colors);
+    free(m->uv1);
+    free(m->tangents);
     m->colors = NULL;
+    m->uv1 = NULL;
+    m->tangents = NULL;
     m->verts = NULL;
     m->tris = NULL;
     m->tri_material = NULL;
@@ -256,7 +260,9 @@ int mesh_build(const struct mesh_source *s, struct mesh *out, struct err *e)
     out->tri_material = NULL;
     out->vert_material = NULL;
     out->colors = NULL;
-    out->n_verts = out->n_tris = 0;
+    out->uv1 = NULL;
+    out->tangents = NULL;
+    out->n_verts = out->n_tris = out->n_opaque = 0;
     out->has_uvs = out->has_normals = false;
     if (s->n_tris == 0)
         return err_set(e, "mesh has no triangles");
@@ -341,11 +347,15 @@ int mesh_build(const struct mesh_source *s, struct mesh *out, struct err *e)
     free(next);
     head = next = NULL;
 
-    out->n_tris = s->n_tris;
+    out->n_tris = out->n_opaque = s->n_tris;
     out->n_verts = n;
     out->verts = malloc((size_t)n * sizeof *out->verts);
     out->vert_material = malloc((size_t)n * sizeof *out->vert_material);
-    if (s->rgb && !(out->colors = malloc((size_t)n * sizeof *out->colors)))
+    if ((s->rgb || s->rgba) && !(out->colors = malloc((size_t)n * sizeof *out->colors)))
+        goto oom;
+    if (s->uv1 && !(out->uv1 = malloc((size_t)n * sizeof *out->uv1)))
+        goto oom;
+    if (s->tangent && !(out->tangents = malloc((size_t)n * sizeof *out->tangents)))
         goto oom;
     if (!out->verts || !out->vert_material)
         goto oom;
@@ -367,8 +377,16 @@ int mesh_build(const struct mesh_source *s, struct mesh *out, struct err *e)
             normalise_or_z(&acc[(size_t)(k->nrm - s->n_nrm) * 3], v->nrm);
         }
         out->vert_material[i] = (uint16_t)k->material;
-        if (out->colors)
+        if (s->rgba) {
+            memcpy(out->colors[i], &s->rgba[(size_t)k->pos * 4], 4);
+        } else if (s->rgb) {
             memcpy(out->colors[i], &s->rgb[(size_t)k->pos * 3], 3);
+            out->colors[i][3] = 255;
+        }
+        if (s->uv1)
+            memcpy(out->uv1[i], &s->uv1[(size_t)k->pos * 2], sizeof out->uv1[i]);
+        if (s->tangent)
+            memcpy(out->tangents[i], &s->tangent[(size_t)k->pos * 4], sizeof out->tangents[i]);
     }
     free(acc);
     free(fan);
@@ -403,15 +421,191 @@ void mesh_turn_up(struct mesh *m, char axis)
     for (uint32_t i = 0; i < m->n_verts; i++) {
         turn3(m->verts[i].pos, axis);
         turn3(m->verts[i].nrm, axis);
+        if (m->tangents)
+            turn3(m->tangents[i], axis);
+    }
+    for (uint32_t i = 0; i < m->n_cameras; i++) {
+        turn3(m->cameras[i].eye, axis);
+        turn3(m->cameras[i].forward, axis);
+        turn3(m->cameras[i].up, axis);
     }
     if (m->n_verts)
         set_bounds(m);
+}
+
+/* ---- tangents ---- */
+
+static double dot3(const double *a, const double *b)
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/* the angle at corner a of the triangle a b c */
+static double corner_angle(const float *a, const float *b, const float *c)
+{
+    double u[3], v[3];
+    for (int k = 0; k < 3; k++)
+        u[k] = (double)b[k] - a[k], v[k] = (double)c[k] - a[k];
+    double lu = sqrt(dot3(u, u)), lv = sqrt(dot3(v, v));
+    if (!(lu > 0 && lv > 0))
+        return 0;
+    double x = dot3(u, v) / (lu * lv);
+    return acos(x < -1 ? -1 : x > 1 ? 1 : x);
+}
+
+int mesh_tangents(struct mesh *m, bool second)
+{
+    const uint32_t nv = m->n_verts;
+    /* per vertex: sums of the two handednesses, 4 doubles each (xyz, weight) */
+    double *acc = calloc((size_t)nv * 8, sizeof *acc);
+    int8_t *tri_sign = malloc((size_t)m->n_tris + 1);
+    if (!acc || !tri_sign) {
+        free(acc);
+        free(tri_sign);
+        return -1;
+    }
+    for (uint32_t t = 0; t < m->n_tris; t++) {
+        const uint32_t *c = m->tris[t];
+        const float *p[3], *w[3];
+        for (int k = 0; k < 3; k++) {
+            p[k] = m->verts[c[k]].pos;
+            w[k] = second ? m->uv1[c[k]] : m->verts[c[k]].uv;
+        }
+        double e1[3], e2[3];
+        for (int k = 0; k < 3; k++)
+            e1[k] = (double)p[1][k] - p[0][k], e2[k] = (double)p[2][k] - p[0][k];
+        double du1 = (double)w[1][0] - w[0][0], dv1 = (double)w[1][1] - w[0][1];
+        double du2 = (double)w[2][0] - w[0][0], dv2 = (double)w[2][1] - w[0][1];
+        double r = du1 * dv2 - du2 * dv1;
+        tri_sign[t] = 0;
+        if (!(fabs(r) > 1e-20) || !isfinite(r))
+            continue; /* no uv area: no direction */
+        double sd[3], td[3]; /* dP/du, dP/dv */
+        for (int k = 0; k < 3; k++) {
+            sd[k] = (e1[k] * dv2 - e2[k] * dv1) / r;
+            td[k] = (e2[k] * du1 - e1[k] * du2) / r;
+        }
+        double fn[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                        e1[0] * e2[1] - e1[1] * e2[0]};
+        double cr[3] = {fn[1] * sd[2] - fn[2] * sd[1], fn[2] * sd[0] - fn[0] * sd[2],
+                        fn[0] * sd[1] - fn[1] * sd[0]};
+        int sign = dot3(cr, td) < 0 ? -1 : 1;
+        tri_sign[t] = (int8_t)sign;
+        for (int k = 0; k < 3; k++) {
+            const float *nf = m->verts[c[k]].nrm;
+            double n[3] = {nf[0], nf[1], nf[2]}, d = dot3(n, sd), tk[3];
+            for (int j = 0; j < 3; j++)
+                tk[j] = sd[j] - n[j] * d;
+            double l = sqrt(dot3(tk, tk));
+            double a = corner_angle(p[k], p[(k + 1) % 3], p[(k + 2) % 3]);
+            if (!(l > 0) || !isfinite(l))
+                continue;
+            double *s = &acc[(size_t)c[k] * 8 + (sign < 0 ? 4 : 0)];
+            for (int j = 0; j < 3; j++)
+                s[j] += tk[j] / l * a;
+            s[3] += a > 0 ? a : 1e-12;
+        }
+    }
+    /* vertices both handednesses use: a copy for the negative one */
+    uint32_t extra = 0;
+    for (uint32_t v = 0; v < nv; v++)
+        extra += acc[(size_t)v * 8 + 3] > 0 && acc[(size_t)v * 8 + 7] > 0;
+    uint32_t *twin = NULL;
+    if (extra) {
+        twin = malloc((size_t)nv * sizeof *twin);
+        struct mesh_vertex *nvx = realloc(m->verts, (size_t)(nv + extra) * sizeof *nvx);
+        if (nvx)
+            m->verts = nvx;
+        uint16_t *nvm = nvx ? realloc(m->vert_material, (size_t)(nv + extra) * sizeof *nvm) : NULL;
+        if (nvm)
+            m->vert_material = nvm;
+        bool ok = twin && nvx && nvm;
+        if (ok && m->colors) {
+            uint8_t(*nc)[4] = realloc(m->colors, (size_t)(nv + extra) * sizeof *nc);
+            ok = nc != NULL;
+            if (nc)
+                m->colors = nc;
+        }
+        if (ok && m->uv1) {
+            float(*nu)[2] = realloc(m->uv1, (size_t)(nv + extra) * sizeof *nu);
+            ok = nu != NULL;
+            if (nu)
+                m->uv1 = nu;
+        }
+        if (!ok) {
+            free(twin);
+            free(acc);
+            free(tri_sign);
+            return -1;
+        }
+        uint32_t k = nv;
+        for (uint32_t v = 0; v < nv; v++) {
+            twin[v] = UINT32_MAX;
+            if (!(acc[(size_t)v * 8 + 3] > 0 && acc[(size_t)v * 8 + 7] > 0))
+                continue;
+            twin[v] = k;
+            m->verts[k] = m->verts[v];
+            m->vert_material[k] = m->vert_material[v];
+            if (m->colors)
+                memcpy(m->colors[k], m->colors[v], sizeof m->colors[k]);
+            if (m->uv1)
+                memcpy(m->uv1[k], m->uv1[v], sizeof m->uv1[k]);
+            k++;
+        }
+        for (uint32_t t = 0; t < m->n_tris; t++)
+            if (tri_sign[t] < 0)
+                for (int c = 0; c < 3; c++)
+                    if (twin[m->tris[t][c]] != UINT32_MAX)
+                        m->tris[t][c] = twin[m->tris[t][c]];
+    }
+    m->tangents = malloc((size_t)(nv + extra) * sizeof *m->tangents);
+    if (!m->tangents) {
+        free(twin);
+        free(acc);
+        free(tri_sign);
+        return -1;
+    }
+    for (uint32_t v = 0; v < nv; v++) {
+        const double *pos = &acc[(size_t)v * 8], *neg = pos + 4;
+        /* a vertex of one handedness; its twin (if any) the negative one */
+        const double *own = pos[3] > 0 ? pos : neg;
+        float w = pos[3] > 0 || !(neg[3] > 0) ? 1.0f : -1.0f;
+        uint32_t dst[2] = {v, twin && twin[v] != UINT32_MAX ? twin[v] : UINT32_MAX};
+        const double *src[2] = {own, neg};
+        float sg[2] = {w, -1};
+        for (int i = 0; i < 2; i++) {
+            if (dst[i] == UINT32_MAX)
+                continue;
+            const float *nf = m->verts[v].nrm;
+            double n[3] = {nf[0], nf[1], nf[2]}, t[3] = {src[i][0], src[i][1], src[i][2]};
+            double d = dot3(n, t);
+            for (int j = 0; j < 3; j++)
+                t[j] -= n[j] * d;
+            double l = sqrt(dot3(t, t));
+            if (!(l > 1e-12) || !isfinite(l)) { /* any direction in the normal's plane */
+                double a[3] = {fabs(n[0]) < 0.9 ? 1 : 0, fabs(n[0]) < 0.9 ? 0 : 1, 0};
+                d = dot3(n, a);
+                for (int j = 0; j < 3; j++)
+                    t[j] = a[j] - n[j] * d;
+                l = sqrt(dot3(t, t));
+            }
+            for (int j = 0; j < 3; j++)
+                m->tangents[dst[i]][j] = (float)(t[j] / l);
+            m->tangents[dst[i]][3] = sg[i];
+        }
+    }
+    m->n_verts = nv + extra;
+    free(twin);
+    free(acc);
+    free(tri_sign);
+    return 0;
 }
 
 void mesh_free(struct mesh *m)
 {
     drop_geometry(m);
     free(m->materials);
+    free(m->cameras);
     for (uint32_t i = 0; i < m->n_textures; i++)
         texture_free(&m->textures[i]);
     free(m->textures);

@@ -26,6 +26,21 @@ static bool early(const char *d, size_t n, const char *s)
     return false;
 }
 
+static bool starts_nocase(const char *d, size_t n, const char *s)
+{
+    size_t k = strlen(s);
+    return n >= k && strncasecmp(d, s, k) == 0;
+}
+
+static bool early_nocase(const char *d, size_t n, const char *s)
+{
+    size_t k = strlen(s), w = n < 4096 ? n : 4096;
+    for (size_t i = 0; i + k <= w; i++)
+        if (strncasecmp(d + i, s, k) == 0)
+            return true;
+    return false;
+}
+
 static const char *extension(const char *path)
 {
     if (!path)
@@ -58,8 +73,16 @@ int model_detect(const char *data, size_t len, const char *path, enum model_form
     const uint8_t *u = (const uint8_t *)data;
     const char *ext = extension(path);
     /* binary formats with magic */
-    if (starts(data, len, "glTF") || starts(data, len, "Kaydara FBX Binary")) {
+    if (starts(data, len, "glTF")) {
+        *fmt = MODEL_GLTF;
+        return 0;
+    }
+    if (starts(data, len, "Kaydara FBX Binary")) {
         *fmt = MODEL_IMPORT;
+        return 0;
+    }
+    if (starts(data, len, "DRACO")) {
+        *fmt = MODEL_DRACO;
         return 0;
     }
     if (starts(data, len, "ply\n") || starts(data, len, "ply\r\n")) {
@@ -106,12 +129,16 @@ int model_detect(const char *data, size_t len, const char *path, enum model_form
     while (t < end && (*t == ' ' || *t == '\t' || *t == '\r' || *t == '\n'))
         t++;
     size_t tn = (size_t)(end - t);
-    if ((starts(t, tn, "{") && early(t, tn, "\"asset\"")) || early(t, tn, "<COLLADA") ||
-        starts(t, tn, "; FBX")) {
+    if (starts(t, tn, "{") && early(t, tn, "\"asset\"")) {
+        *fmt = MODEL_GLTF;
+        return 0;
+    }
+    if (early(t, tn, "<COLLADA") || starts(t, tn, "; FBX")) {
         *fmt = MODEL_IMPORT;
         return 0;
     }
-    if (starts(t, tn, "solid") && (early(t, tn, "facet") || early(t, tn, "endsolid"))) {
+    if (starts_nocase(t, tn, "solid") &&
+        (early_nocase(t, tn, "facet") || early_nocase(t, tn, "endsolid"))) {
         *fmt = MODEL_STL;
         return 0;
     }
@@ -120,6 +147,10 @@ int model_detect(const char *data, size_t len, const char *path, enum model_form
         *fmt = MODEL_STL;
     else if (strcasecmp(ext, "ply") == 0)
         *fmt = MODEL_PLY;
+    else if (strcasecmp(ext, "gltf") == 0 || strcasecmp(ext, "glb") == 0)
+        *fmt = MODEL_GLTF;
+    else if (strcasecmp(ext, "drc") == 0)
+        *fmt = MODEL_DRACO;
     else if (ext_in(ext, import_exts))
         *fmt = MODEL_IMPORT;
     else
@@ -127,10 +158,74 @@ int model_detect(const char *data, size_t len, const char *path, enum model_form
     return 0;
 }
 
+/* the blended triangles after the rest, each part in the file's order */
+static int sort_blended(struct mesh *m)
+{
+    uint32_t n_blend = 0;
+    for (uint32_t t = 0; t < m->n_tris; t++)
+        n_blend += m->materials[m->tri_material[t]].alpha_mode == MAT_BLEND;
+    m->n_opaque = m->n_tris - n_blend;
+    if (n_blend == 0 || n_blend == m->n_tris)
+        return 0;
+    uint32_t(*tris)[3] = malloc((size_t)m->n_tris * sizeof *tris);
+    uint16_t *mat = malloc((size_t)m->n_tris * sizeof *mat);
+    if (!tris || !mat) {
+        free(tris);
+        free(mat);
+        return -1;
+    }
+    uint32_t a = 0, b = m->n_opaque;
+    for (uint32_t t = 0; t < m->n_tris; t++) {
+        uint32_t d = m->materials[m->tri_material[t]].alpha_mode == MAT_BLEND ? b++ : a++;
+        memcpy(tris[d], m->tris[t], sizeof tris[d]);
+        mat[d] = m->tri_material[t];
+    }
+    free(m->tris);
+    free(m->tri_material);
+    m->tris = tris;
+    m->tri_material = mat;
+    return 0;
+}
+
+int model_finish(struct mesh *out, const struct model_ctx *ctx, struct err *e)
+{
+    /* the file's up axis (or --up-axis) turned to +Y */
+    enum model_up up = model_opts_of(ctx)->up;
+    char axis = up == MODEL_UP_X   ? 'x'
+                : up == MODEL_UP_Y ? 'y'
+                : up == MODEL_UP_Z ? 'z'
+                : out->file_up ? out->file_up
+                               : 'y';
+    bool tangent_map = false;
+    int uv_set = -1;
+    out->features = false;
+    for (uint32_t i = 0; i < out->n_materials; i++) {
+        const struct material *m = &out->materials[i];
+        out->features |= m->features;
+        if (m->normal_map.tex >= 0 && m->normal_space == MAT_NORMAL_TANGENT) {
+            tangent_map = true;
+            uv_set = uv_set < 0 ? m->normal_map.uv : uv_set;
+        }
+    }
+    uint32_t one = 0;
+    for (uint32_t t = 0; t < out->n_tris; t++)
+        one += out->materials[out->tri_material[t]].sides == MAT_ONE_SIDED;
+    out->one_sided = one == 0 ? MESH_SIDES_NONE : one == out->n_tris ? MESH_SIDES_ALL
+                                                                      : MESH_SIDES_SOME;
+    char q[FILE_QUOTE_SIZE];
+    file_quote(ctx->path ? ctx->path : "<memory>", q, sizeof q);
+    if (sort_blended(out))
+        return err_set(e, "%s: out of memory", q);
+    if (tangent_map && !out->tangents && mesh_tangents(out, uv_set > 0 && out->uv1))
+        return err_set(e, "%s: out of memory making tangents", q);
+    mesh_turn_up(out, axis);
+    return 0;
+}
+
 typedef int (*model_reader)(const char *, size_t, const struct model_ctx *, struct mesh *,
                             struct err *);
-static const model_reader readers[MODEL_FORMAT_COUNT] = {obj_read, stl_read, ply_read,
-                                                         import_read};
+static const model_reader readers[MODEL_FORMAT_COUNT] = {obj_read,    stl_read,  ply_read,
+                                                         import_read, gltf_read, draco_read};
 
 int model_parse_as(enum model_format f, const char *data, size_t len,
                    const struct model_ctx *ctx, struct mesh *out, struct err *e)
@@ -142,15 +237,8 @@ int model_parse_as(enum model_format f, const char *data, size_t len,
     if (!c.cache)
         c.cache = &local;
     int rc = readers[f](data, len, &c, out, e);
-    if (rc == 0) { /* the file's up axis (or --up-axis) turned to +Y */
-        enum model_up up = model_opts_of(ctx)->up;
-        char axis = up == MODEL_UP_X   ? 'x'
-                    : up == MODEL_UP_Y ? 'y'
-                    : up == MODEL_UP_Z ? 'z'
-                    : out->file_up ? out->file_up
-                                   : 'y';
-        mesh_turn_up(out, axis);
-    }
+    if (rc == 0)
+        rc = model_finish(out, &c, e);
     if (!ctx->cache) {
         for (int i = 0; i < local.n; i++) {
             bool moved = false;

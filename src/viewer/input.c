@@ -32,7 +32,7 @@ static const char *const help[] = {
     "Tab S-Tab  next / previous scene",
     "m          shading: wire flat gouraud phong textured",
     "f          texture filter nearest / bilinear / trilinear",
-    "c          culling none / back / front",
+    "c          culling none / back / front / auto (as the model says)",
     "l          light: follows the camera / fixed in the world",
     "v          view: colour depth normals overdraw wireframe",
     "R          rasterizer: edge scanline tiled",

@@ -270,9 +270,11 @@ def globe(d, seg=48, rings=24):
                    "scale": [scale] * 3}],
         "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2},
                                     "indices": 3, "material": 0}]}],
+        # roughness 0.4925: rastty's Blinn-Phong exponent 32, the OBJ twin's Ns (light.h:
+        # n = 2 / r^4 - 2); a dielectric's highlight then has ks 0.484 against the MTL's 0.5
         "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1],
                                                 "baseColorTexture": {"index": 0},
-                                                "metallicFactor": 0}}],
+                                                "metallicFactor": 0, "roughnessFactor": 0.4925}}],
         "textures": [{"source": 0}],
         "images": [{"bufferView": 4, "mimeType": "image/png"}],
         "buffers": [{"byteLength": len(blob)}],

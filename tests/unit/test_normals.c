@@ -393,3 +393,25 @@ TEST(a_flat_model_is_never_framed_edge_on)
     vec3 dir = v3_norm(v3_sub(cam.eye, cam.target));
     CHECK(dir.y > 0.7);
 }
+TEST(gltf_without_normals_is_flat)
+{
+    /* glTF 2.0: "When normals are not specified, client implementations MUST calculate flat
+     * normals": two triangles folded by 20 degrees, sharing an edge */
+    static const char gltf[] =
+        "{\"asset\":{\"version\":\"2.0\"},\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0}],"
+        "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1}]}],"
+        "\"buffers\":[{\"byteLength\":60,\"uri\":\"data:application/octet-stream;base64,"
+        /* (0,0,0) (1,0,0) (0,1,0) (1,1,0.36397) ; indices 0 1 2, 2 1 3 */
+        "AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAACAPwAAgD9HWro+AAABAAIAAgABAAMA\"}],"
+        "\"bufferViews\":[{\"buffer\":0,\"byteLength\":48},{\"buffer\":0,\"byteOffset\":48,"
+        "\"byteLength\":12}],"
+        "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":4,\"type\":\"VEC3\","
+        "\"min\":[0,0,0],\"max\":[1,1,0.36397]},{\"bufferView\":1,\"componentType\":5123,"
+        "\"count\":6,\"type\":\"SCALAR\"}]}";
+    struct mesh m;
+    struct err e;
+    REQUIRE(load_text(gltf, NULL, NULL, &m, &e) == 0);
+    CHECK_EQ_INT(m.n_tris, 2);
+    CHECK_EQ_INT(corners_flat(&m), 0);
+    mesh_free(&m);
+}

@@ -142,6 +142,8 @@ TEST(render_option_keys_cycle_through_every_value)
     CHECK_EQ_INT(s.ro.filter, TEX_TRILINEAR);
     view_key(&s, IN_FILTER, 1);
     CHECK_EQ_INT(s.ro.filter, TEX_NEAREST);
+    view_key(&s, IN_CULL, 1); /* from the default, auto (as the model says) */
+    CHECK_EQ_INT(s.ro.cull, CULL_NONE);
     view_key(&s, IN_CULL, 1);
     CHECK_EQ_INT(s.ro.cull, CULL_BACK);
     for (int i = 1; i < VIEW_COUNT; i++)
