@@ -65,6 +65,29 @@ static const char *const import_exts[] = {
 static const char *const image_exts[] = {"png", "jpg", "jpeg", "tga", "bmp", "gif", "psd",
                                          "hdr", "ppm", "pgm", "pnm", "pic", NULL};
 
+/* UTF-16 text (with a byte-order mark, or without one: every other byte zero in its first
+ * 256): 1 little-endian, 2 big-endian, 0 not */
+static int utf16(const uint8_t *d, size_t n)
+{
+    if (n >= 2 && d[0] == 0xff && d[1] == 0xfe)
+        return 1;
+    if (n >= 2 && d[0] == 0xfe && d[1] == 0xff)
+        return 2;
+    if (n < 8)
+        return 0;
+    size_t w = (n < 256 ? n : 256) & ~(size_t)1, zero_odd = 0, zero_even = 0;
+    for (size_t i = 0; i < w; i += 2) {
+        zero_even += d[i] == 0;
+        zero_odd += d[i + 1] == 0;
+    }
+    /* (ASCII text has no NULs; UTF-16 of mostly ASCII has one in every other byte) */
+    if (zero_even == 0 && zero_odd * 4 >= w / 2 * 3)
+        return 1;
+    if (zero_odd == 0 && zero_even * 4 >= w / 2 * 3)
+        return 2;
+    return 0;
+}
+
 int model_detect(const char *data, size_t len, const char *path, enum model_format *fmt,
                  struct err *e)
 {
@@ -120,7 +143,7 @@ int model_detect(const char *data, size_t len, const char *path, enum model_form
     }
     if (kind)
         return err_set(e, "%s: not a model (%s)", q, kind);
-    if (starts(data, len, "\xff\xfe") || starts(data, len, "\xfe\xff"))
+    if (utf16(u, len))
         return err_set(e, "%s: UTF-16 text (save the file as UTF-8 or ASCII)", q);
     /* text formats: skip a byte-order mark and blanks */
     const char *t = data, *end = data + len;
@@ -255,14 +278,59 @@ int model_parse_as(enum model_format f, const char *data, size_t len,
     return rc;
 }
 
+/* Text the loaders can read from what the file holds: UTF-16 whose characters are all
+ * ASCII becomes those bytes (Windows tools write OBJ and ASCII STL so); a file whose only
+ * line ends are CRs (old Mac) gets LFs. NULL when the text needs neither (or when UTF-16
+ * holds other characters: model_detect then says what it is). */
+static char *readable_text(const char *data, size_t len, size_t *len_out)
+{
+    const uint8_t *d = (const uint8_t *)data;
+    int u = utf16(d, len);
+    if (u) {
+        size_t start = (d[0] == 0xff && d[1] == 0xfe) || (d[0] == 0xfe && d[1] == 0xff) ? 2 : 0;
+        char *t = malloc(len / 2 + 1);
+        if (!t)
+            return NULL;
+        size_t k = 0;
+        for (size_t i = start; i + 1 < len; i += 2) {
+            unsigned c = u == 1 ? d[i] | d[i + 1] << 8 : d[i] << 8 | d[i + 1];
+            if (c == 0 || c >= 0x80) {
+                free(t);
+                return NULL;
+            }
+            t[k++] = (char)c;
+        }
+        t[k] = '\0';
+        *len_out = k;
+        return t;
+    }
+    if (len && !memchr(data, '\n', len) && memchr(data, '\r', len) && !memchr(data, '\0', len)) {
+        char *t = malloc(len + 1);
+        if (!t)
+            return NULL;
+        for (size_t i = 0; i < len; i++)
+            t[i] = data[i] == '\r' ? '\n' : data[i];
+        t[len] = '\0';
+        *len_out = len;
+        return t;
+    }
+    return NULL;
+}
+
 int model_parse(const char *data, size_t len, const struct model_ctx *ctx, struct mesh *out,
                 struct err *e)
 {
     memset(out, 0, sizeof *out);
+    size_t tn;
+    char *text = readable_text(data, len, &tn);
+    if (text)
+        data = text, len = tn;
     enum model_format f;
-    if (model_detect(data, len, ctx->path, &f, e))
-        return -1;
-    return model_parse_as(f, data, len, ctx, out, e);
+    int rc = model_detect(data, len, ctx->path, &f, e);
+    if (rc == 0)
+        rc = model_parse_as(f, data, len, ctx, out, e);
+    free(text);
+    return rc;
 }
 
 const struct model_opts *model_opts_of(const struct model_ctx *ctx)

@@ -61,6 +61,7 @@ struct pparse {
     int n_el;
     char *texture; /* comment TextureFile */
     char up;       /* 'x', 'y' or 'z' from a comment or obj_info naming the up axis; 0 */
+    bool warned_extra; /* an ASCII line with more values than declared was met */
     /* data cursor */
     const uint8_t *d, *end, *start;
     unsigned long line;
@@ -358,6 +359,28 @@ static int read_count(struct pparse *P, enum ptype type, long limit, long *out)
 
 /* ---- elements ---- */
 
+/* ASCII: an element's values read, the rest of its line is more than the header declares
+ * (exporters append values to face lines; assimp reads such files): skipped, with one
+ * warning naming the first such line. A value on the next line is the next element's. */
+static void ascii_line_end(struct pparse *P, const struct element *el)
+{
+    if (P->format != F_ASCII)
+        return;
+    const char *p = (const char *)P->d, *end = (const char *)P->end;
+    while (p < end && *p != '\n' && lex_is_ws(*p))
+        p++;
+    if (p >= end || *p == '\n')
+        return;
+    if (!P->warned_extra)
+        warn_add(P->ctx->warn, "%s:%lu: a '%s' line holds more values than the header "
+                               "declares; the extra values are skipped",
+                 P->where, P->line, el->name);
+    P->warned_extra = true;
+    while (p < end && *p != '\n')
+        p++;
+    P->d = (const uint8_t *)p;
+}
+
 static int check_room(struct pparse *P, const struct element *el)
 {
     size_t left = (size_t)(P->end - P->d), min = 0;
@@ -428,6 +451,7 @@ static int read_vertices(struct pparse *P, const struct element *el)
             default: break;
             }
         }
+        ascii_line_end(P, el);
     }
     return 0;
 }
@@ -500,6 +524,7 @@ static int read_faces(struct pparse *P, const struct element *el, long index)
             else if (pr->role == R_TEXCOORD && n_tc < 0)
                 n_tc = cnt;
         }
+        ascii_line_end(P, el);
         if (n < 0)
             return data_err(P, "face element has no vertex_indices");
         if (n < 3)
@@ -536,7 +561,7 @@ static int read_faces(struct pparse *P, const struct element *el, long index)
 
 static int skip_element(struct pparse *P, const struct element *el)
 {
-    for (long i = 0; i < el->count; i++)
+    for (long i = 0; i < el->count; i++) {
         for (int k = 0; k < el->n_props; k++) {
             const struct prop *pr = &el->props[k];
             double v;
@@ -547,6 +572,8 @@ static int skip_element(struct pparse *P, const struct element *el)
                 if (read_value(P, pr->type, &v))
                     return -1;
         }
+        ascii_line_end(P, el);
+    }
     return 0;
 }
 
