@@ -10,7 +10,11 @@ CFLAGS  += $(WARN) $(DEFS) $(FLOOR) $(OPT) -DRASTTY_DATADIR='"$(PREFIX)/share/ra
 # meshoptimizer (mesh level of detail) has no pkg-config file in Debian: its shared library
 # brings its own C++ runtime (libstdc++) as a dependency
 LDLIBS  += $(shell pkg-config --libs $(PKGS) 2>/dev/null || echo -lncursesw -lstb -lpng16 -ljpeg -lassimp) \
-           -lmeshoptimizer -lpthread -lm
+           -lmeshoptimizer -ldraco -lstdc++ -lpthread -lm
+# Draco (draco.h) is a C++ library: its one shim, src/scene/draco_shim.cc, is the project's
+# only C++ source (no exceptions leave it; it is called in the sandbox's child only)
+CXX     ?= g++
+CXXFLAGS += -std=c++17 -Wall -Wextra -Werror -D_DEFAULT_SOURCE $(OPT) $(shell pkg-config --cflags draco 2>/dev/null)
 
 # `make V=1` shows full command lines
 Q       := $(if $(V),,@)
@@ -47,17 +51,19 @@ KERNELS_AVX2 ?= $(if $(findstring x86_64,$(shell $(CC) -dumpmachine)),yes,no)
 AVX2_SRCS := src/render/kernel/kernel_avx2.c src/render/kernel/kernel_avx2_4.c
 SRCS    := $(filter-out $(if $(filter yes,$(KERNELS_AVX2)),,$(AVX2_SRCS)),\
                         $(wildcard src/*/*.c src/*/*/*.c)) src/main.c
-LIBOBJS := $(patsubst src/%.c,$(BUILD)/obj/%.o,$(filter-out src/main.c,$(SRCS)))
+CXXSRCS := $(wildcard src/*/*.cc)
+LIBOBJS := $(patsubst src/%.c,$(BUILD)/obj/%.o,$(filter-out src/main.c,$(SRCS))) \
+           $(patsubst src/%.cc,$(BUILD)/obj/%.o,$(CXXSRCS))
 MAINOBJ := $(BUILD)/obj/main.o
 UNITSRC := $(wildcard tests/unit/*.c)
 UNITOBJ := $(patsubst tests/unit/%.c,$(BUILD)/tests/%.o,$(UNITSRC))
 
-# build: the first eight; tests: OSMesa (the oracle), chafa (the glyph fitting's reference),
+# build: the first nine; tests: OSMesa (the oracle), chafa (the glyph fitting's reference),
 # tmux and procps (pkill) for the
 # end-to-end tests, ncurses-term (xterm-direct terminfo), python3 (asset checks)
 DEBIAN_PKGS := build-essential pkg-config libncurses-dev libstb-dev libpng-dev \
-               libjpeg62-turbo-dev libassimp-dev libmeshoptimizer-dev libosmesa6-dev chafa tmux \
-               ncurses-term procps python3
+               libjpeg62-turbo-dev libassimp-dev libmeshoptimizer-dev libdraco-dev libosmesa6-dev \
+               chafa tmux ncurses-term procps python3
 
 .PHONY: all layers test unit check-asan asan-build floor-build bench chart deps install uninstall clean help fuzz
 
@@ -94,6 +100,11 @@ $(BUILD)/obj/%.o: src/%.c
 	@mkdir -p $(dir $@)
 	@echo "  CC      $< $(KERNEL_FLAGS)"
 	$(Q)$(CC) $(CFLAGS) $(LAYER_INC) $(KERNEL_FLAGS) -MMD -MP -c -o $@ $<
+
+$(BUILD)/obj/%.o: src/%.cc
+	@mkdir -p $(dir $@)
+	@echo "  CXX     $<"
+	$(Q)$(CXX) $(CXXFLAGS) $(LAYER_INC) -MMD -MP -c -o $@ $<
 
 $(BUILD)/tests/%.o: tests/unit/%.c | $(BUILD)/tests
 	@echo "  CC      $<"
@@ -166,7 +177,8 @@ FUZZ_CFLAGS  := -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover
                 -std=c11 $(DEFS) $(ALL_INC) $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 build/fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/fuzz_mesh.h tests/fuzz/stb_impl.c $(SRCS)
 	@mkdir -p build/fuzz-work/$*
-	clang $(FUZZ_CFLAGS) $< tests/fuzz/stb_impl.c $(filter-out src/main.c $(AVX2_SRCS),$(SRCS)) -o $@ $(LDLIBS)
+	clang++ -g -O1 -fsanitize=fuzzer-no-link,address,undefined -std=c++17 -D_DEFAULT_SOURCE $(ALL_INC) -c src/scene/draco_shim.cc -o build/fuzz-work/$*/draco_shim.o
+	clang $(FUZZ_CFLAGS) $< tests/fuzz/stb_impl.c $(filter-out src/main.c $(AVX2_SRCS),$(SRCS)) build/fuzz-work/$*/draco_shim.o -o $@ $(LDLIBS)
 fuzz: $(addprefix build/fuzz_,$(FUZZ_TARGETS))
 	@for t in $(FUZZ_TARGETS); do \
 	    echo "== fuzz_$$t ($(FUZZ_SECONDS) s)"; \

@@ -58,6 +58,12 @@ int file_out_commit(struct file_out *o, struct err *e);
 /* Give up: remove the temporary file, free o. Harmless on a zeroed or finished o. */
 void file_out_abort(struct file_out *o);
 
+/* Does path lie in the folder tree of the file `of` (its directory or below)? Both are
+ * resolved first (realpath: symbolic links followed, so a link inside that points out is
+ * outside). 1 inside, 0 outside, or an errno value > 1 when path cannot be resolved (it
+ * does not exist). How a model's references are confined (a glTF's buffers and images). */
+int file_inside_dir_of(const char *of, const char *path);
+
 /* A path for messages: printable ASCII, at most 160 bytes ("..." after). */
 const char *file_quote(const char *path, char *buf, size_t size);
 #define FILE_QUOTE_SIZE 170

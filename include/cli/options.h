@@ -16,6 +16,7 @@
 #include "camera.h"
 #include "cell.h"
 #include "err.h"
+#include "model.h"
 #include "render_opts.h"
 
 #define OPTIONS_MAX_INPUTS 64
@@ -39,6 +40,7 @@ struct options {
     struct render_opts render;
     bool lod_set;             /* --lod given (the viewer's default is auto, the others' off) */
     const char *texture;      /* --texture */
+    struct model_opts model;  /* how models are read: --crease, --up-axis, --allow-outside */
     const char *out;          /* --out */
     const char *depth_out;    /* --depth-out */
     bool stats;               /* --stats: print frame statistics to stderr */

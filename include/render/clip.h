@@ -21,6 +21,8 @@
 
 #define CLIP_MAX_VERTS 9
 
+/* n_var: the varyings var[0 .. n_var) are interpolated (with wpos); a negative n_var means
+ * the features path's all[0 .. -n_var) (vertex.h, struct vary_rich). */
 int clip_triangle(const struct vertex_out *const in[3], uint32_t planes, int n_var, double guard_x,
                   double guard_y, struct vertex_out out[CLIP_MAX_VERTS]);
 

@@ -19,6 +19,8 @@
 #include "vertex.h"
 #include "workers.h"
 
+#define FRAME_MAX_RICH (2 * SCENE_MAX_ITEMS + 2)
+
 /* What one frame's front ends and back ends share (one per thread of drawing with slices:
  * each slice has its framebuffer and counts). */
 struct frame {
@@ -30,6 +32,10 @@ struct frame {
     struct span_ctx span;        /* the template every thread's context starts from */
     struct fb *fb;
     struct frame_stats *stats;
+    /* the features path's items (shade.h, struct rich_item): one per item and pass that
+     * has material features, alive for the frame (the batches point into it) */
+    struct rich_item rich[FRAME_MAX_RICH];
+    int n_rich;
 };
 
 /* The frame's constants: camera, lights, methods, and the span functions for the methods

@@ -56,6 +56,9 @@ struct kernel {
     span_fn span_packs_z[SHADE_COUNT][TEX_FILTER_COUNT];
     span_fn span_packs[SHADE_COUNT];
     span_fn span_runs[SHADE_COUNT];
+    /* the features path (materials with features, shade.h): every method, a pixel at a time
+     * through kernel_rich_pixel, the same scalar function in every kernel */
+    span_fn span_rich[SHADE_COUNT];
     /* by enum raster_method: the edge rasterizer is the kernel's own, scanline and tiled
      * are shared (raster_scan.c, raster_tile.c); the reference has one plain loop for all */
     raster_fn raster[RASTER_COUNT];

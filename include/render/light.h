@@ -151,6 +151,38 @@ static inline void light_terms(const struct light_env *env, const float n[3], co
         light_terms_channels(env, n, v, ns, 3, d_out, s_out);
 }
 
+/* The features path's light sums (phong, shade.h): light_terms over every channel, with
+ * the ambient scaled by occ (glTF's occlusion texture) and the direct diffuse by kdiff
+ * (1 - metallic: a metal's colour is in its highlight and its surroundings, not in its
+ * diffuse). */
+static inline void light_terms_rich(const struct light_env *env, const float n[3],
+                                    const float v[3], float ns, float occ, float kdiff,
+                                    float d_out[3], float s_out[3])
+{
+    float d[3] = {0, 0, 0}, s[3] = {0, 0, 0};
+    for (int i = 0; i < env->n; i++) {
+        const float *l = env->dir[i], *col = env->col[i];
+        float h[3] = {l[0] + v[0], l[1] + v[1], l[2] + v[2]};
+        float hl = sqrtf(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+        float ih = hl > 0 ? 1.0f / hl : 0;
+        float ndl = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];
+        float ndh = (n[0] * h[0] + n[1] * h[1] + n[2] * h[2]) * ih;
+        float dd = ndl > 0 ? ndl : 0;
+        float ss = light_pow(ndh > 0 ? ndh : 0, ns);
+        for (int k = 0; k < 3; k++) {
+            d[k] += dd * col[k];
+            s[k] += ss * col[k];
+        }
+    }
+    float up = 0.5f + 0.5f * n[1];
+    for (int k = 0; k < 3; k++) {
+        float sky = env->sky[k], ground = env->ground[k];
+        float a = sky == ground ? sky : ground + up * (sky - ground);
+        d_out[k] = a * occ + LIGHT_DIFFUSE * kdiff * d[k];
+        s_out[k] = s[k];
+    }
+}
+
 /* c = albedo * D + ks * S (unclamped) */
 static inline void light_combine(const float albedo[3], const float d[3], const float s[3],
                                  const float ks[3], float rgb_out[3])

@@ -17,6 +17,7 @@
 #define RASTTY_PLAN_SLICES_H
 
 #include "frontend.h"
+#include "plan_blend.h"
 
 struct plan_slice {
     _Alignas(64) struct frontend fe;

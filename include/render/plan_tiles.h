@@ -16,6 +16,7 @@
 #define RASTTY_PLAN_TILES_H
 
 #include "frontend.h"
+#include "plan_blend.h"
 
 struct plan_tiles {
     struct frontend fe;

@@ -35,7 +35,10 @@
 #define RENDER_MAX_LIGHTS SCENE_MAX_LIGHTS
 
 enum shade_mode { SHADE_UNLIT, SHADE_FLAT, SHADE_GOURAUD, SHADE_PHONG, SHADE_WIRE, SHADE_COUNT };
-enum cull_mode { CULL_NONE, CULL_BACK, CULL_FRONT, CULL_COUNT };
+/* CULL_AUTO (the default): as the model's materials say — glTF's single-sided materials
+ * (doubleSided false) drop their back faces, every other face is drawn (the conventions'
+ * "no culling" for OBJ and the formats without a rule) */
+enum cull_mode { CULL_NONE, CULL_BACK, CULL_FRONT, CULL_AUTO, CULL_COUNT };
 /* Methods: each axis picks one way to do a stage; every combination draws the same scene.
  * What each costs and where it fails is documented beside its code: rasterizers in raster.h,
  * perspective methods in span.h, depth buffers in fb.h (enum depth_mode). */
@@ -105,7 +108,7 @@ struct render_opts {
 
 /* Defaults from the conventions: phong, trilinear, edge rasterizer, perspective-correct, float
  * window depth, no supersampling, every mesh in full (lod off; auto's bound LOD_DEFAULT_PX),
- * no culling, textures on, black background, white wire colour, one white light toward
+ * culling as the model says (auto: none but glTF's single-sided materials), textures on, black background, white wire colour, one white light toward
  * (1,1,1), ambient 0.1. */
 void render_opts_default(struct render_opts *o);
 /* The ideal image's methods — rastty's most accurate setting, the reference every method is

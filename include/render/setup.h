@@ -64,6 +64,7 @@ struct setup_tri {
                                  corner k+2 with the interior on its positive side */
     const struct vertex_out *v[3]; /* the projected corners, in the source order */
     uint32_t shade;           /* index of the source triangle's shading constants (batch.h) */
+    uint8_t rich;             /* drawn by the features path (shade.h): set by the front end */
 };
 
 /* A quantity that is linear in screen space: its value at the centre of pixel (x, y) is
@@ -87,7 +88,7 @@ struct setup_interp {
                                the constant 1 (affine) */
     /* numerators sum l_k a_k / w_k (affine: sum l_k a_k), varying k's plane a_c[k],
      * a_dx[k], a_dy[k] (by coefficient: four varyings' planes are made at once) */
-    float a_c[VARY_MAX], a_dx[VARY_MAX], a_dy[VARY_MAX];
+    float a_c[VARY_ALL], a_dx[VARY_ALL], a_dy[VARY_ALL];
 };
 
 enum setup_result { SETUP_DRAW, SETUP_EMPTY };
@@ -135,7 +136,8 @@ enum setup_result setup_triangle_in_box(const struct vertex_out *v0, const struc
                                         struct setup_tri *t);
 
 /* Interpolation setup (see above) is a kernel's (kernel.h): setup_interp(t, depth, proj,
- * affine, n_var, out) in src/render/kernel/kernel_setup.h builds n_var varyings' planes; proj
+ * affine, base, n_var, out) in src/render/kernel/kernel_setup.h builds the planes of the n_var
+ * varyings from each vertex's all[base] on (VARY_BASE: var[]; 0: the features path's); proj
  * is the depth method's camera data (fb.h); affine: numerators without the division by w. */
 
 #endif

@@ -81,7 +81,10 @@ struct span_ctx {
     enum persp_method persp;
     enum depth_mode depth;
     span_fn flush[SPAN_SIZES]; /* by size class: the kernels' functions for the frame's
-                                * methods (kernel_choose_span) */
+                                * methods (kernel_choose_span), for the current triangle's
+                                * path: the default's, or the features path's */
+    span_fn flush_path[2][SPAN_SIZES]; /* [0] the default path's, [1] the features path's */
+    uint8_t path;              /* which of them flush holds */
     /* per triangle (span_begin) */
     const struct setup_tri *tri;
     const struct shade_tri *st;
@@ -102,6 +105,11 @@ struct span_ctx {
 static inline void span_begin(struct span_ctx *s, const struct setup_tri *t,
                               const struct shade_tri *st, uint32_t tri_index)
 {
+    if (t->rich != s->path) { /* (rare: only a mesh with material features changes it) */
+        s->path = t->rich;
+        for (int c = 0; c < SPAN_SIZES; c++)
+            s->flush[c] = s->flush_path[t->rich][c];
+    }
     s->tri = t;
     s->st = st;
     s->tri_index = tri_index;

@@ -9,8 +9,11 @@
  *                            lights (light_env.grey) u v D S: the channels are equal
  *                            (VARY_GOURAUD_D, VARY_GOURAUD_S say where they are)
  *        phong, normals    : u v, world position xyz, world normal xyz
- *        + for a mesh with vertex colours (PLY): rgb in var[VARY_COLOR..+2] (2..7 zero where
- *          the mode leaves them unused), which multiplies the albedo
+ *        + for a mesh with vertex colours (PLY, OBJ, STL): rgb in var[VARY_COLOR..+2] (2..7
+ *          zero where the mode leaves them unused), which multiplies the albedo
+ *      A mesh with material features (mesh.h: mesh.features) is drawn by the features path
+ *      (shade.h) with its own varyings, laid out by struct vary_rich over all[] (the
+ *      world position and the varyings together, VARY_ALL floats): see vertex_rich_layout.
  * Varyings are interpolated perspective-correctly downstream; clip.c interpolates all of them
  * linearly in clip space, which is exact for perspective-correct attributes.
  *
@@ -22,6 +25,7 @@
 #ifndef RASTTY_VERTEX_H
 #define RASTTY_VERTEX_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "light.h"
@@ -32,6 +36,8 @@
 
 #define VARY_MAX 12
 #define VARY_COLOR 8 /* var[8..10]: the vertex colour (0..1), for meshes that have one */
+#define VARY_ALL 16  /* all[]: wpos, var and the record's last 4 bytes, as one array */
+#define VARY_BASE 3  /* var == all + VARY_BASE: where the default path's varyings start */
 /* where Gouraud's D and S start: rgb at 2 and 5, or with grey lights one float each at 2, 3 */
 #define VARY_GOURAUD_D 2
 #define VARY_GOURAUD_S(grey) ((grey) ? 3 : 5)
@@ -79,10 +85,32 @@ struct vertex_out {
     uint8_t shaded;    /* enum vertex_shaded: are wpos and var valid? */
     double clip[4];    /* x, y, z, w in clip space */
     double win[2];     /* window x, y (pixels, y down); valid when `projected` */
-    float wpos[3];     /* world position (flat shading, centroid and face normal) */
-    float var[VARY_MAX];
+    union {
+        struct {
+            float wpos[3]; /* world position (flat shading, centroid and face normal) */
+            float var[VARY_MAX];
+        };
+        float all[VARY_ALL]; /* the features path's varyings (struct vary_rich), from 0 */
+    };
 };
 _Static_assert(sizeof(struct vertex_out) == 128, "struct vertex_out: two cache lines");
+_Static_assert(offsetof(struct vertex_out, var) == offsetof(struct vertex_out, all) + VARY_BASE * 4,
+               "var is all[] from VARY_BASE on");
+
+/* The features path's varyings in all[] (offsets; -1: absent), for a mesh and mode
+ * (vertex_rich_layout): all[0..2] the world position always (flat shading's centroid, the
+ * view vector); interpolated are all[0 .. n) — phong and the normals view: world position,
+ * normal, uv, then tangent (xyz w), colour (rgba), second uv as the mesh has them;
+ * Gouraud: D and S (rgb each, or one each with grey lights) instead of the normal and no
+ * tangent; flat and unlit: position and uv, colour, second uv. What does not fit in
+ * VARY_ALL is dropped, last first: the second uv (its textures read the first), the colour's
+ * alpha (the file's 16 varyings: a normal-mapped, vertex-coloured, two-uv mesh). */
+struct vary_rich {
+    int8_t n;              /* varyings interpolated: all[0 .. n) */
+    int8_t nrm, d, s, uv0, uv1, tan, col;
+    int8_t col_n;          /* colour channels kept (3 or 4; 0 none) */
+    bool dropped_uv1, dropped_alpha;
+};
 
 struct vertex_uniforms {
     int fb_w, fb_h;
@@ -95,7 +123,15 @@ struct vertex_uniforms {
     enum shade_mode shade;
     enum debug_view view;
     struct light_env lights;
+    const struct vary_rich *rich; /* the current item's mesh has features (frame.h): its
+                                     varyings' layout; NULL for every other mesh */
+    float model_det;               /* sign of the model matrix's determinant (tangents' w) */
 };
+
+/* The layout of the features path's varyings for mesh m drawn in mode (view: the debug
+ * view; grey: light_env.grey). */
+void vertex_rich_layout(const struct mesh *m, enum shade_mode mode, enum debug_view view,
+                        bool grey, struct vary_rich *out);
 
 /* Number of varyings written for a shading mode / debug view (grey: light_env.grey). Inline:
  * the span stage asks for every triangle. */
@@ -126,7 +162,7 @@ void vertex_shade(const struct mesh *m, const struct vertex_uniforms *u, uint32_
 static inline bool vertex_shade_batched(const struct mesh *m, const struct vertex_uniforms *u)
 {
     return (u->shade == SHADE_GOURAUD || u->shade == SHADE_PHONG || u->view == VIEW_NORMALS) &&
-           !m->colors;
+           !m->colors && !u->rich;
 }
 /* Outcode of a clip-space position (also used by clip.c for new vertices); the guard band
  * gx, gy >= 1 (as multiples of w: never inside the frustum). */

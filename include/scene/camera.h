@@ -22,10 +22,18 @@ mat4 camera_view(const struct camera *c);
 mat4 camera_proj(const struct camera *c, double aspect);
 /* Unit vector from the scene toward the viewer for orthographic lighting (V is constant). */
 vec3 camera_back(const struct camera *c);
-/* Frame a world-space box: keep the view direction, aim at the box centre and back off until
- * all eight corners are inside the vertical and horizontal fov (5% margin); near/far are set
- * around the box. Orthographic cameras get a view height that fits the box. */
+/* Frame a world-space box: keep the view direction (but never edge-on onto a flat box: see
+ * camera_flat_view), aim at the box centre and back off until all eight corners are inside
+ * the vertical and horizontal fov (5% margin); near/far are set around the box.
+ * Orthographic cameras get a view height that fits the box. */
 void camera_frame_box(struct camera *c, vec3 lo, vec3 hi, double aspect);
+/* The view direction (back: unit, from the scene toward the eye) for a box: back itself,
+ * unless the box is flat (its thinnest side at most CAMERA_FLAT_RATIO of the next) and back
+ * within 60 degrees of its plane — edge-on, a floor or a sheet is a line or nothing — then
+ * turned to 45 degrees above the plane from the thin axis' + side (a 3/4 view from above a
+ * floor). */
+#define CAMERA_FLAT_RATIO 0.1
+vec3 camera_flat_view(vec3 back, vec3 lo, vec3 hi);
 
 /* Interactive control. Yaw turns about the camera's up vector, pitch about its right vector;
  * pitch stops CAMERA_PITCH_LIMIT degrees short of straight up or down. In fly mode the eye

@@ -11,13 +11,10 @@
 #include "err.h"
 #include "mesh.h"
 #include "model.h"
+#include "sandbox.h"
 
 struct import_result {
-    struct {
-        uint8_t *p;
-        size_t n, cap;
-        bool failed;
-    } reply;       /* the flattened scene (see import_build) */
+    struct sandbox_blob reply; /* the flattened scene (see import_build) */
     char msg[220]; /* why it failed */
 };
 

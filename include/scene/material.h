@@ -30,6 +30,24 @@ int material_texture_file(struct mesh *m, uint32_t mat, const char *path, const 
 /* ... or in these bytes (an embedded image); name is for messages. */
 int material_texture_bytes(struct mesh *m, uint32_t mat, const uint8_t *data, size_t len,
                            const char *name, const struct model_ctx *ctx, struct err *e);
+/* Room for n textures (a glTF: one per image its materials use). */
+int material_reserve_n(struct mesh *m, uint32_t n, struct err *e);
+/* An image as a texture of m, not tied to a material: its index in m->textures (the same
+ * image twice: the same index), or -1 when it cannot be used (the warning is given). */
+int material_image_file(struct mesh *m, const char *path, const char *where, unsigned long line,
+                        const struct model_ctx *ctx);
+int material_image_bytes(struct mesh *m, const uint8_t *data, size_t len, const char *name,
+                         const struct model_ctx *ctx);
+/* Blinn-Phong's highlight for a physically based material (glTF; light.h documents the
+ * mapping): ns from the roughness (rounded, 1..1024), ks (display values) from the
+ * dielectric specular colour f0 (linear: 0.04 unless the file says) and the base colour
+ * (linear) mixed by metallic, scaled by the exponent's energy (ns + 8) / 8 and brought
+ * under 1 by its largest channel, so a metal's highlight keeps the metal's hue. */
+void material_pbr_highlight(const float base_lin[3], const float f0[3], float metallic,
+                            float roughness, float ks_out[3], float *ns_out);
+/* linear -> display value (the sRGB transfer function), clamped to [0, 1]; and back */
+float material_srgb_encode(float x);
+float material_srgb_decode(float x);
 /* path relative to the directory of the file `from` (absolute paths unchanged); malloc'd,
  * NULL when out of memory. */
 char *material_path_beside(const char *from, const char *name, size_t name_len);

@@ -28,6 +28,7 @@
 #include "camera.h"
 #include "err.h"
 #include "mesh.h"
+#include "model.h"
 #include "skybox.h"
 
 #define SCENE_MAX_ITEMS 64
@@ -68,6 +69,9 @@ struct scene {
     struct skybox sky;
     vec3 bound_lo, bound_hi;            /* world-space box around every item */
     struct lod_job *lod_job;            /* levels of detail being built (lod.h), or NULL */
+    struct model_opts load;             /* how its models were read (model.h) */
+    char up;                            /* the models' axis drawn up: 'x', 'y' or 'z' (as
+                                           loaded: the file's or --up-axis; scene_turn_up) */
 };
 
 /* One model drawn as given (identity model matrix). */
@@ -76,6 +80,12 @@ int scene_load_model(const char *obj_path, struct scene *out, struct err *e);
 int scene_load_file(const char *path, struct scene *out, struct err *e);
 /* By extension: .rsc -> scene file, anything else -> model. */
 int scene_load(const char *path, struct scene *out, struct err *e);
+/* The same, every model read with these options (model.h; NULL: the defaults). */
+int scene_load_with(const char *path, const struct model_opts *opts, struct scene *out,
+                    struct err *e);
+/* Turn every item so that the next axis of its model file is up (y -> z -> x -> y, about
+ * the scene's centre; the viewer's u key); the new axis. */
+char scene_turn_up(struct scene *s);
 /* Draw every item with this texture instead of its own (--texture). */
 int scene_set_texture(struct scene *s, const char *path, struct err *e);
 /* Build every mesh's levels of detail (lod.h): wait = before returning; else on a background

@@ -218,6 +218,71 @@ static inline void texture_sample(const struct texture *t, enum tex_filter f, fl
         rgb_out[c] += frac * (c1[c] - rgb_out[c]);
 }
 
+/* ---- the features path (shade.h): wrap modes and alpha, scalar only ---- */
+
+/* texture_wrap with a sampler's wrap mode (mesh.h's enum tex_wrap: 0 repeat, 1 clamp to
+ * edge, 2 mirrored repeat), GL's rules: clamp takes the edge texel, mirror runs every other
+ * copy backwards (period 2n) */
+static inline int texture_wrap_mode(float x, int n, int mode)
+{
+    if (mode == 0)
+        return texture_wrap(x, n);
+    if (!(x > -1e9f && x < 1e9f))
+        return 0;
+    int i = (int)x;
+    i -= (float)i > x; /* floor */
+    if (mode == 1)
+        return i < 0 ? 0 : i >= n ? n - 1 : i;
+    int p = 2 * n, m = i % p;
+    m += m < 0 ? p : 0;
+    return m < n ? m : p - 1 - m;
+}
+
+/* texture_bilinear with wrap modes, four channels */
+static inline void texture_bilinear_wrap(const struct texture_level *lv, int ws, int wt,
+                                         float u, float v, float out[4])
+{
+    const float k = 1.0f / 255.0f;
+    float x = u * (float)lv->w - 0.5f, y = v * (float)lv->h - 0.5f;
+    if (!(x > -1e9f && x < 1e9f && y > -1e9f && y < 1e9f))
+        x = y = 0;
+    int xi = (int)x, yi = (int)y;
+    xi -= (float)xi > x, yi -= (float)yi > y; /* floor */
+    float ax = x - (float)xi, ay = y - (float)yi;
+    int i0 = texture_wrap_mode((float)xi, lv->w, ws), i1 = texture_wrap_mode((float)xi + 1, lv->w, ws);
+    int j0 = texture_wrap_mode((float)yi, lv->h, wt), j1 = texture_wrap_mode((float)yi + 1, lv->h, wt);
+    const uint8_t *p00 = texture_texel(lv, i0, j0), *p10 = texture_texel(lv, i1, j0);
+    const uint8_t *p01 = texture_texel(lv, i0, j1), *p11 = texture_texel(lv, i1, j1);
+    for (int c = 0; c < 4; c++) {
+        float a = p00[c] + ax * (p10[c] - p00[c]);
+        float b = p01[c] + ax * (p11[c] - p01[c]);
+        out[c] = (a + ay * (b - a)) * k;
+    }
+}
+
+/* texture_sample with wrap modes (ws, wt), rgba in [0, 1] */
+static inline void texture_sample_wrap(const struct texture *t, enum tex_filter f, int ws, int wt,
+                                       float u, float v, float lambda, float out[4])
+{
+    struct texture_level base = texture_base(t);
+    if (f == TEX_NEAREST) {
+        const uint8_t *p = texture_texel(&base, texture_wrap_mode(u * (float)base.w, base.w, ws),
+                                         texture_wrap_mode(v * (float)base.h, base.h, wt));
+        for (int c = 0; c < 4; c++)
+            out[c] = p[c] * (1.0f / 255.0f);
+        return;
+    }
+    float frac = 0;
+    int l0 = f == TEX_TRILINEAR ? texture_levels(t, lambda, &frac) : 0;
+    texture_bilinear_wrap(l0 == 0 ? &base : &t->level[l0], ws, wt, u, v, out);
+    if (f != TEX_TRILINEAR || frac == 0)
+        return;
+    float c1[4];
+    texture_bilinear_wrap(&t->level[l0 + 1], ws, wt, u, v, c1);
+    for (int c = 0; c < 4; c++)
+        out[c] += frac * (c1[c] - out[c]);
+}
+
 /* texture_wrap for four coordinates */
 SIMD_INLINE vi texture_wrap_v(vf x, int n)
 {

@@ -27,6 +27,8 @@ struct view_shot_info {
     bool background_set;      /* --background was given */
     const uint8_t *background;
     bool sky;                 /* the viewer's default procedural sky is behind the scene */
+    char up_axis;             /* 'x', 'y' or 'z': the model's axis drawn up, when the u key
+                                 changed it (or --up-axis gave it); 0: the file's own */
 };
 
 void view_shot_command(const struct view_state *s, const struct view_shot_info *in, char *out,

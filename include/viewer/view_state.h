@@ -44,6 +44,7 @@ enum view_action {
     VIEW_HELP_OPENED,
     VIEW_HELP_CLOSED,  /* the cells under the overlay must be drawn again */
     VIEW_SCREENSHOT,
+    VIEW_TURN_UP,      /* the model's next axis up (scene_turn_up), framed again */
 };
 
 struct view_state {

@@ -13,6 +13,37 @@ const char *file_quote(const char *path, char *buf, size_t size)
     return err_quote(path, strlen(path), 160, buf, size);
 }
 
+int file_inside_dir_of(const char *of, const char *path)
+{
+    const char *slash = strrchr(of, '/');
+    size_t dl = slash ? (size_t)(slash - of) : 0;
+    char *dir = malloc(dl + 2);
+    if (!dir)
+        return ENOMEM;
+    if (slash == of)
+        strcpy(dir, "/");
+    else if (dl)
+        memcpy(dir, of, dl), dir[dl] = '\0';
+    else
+        strcpy(dir, ".");
+    char *rd = realpath(dir, NULL);
+    int err = errno;
+    free(dir);
+    if (!rd)
+        return err > 1 ? err : ENOENT;
+    char *rp = realpath(path, NULL);
+    err = errno;
+    if (!rp) {
+        free(rd);
+        return err > 1 ? err : ENOENT;
+    }
+    size_t n = strlen(rd);
+    int inside = strncmp(rp, rd, n) == 0 && (rp[n] == '/' || (n == 1 && rd[0] == '/'));
+    free(rd);
+    free(rp);
+    return inside;
+}
+
 static int kind_error(mode_t m)
 {
     if (S_ISDIR(m))

@@ -125,7 +125,7 @@ static int bench_scene(const struct options *o, const char *path, int cols, int 
                        struct err *e)
 {
     struct scene scene;
-    if (scene_load(path, &scene, e))
+    if (scene_load_with(path, &o->model, &scene, e))
         return 2;
     if (o->render.lod != LOD_OFF && scene_build_lod(&scene, true, e)) {
         scene_free(&scene);

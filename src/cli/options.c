@@ -30,7 +30,7 @@ enum flag_id {
     F_COLORS, F_TOLERANCE, F_DITHER, F_DIFF, F_PPM_DIR, F_FRAME_INDEX, F_FPS, F_NO_HUD, F_CHART,
     F_SWEEP, F_CSV, F_SVG, F_MODELS, F_HELP, F_VERSION, F_SPIN, F_NO_SPIN, F_BANDWIDTH, F_SKY,
     F_LOD,
-    F_GLYPHS, F_BUDGET,
+    F_GLYPHS, F_BUDGET, F_CREASE, F_UP_AXIS,
 };
 
 struct flag {
@@ -63,6 +63,8 @@ static const struct flag flags[] = {
     {"--light", F_LIGHT, ARG_VALUE, C_DRAW | C_BENCH, "X,Y,Z|camera", "fixed light toward X,Y,Z (default 1,1,1), or the headlight (viewer default)", NULL, 0},
     ENUM_FLAG("--shade", C_DRAW | C_BENCH, "shading", render_shade_names, render.shade),
     {"--texture", F_TEXTURE, ARG_VALUE, C_DRAW, "FILE", "diffuse texture replacing the materials' (PNG, JPEG, TGA, BMP, GIF, PSD, PNM, HDR)", NULL, 0},
+    {"--crease", F_CREASE, ARG_VALUE, C_DRAW | C_BENCH, "DEG", "a model without normals keeps edges where its faces turn by more than DEG sharp, 0..180 (default: 30; OBJ 180, one smooth normal per position; glTF 0, flat)", NULL, 0},
+    {"--up-axis", F_UP_AXIS, ARG_VALUE, C_DRAW | C_BENCH, "x|y|z", "the model's axis that points up, turned to +Y (default: the file's metadata, else its format's convention: STL z, the others y)", NULL, 0},
     {"--no-texture", F_NO_TEXTURE, ARG_NONE, C_DRAW, NULL, "ignore all textures (albedo = Kd)", NULL, 0},
     ENUM_FLAG("--filter", C_DRAW | C_BENCH, "texture filter", render_filter_names, render.filter),
     ENUM_FLAG("--raster", C_DRAW | C_BENCH, "rasterizer", render_raster_names, render.raster),
@@ -398,6 +400,20 @@ static int apply(struct options *o, const struct flag *f, const char *v, struct 
             return bad(e, f->name, "expected off, auto, auto:PX (pixels > 0) or RATIO (a fraction "
                                    "of the triangles, 0 < RATIO <= 1)", v);
         o->lod_set = true;
+        return 0;
+    case F_CREASE: {
+        double deg;
+        if (parse_double(v, &deg) || !(deg >= 0 && deg <= 180))
+            return bad(e, f->name, "expected an angle in degrees, 0..180", v);
+        o->model.crease_set = true;
+        o->model.crease_deg = (float)deg;
+        return 0;
+    }
+    case F_UP_AXIS:
+        if (strlen(v) != 1 || !strchr("xyzXYZ", v[0]))
+            return bad(e, f->name, "expected x, y or z", v);
+        o->model.up = (v[0] | 0x20) == 'x' ? MODEL_UP_X : (v[0] | 0x20) == 'y' ? MODEL_UP_Y
+                                                                                : MODEL_UP_Z;
         return 0;
     case F_HELP: o->cmd = CMD_HELP; return 0;
     case F_VERSION: o->cmd = CMD_VERSION; return 0;

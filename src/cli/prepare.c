@@ -76,7 +76,7 @@ int prepare_scene(const struct options *o, const char *path, struct scene *s, ch
 {
     if (found_out && n)
         found_out[0] = '\0';
-    if (scene_load(path, s, e))
+    if (scene_load_with(path, &o->model, s, e))
         return -1;
     if (o->texture && scene_set_texture(s, o->texture, e)) {
         scene_free(s);

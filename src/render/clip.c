@@ -25,6 +25,11 @@ static void lerp(const struct vertex_out *a, const struct vertex_out *b, double 
         out->clip[k] = a->clip[k] + t * (b->clip[k] - a->clip[k]);
     for (int k = 0; k < 3; k++)
         out->wpos[k] = a->wpos[k] + tf * (b->wpos[k] - a->wpos[k]);
+    if (n_var < 0) { /* the features path: all[3 .. -n_var) too (all[0..2] is wpos) */
+        for (int k = 3; k < -n_var; k++)
+            out->all[k] = a->all[k] + tf * (b->all[k] - a->all[k]);
+        return;
+    }
     for (int k = 0; k < n_var; k++)
         out->var[k] = a->var[k] + tf * (b->var[k] - a->var[k]);
 }

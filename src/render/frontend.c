@@ -104,13 +104,15 @@ static int flush(struct frontend *fe, struct frame *f, struct err *e)
 
 /* append one triangle (a source triangle or a piece of one) to the batch */
 static void add_setup(struct frontend *fe, struct frame *f, const struct vertex_out *a,
-                      const struct vertex_out *b, const struct vertex_out *c, uint32_t shade)
+                      const struct vertex_out *b, const struct vertex_out *c, uint32_t shade,
+                      uint8_t rich)
 {
     struct batch *bt = &fe->batch[fe->cur];
     struct setup_tri *t = &bt->tris[bt->n_tris];
     if (setup_triangle(a, b, c, f->fb->w, f->fb->h, t) != SETUP_DRAW)
         return;
     t->shade = shade;
+    t->rich = rich;
     bt->n_tris++;
     f->stats->tris_drawn++;
 }
@@ -119,7 +121,7 @@ static void add_setup(struct frontend *fe, struct frame *f, const struct vertex_
  * front end's loop, which keeps its registers for the common path) */
 static __attribute__((noinline)) void clip_and_add(struct frontend *fe, struct frame *f,
                                                    struct vertex_out *v[3], uint32_t planes,
-                                                   int n_var, uint32_t shade)
+                                                   int n_var, uint32_t shade, uint8_t rich)
 {
     struct batch *bt = &fe->batch[fe->cur];
     struct vertex_out *poly = &bt->verts[bt->n_verts];
@@ -130,7 +132,7 @@ static __attribute__((noinline)) void clip_and_add(struct frontend *fe, struct f
             vertex_project(&poly[k], f->fb->w, f->fb->h);
     bt->n_verts += (uint32_t)n;
     for (int k = 1; k + 1 < n; k++)
-        add_setup(fe, f, &poly[0], &poly[k], &poly[k + 1], shade);
+        add_setup(fe, f, &poly[0], &poly[k], &poly[k + 1], shade, rich);
 }
 
 /* world position and varyings, once per vertex a drawn triangle uses: now, or queued for
@@ -159,6 +161,7 @@ static void shade_vertices(struct frontend *fe, const struct mesh *m, const stru
 struct shade_proto {
     int mat;
     struct shade_tri st;
+    const struct rich_item *rich; /* the features path's item, or NULL */
 };
 
 /* append triangle i's shading record to the batch; its index */
@@ -177,14 +180,39 @@ static uint32_t add_shade(struct batch *bt, const struct frame *f, const struct 
                       : st->mat->texture >= 0 ? &m->textures[st->mat->texture]
                                               : NULL;
         st->vcolor = m->colors != NULL;
+        st->rich = proto->rich;
         light_base_color(st->mat, item->kd_override, st->tex || st->vcolor, st->base);
     }
     uint32_t shade = bt->n_shades++;
     struct shade_tri *st = &bt->shades[shade];
     *st = proto->st;
+    if (proto->rich) /* two-sided lighting turns a back face's normal */
+        st->back = !setup_front_facing(v[0], v[1], v[2]);
     if (f->span.mode == SHADE_FLAT)
         flat_terms(&f->u, v[0], v[1], v[2], st->mat->ns, st);
     return shade;
+}
+
+/* The features path's item for m (frame.h), its varyings' layout the vertex stage follows
+ * (f->u.rich); NULL when the frame has no room (never: FRAME_MAX_RICH covers every item in
+ * both passes) */
+static const struct rich_item *rich_item(struct frame *f, const struct mesh *m)
+{
+    if (f->n_rich == FRAME_MAX_RICH)
+        return NULL;
+    struct rich_item *r = &f->rich[f->n_rich++];
+    vertex_rich_layout(m, f->span.mode, f->u.view, f->u.lights.grey, &r->lay);
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++)
+            r->nmat[a][b] = f->u.normal_f[a][b];
+    r->textures = m->textures;
+    r->textures_on = f->o->textures;
+    const float(*x)[4] = f->u.model_f;
+    float det = x[0][0] * (x[1][1] * x[2][2] - x[1][2] * x[2][1]) -
+                x[0][1] * (x[1][0] * x[2][2] - x[1][2] * x[2][0]) +
+                x[0][2] * (x[1][0] * x[2][1] - x[1][1] * x[2][0]);
+    f->u.model_det = det < 0 ? -1.0f : 1.0f;
+    return r;
 }
 
 int frontend_triangles(struct frontend *fe, struct frame *f, const struct draw_item *item,
@@ -197,6 +225,18 @@ int frontend_triangles(struct frontend *fe, struct frame *f, const struct draw_i
     struct batch *bt = &fe->batch[fe->cur];
     int n_var = depth_only ? 0 : m->colors ? VARY_COLOR + 3 : vertex_varying_count(o->shade, o->view, f->u.lights.grey);
     struct shade_proto proto = {.mat = -1};
+    /* a mesh with material features: the features path (its own varyings, shade.h) */
+    f->u.rich = NULL;
+    if (!depth_only && m->features && (proto.rich = rich_item(f, m))) {
+        f->u.rich = &proto.rich->lay;
+        n_var = -proto.rich->lay.n; /* (clip.h: the features path's all[]) */
+    }
+    const uint8_t rich = proto.rich != NULL;
+    /* culling: --cull, or with auto the materials' sides (glTF's single-sided ones) */
+    enum cull_mode cull = o->cull;
+    const bool by_material = cull == CULL_AUTO && m->one_sided == MESH_SIDES_SOME;
+    if (cull == CULL_AUTO)
+        cull = m->one_sided == MESH_SIDES_ALL ? CULL_BACK : CULL_NONE;
     /* counted in locals, added once: through the stats pointer every count would be a
      * memory update the compiler must keep in order with the batch's stores */
     uint64_t n_rejected = 0, n_culled = 0, n_no_centre = 0;
@@ -230,8 +270,11 @@ int frontend_triangles(struct frontend *fe, struct frame *f, const struct draw_i
             continue;
         }
         /* culling: once per source triangle, never per clipped piece */
-        if (!depth_only && o->cull != CULL_NONE &&
-            setup_culled(o->cull, setup_front_facing(v[0], v[1], v[2]))) {
+        if (!depth_only && (cull != CULL_NONE || by_material) &&
+            setup_culled(by_material && m->materials[m->tri_material[i]].sides == MAT_ONE_SIDED
+                             ? CULL_BACK
+                             : cull,
+                         setup_front_facing(v[0], v[1], v[2]))) {
             n_culled++;
             continue;
         }
@@ -250,6 +293,7 @@ int frontend_triangles(struct frontend *fe, struct frame *f, const struct draw_i
             }
             shade_vertices(fe, m, f, i, v, false);
             t->shade = depth_only ? bt->n_shades : add_shade(bt, f, item, m, i, v, &proto);
+            t->rich = rich;
             bt->n_tris++;
             stats->tris_drawn++;
             continue;
@@ -257,7 +301,7 @@ int frontend_triangles(struct frontend *fe, struct frame *f, const struct draw_i
         shade_vertices(fe, m, f, i, v, true); /* clipping interpolates the varyings */
         uint32_t shade = depth_only ? bt->n_shades : add_shade(bt, f, item, m, i, v, &proto);
         stats->tris_clipped++;
-        clip_and_add(fe, f, v, any & VERTEX_NEEDS_CLIP, n_var, shade);
+        clip_and_add(fe, f, v, any & VERTEX_NEEDS_CLIP, n_var, shade, rich);
     }
     shade_queued(fe, f);
     stats->tris_in += i1 - i0;
@@ -280,7 +324,8 @@ void frontend_edges(const struct mesh *m, const struct vertex_out *vo,
             stats->tris_rejected += !overlay;
             continue;
         }
-        if (o->cull != CULL_NONE && setup_culled(o->cull, setup_front_facing(v[0], v[1], v[2]))) {
+        enum cull_mode cull = o->cull == CULL_AUTO ? CULL_NONE : o->cull;
+        if (cull != CULL_NONE && setup_culled(cull, setup_front_facing(v[0], v[1], v[2]))) {
             stats->tris_culled += !overlay;
             continue;
         }

@@ -152,11 +152,11 @@ static void slice_main(void *arg, int k)
         if (!m)
             continue;
         uint64_t first = base;
-        base += m->n_tris;
+        base += m->n_opaque;
         if (base <= lo)
             continue;
         uint32_t i0 = (uint32_t)(lo > first ? lo - first : 0);
-        uint32_t i1 = (uint32_t)(hi < base ? hi - first : m->n_tris);
+        uint32_t i1 = (uint32_t)(hi < base ? hi - first : m->n_opaque);
         frame_item(&f, &j->items[it], j->pv);
         /* the vertex stage starts at the lowest vertex the slice's triangles use (one flat
          * loop over their indices: the compiler makes it a vector minimum) */
@@ -226,7 +226,7 @@ int plan_slices_draw(struct plan_slices *s, struct workers *w, const struct kern
         if (frame_item_outside(item, m4_mul(pv, item->model), scale, true, stats))
             continue;
         s->mesh[it] = frame_item_level(item, cam, fb->h, o, scale, stats);
-        j->n_tris += s->mesh[it]->n_tris;
+        j->n_tris += s->mesh[it]->n_opaque;
     }
     if (j->n_tris != s->tris) { /* another scene: even slices to start from */
         for (int k = 0; k <= s->n; k++) {
@@ -264,5 +264,7 @@ int plan_slices_draw(struct plan_slices *s, struct workers *w, const struct kern
     if (sky && (o->view == VIEW_COLOR || o->view == VIEW_WIRE_OVERLAY)) /* (where the surfaces
                                                                          left room) */
         frame_sky(w, ks->by_size[SPAN_SIZE_LARGE], sky, cam, fb);
-    return 0;
+    /* the blended triangles over both, back to front, on this thread */
+    return plan_blend_draw(&s->slice[0].fe, &s->slice[0].ctx, ks, items, n_items, cam, o, fb,
+                           pv, stats, e);
 }

@@ -86,7 +86,7 @@ int plan_tiles_draw(struct plan_tiles *t, struct workers *w, const struct kernel
             if (pass == 2 && !pass1)
                 frame_vertices(w, f.k, m, &f.u, vo);
             if (pass == 1) {
-                if (frontend_triangles(&t->fe, &f, item, m, vo, wire, 0, m->n_tris, 0, e))
+                if (frontend_triangles(&t->fe, &f, item, m, vo, wire, 0, m->n_opaque, 0, e))
                     goto fail;
             } else {
                 frontend_edges(m, vo, o, !wire || o->hidden_lines, !wire, fb, stats);
@@ -102,6 +102,10 @@ int plan_tiles_draw(struct plan_tiles *t, struct workers *w, const struct kernel
                 }
             if (show_sky && !wire) /* the sky goes where the surfaces left room */
                 frame_sky(w, f.k, sky, cam, fb);
+            /* the blended triangles over both, back to front, on this thread */
+            if (!wire && plan_blend_draw(&t->fe, &t->ctx[0], ks, items, n_items, cam, o, fb,
+                                         pv, stats, e))
+                return -1;
         }
     }
     return 0;

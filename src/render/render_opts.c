@@ -4,7 +4,7 @@
 #include <string.h>
 
 static const char *const shade_names[] = {"unlit", "flat", "gouraud", "phong", "wire"};
-static const char *const cull_names[] = {"none", "back", "front"};
+static const char *const cull_names[] = {"none", "back", "front", "auto"};
 static const char *const filter_names[] = {"nearest", "bilinear", "trilinear"};
 static const char *const view_names[] = {"color", "depth", "normals", "overdraw", "wire-overlay"};
 static const char *const raster_names[] = {"edge", "scanline", "tiled"};
@@ -51,7 +51,7 @@ void render_opts_default(struct render_opts *o)
     o->lod = LOD_OFF;
     o->lod_ratio = 1;
     o->lod_px = LOD_DEFAULT_PX;
-    o->cull = CULL_NONE;
+    o->cull = CULL_AUTO;
     o->view = VIEW_COLOR;
     o->textures = true;
     o->wire_color[0] = o->wire_color[1] = o->wire_color[2] = 255;

@@ -48,6 +48,7 @@ enum setup_result setup_triangle_in_box(const struct vertex_out *v0, const struc
     if (area < 0)
         idx[1] = 2, idx[2] = 1;
     t->x0 = (int)px0, t->y0 = (int)py0, t->x1 = (int)px1, t->y1 = (int)py1;
+    t->rich = 0; /* (the front end marks the features path's) */
 
     for (int i = 0; i < 3; i++)
         t->X[i] = X[idx[i]], t->Y[i] = Y[idx[i]];

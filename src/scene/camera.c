@@ -29,11 +29,34 @@ vec3 camera_back(const struct camera *c)
     return v3_norm(v3_sub(c->eye, c->target));
 }
 
+vec3 camera_flat_view(vec3 back, vec3 lo, vec3 hi)
+{
+    double ext[3] = {hi.x - lo.x, hi.y - lo.y, hi.z - lo.z};
+    int thin = 0;
+    for (int k = 1; k < 3; k++)
+        thin = ext[k] < ext[thin] ? k : thin;
+    double mid = fmin(ext[(thin + 1) % 3], ext[(thin + 2) % 3]);
+    double b[3] = {back.x, back.y, back.z};
+    if (!(ext[thin] <= CAMERA_FLAT_RATIO * mid) || fabs(b[thin]) >= 0.5)
+        return back;
+    /* half way between the view direction and the thin axis (from its + side: above a
+     * floor): 45 degrees onto the plane */
+    b[thin] = 0;
+    double l = sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
+    if (!(l > 0))
+        b[(thin + 2) % 3] = 1, l = 1;
+    for (int k = 0; k < 3; k++)
+        b[k] /= l;
+    b[thin] = 1;
+    return v3_norm(v3(b[0], b[1], b[2]));
+}
+
 void camera_frame_box(struct camera *c, vec3 lo, vec3 hi, double aspect)
 {
     vec3 back = v3_norm(v3_sub(c->eye, c->target));
     if (v3_len(back) == 0)
         back = v3(0, 0, 1);
+    back = camera_flat_view(back, lo, hi);
     vec3 right = v3_norm(v3_cross(v3_scale(back, -1), c->up));
     vec3 up = v3_cross(right, v3_scale(back, -1));
     vec3 center = v3_scale(v3_add(lo, hi), 0.5);

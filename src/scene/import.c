@@ -1,40 +1,35 @@
-/* import.c: glTF 2.0 / GLB, FBX, COLLADA, 3DS and the other formats assimp reads, as a
- * loader behind model.h.
+/* import.c: FBX, COLLADA, 3DS and the other formats assimp reads, as a loader behind
+ * model.h (glTF has rastty's own reader, gltf.c: assimp's C API could not give its
+ * materials, samplers, extensions and cameras).
  *
- * Why assimp (Debian's libassimp-dev): glTF alone means JSON, base64 data URIs, binary
- * chunks, accessors with strides and sparse storage, node hierarchies; assimp reads it and
- * a dozen other formats people download, is maintained and fuzzed upstream. OBJ, STL and
- * PLY stay on rastty's own parsers (verified against the oracle, with file:line errors).
+ * Why assimp (Debian's libassimp-dev): a dozen formats people download, maintained and
+ * fuzzed upstream. OBJ, STL, PLY and glTF stay on rastty's own parsers (verified against
+ * the oracle, with file:line or byte-offset errors).
  *
  * Isolation: assimp is a large C++ library and malformed files have crashed it before. It
- * runs in a child process (fork) with limits — address space IMPORT_MAX_MEMORY, CPU time
- * IMPORT_MAX_SECONDS, no terminal (stdin/stdout/stderr on /dev/null) — that sends the
- * flattened mesh back through a pipe; the parent waits at most IMPORT_MAX_SECONDS too. A
- * crash, a hang or an allocation storm in the importer becomes one error line
- * ("x.glb: the importer failed (killed by signal 11)"), never a dead viewer or a full
- * machine. Files the model names (glTF buffers and images) are opened through the same
- * rules as everything else (file.h: regular files only, with size limits); a model read
- * from memory may name none.
+ * runs in a child process with limits (sandbox.h: CPU time, address space, no terminal)
+ * that sends the flattened mesh back through a pipe. A crash, a hang or an allocation
+ * storm in the importer becomes one error line ("x.dae: the importer crashed on this file
+ * (killed by signal 11)"), never a dead viewer or a full machine; assimp's own messages
+ * are quoted after the file name. Files the model names are opened through the same rules
+ * as everything else (file.h: regular files only, with size limits); a model read from
+ * memory may name none.
  *
  * What is used: triangles (points and lines dropped), positions, normals when given (else
- * smooth ones, mesh.h), the first uv channel, every node's transform (meshes placed by
- * their node chain, instanced as often as nodes name them), per material the base colour
- * factor (glTF) or diffuse colour as Kd and the base colour / diffuse texture (a file
- * beside the model, or an image embedded in it) through material.h. Cameras, lights,
- * animations and skins are ignored. uv: assimp flips glTF's v so that v = 0 is the bottom
- * row, as in OBJ. */
+ * creased ones, mesh.h), the first uv channel, every node's transform (meshes placed by
+ * their node chain, instanced as often as nodes name them; a mirroring transform keeps
+ * normals outward and reverses the winding), FBX's axis settings, per material the base
+ * colour factor or diffuse colour as Kd and the base colour / diffuse texture (a file
+ * beside the model or in a textures/ folder there, or an image embedded in it) through
+ * material.h. Cameras, lights, animations and skins are ignored. uv: assimp flips v so
+ * that v = 0 is the bottom row, as in OBJ. */
 #include <errno.h>
 #include <math.h>
-#include <poll.h>
-#include <signal.h>
 #include <stdbool.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/resource.h>
-#include <sys/wait.h>
 #include <unistd.h>
-#include <fcntl.h>
 
 #include <assimp/cfileio.h>
 #include <assimp/cimport.h>
@@ -47,66 +42,17 @@
 #include "material.h"
 #include "model.h"
 #include "mtl.h"
-#include "timing.h"
+#include "sandbox.h"
 
-#define IMPORT_MAX_SECONDS 60
-#define IMPORT_MAX_MEMORY ((rlim_t)2 << 30)
 #define IMPORT_MAX_TRIS 50000000u   /* after instancing */
 #define IMPORT_MAX_DEPTH 256        /* node nesting */
 #define IMPORT_MAX_MATERIALS 65535
-#define IMPORT_MAX_REPLY ((size_t)3 << 30)
 
-#if defined(__SANITIZE_ADDRESS__)
-#define IMPORT_UNDER_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define IMPORT_UNDER_ASAN 1
-#endif
-#endif
 
-/* ---- the flattened result (what crosses the pipe) ---- */
+/* ---- the flattened result (what crosses the pipe: sandbox.h's reply) ---- */
 
-struct blob {
-    uint8_t *p;
-    size_t n, cap;
-    bool failed;
-};
-
-static void put(struct blob *b, const void *p, size_t n);
-static void put_reply(struct import_result *r, const void *p, size_t n)
-{
-    put((struct blob *)&r->reply, p, n);
-}
-
-static void put(struct blob *b, const void *p, size_t n)
-{
-    if (b->failed)
-        return;
-    if (n > b->cap - b->n) {
-        size_t cap = b->cap ? b->cap : 1 << 16;
-        while (cap - b->n < n) {
-            if (cap > IMPORT_MAX_REPLY) {
-                b->failed = true;
-                return;
-            }
-            cap *= 2;
-        }
-        uint8_t *np = realloc(b->p, cap);
-        if (!np) {
-            b->failed = true;
-            return;
-        }
-        b->p = np;
-        b->cap = cap;
-    }
-    memcpy(b->p + b->n, p, n);
-    b->n += n;
-}
-
-static void put_u32(struct blob *b, uint32_t v)
-{
-    put(b, &v, sizeof v);
-}
+#define put sandbox_put
+#define put_u32 sandbox_put_u32
 
 /* ---- in the child: assimp with our file rules ---- */
 
@@ -210,7 +156,7 @@ static void io_close(struct aiFileIO *io, struct aiFile *f)
 
 struct walk {
     const struct aiScene *sc;
-    struct blob pos, nrm, uv, corners, mats;
+    struct sandbox_blob pos, nrm, uv, corners, mats;
     uint32_t n_pos, n_tris;
     bool any_nrm, any_uv, too_big;
     unsigned long visits;
@@ -258,6 +204,15 @@ static int finite3(const float *v)
     return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]);
 }
 
+/* the determinant of the upper 3x3: negative for a mirroring transform */
+static double det3(const m44 *a)
+{
+    const double(*m)[4] = a->m;
+    return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+           m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+           m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+}
+
 static void add_mesh(struct walk *W, const struct aiMesh *am, const m44 *xf)
 {
     if (!(am->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) || !am->mVertices ||
@@ -272,7 +227,12 @@ static void add_mesh(struct walk *W, const struct aiMesh *am, const m44 *xf)
         return;
     }
     double nm[3][3];
-    normal_matrix(xf, nm);
+    normal_matrix(xf, nm); /* det(M) (M^-1)^T: under a mirror it points the normals inward */
+    const bool mirrored = det3(xf) < 0;
+    if (mirrored)
+        for (int r = 0; r < 3; r++)
+            for (int c = 0; c < 3; c++)
+                nm[r][c] = -nm[r][c];
     const struct aiVector3D *uvs = am->mTextureCoords[0];
     uint32_t base = W->n_pos;
     for (unsigned i = 0; i < am->mNumVertices; i++) {
@@ -314,8 +274,8 @@ static void add_mesh(struct walk *W, const struct aiMesh *am, const m44 *xf)
             ok &= f->mIndices[k] < am->mNumVertices;
         if (!ok)
             continue;
-        for (int k = 0; k < 3; k++) {
-            uint32_t v = base + f->mIndices[k];
+        for (int k = 0; k < 3; k++) { /* a mirror turns the winding: the corners back */
+            uint32_t v = base + f->mIndices[mirrored && k ? 3 - k : k];
             uint32_t c[3] = {v, uvs ? v : MESH_NONE, am->mNormals ? v : MESH_NONE};
             put(&W->corners, c, sizeof c);
         }
@@ -336,9 +296,47 @@ static void walk_node(struct walk *W, const struct aiNode *node, m44 xf, int dep
         walk_node(W, node->mChildren[i], xf, depth + 1);
 }
 
+/* an int32 entry of the scene's metadata; 0 when it has none */
+static int meta_int(const struct aiScene *sc, const char *key, int32_t *out)
+{
+    const struct aiMetadata *md = sc->mMetaData;
+    for (unsigned i = 0; md && i < md->mNumProperties; i++)
+        if (md->mKeys[i].length == strlen(key) && memcmp(md->mKeys[i].data, key, md->mKeys[i].length) == 0 &&
+            md->mValues[i].mType == AI_INT32 && md->mValues[i].mData) {
+            memcpy(out, md->mValues[i].mData, sizeof *out);
+            return 1;
+        }
+    return 0;
+}
+
+/* FBX's axis settings (assimp keeps them as metadata and leaves the coordinates as the
+ * file has them): the file's right, up and front axes with their signs become x, y and z.
+ * Maya's Y-up (up 1, front 2, coord 0) is the identity, 3ds Max's Z-up (up 2, front 1 with
+ * sign -1) turns (x, y, z) to (x, z, -y), as mesh_turn_up does for STL. COLLADA's up_axis
+ * assimp applies itself. */
+static void file_axes(const struct aiScene *sc, m44 *xf)
+{
+    int32_t up, up_s, front, front_s, coord, coord_s;
+    if (!meta_int(sc, "UpAxis", &up) || !meta_int(sc, "UpAxisSign", &up_s) ||
+        !meta_int(sc, "FrontAxis", &front) || !meta_int(sc, "FrontAxisSign", &front_s) ||
+        !meta_int(sc, "CoordAxis", &coord) || !meta_int(sc, "CoordAxisSign", &coord_s))
+        return;
+    if (up < 0 || up > 2 || front < 0 || front > 2 || coord < 0 || coord > 2 || up == front ||
+        up == coord || front == coord)
+        return;
+    m44 m = {{{0}}};
+    m.m[0][coord] = coord_s < 0 ? -1 : 1;
+    m.m[1][up] = up_s < 0 ? -1 : 1;
+    m.m[2][front] = front_s < 0 ? -1 : 1;
+    m.m[3][3] = 1;
+    if (det3(&m) < 0) /* FBX's front sign is "parity": keep the basis right-handed */
+        m.m[2][front] = -m.m[2][front];
+    *xf = m;
+}
+
 /* materials: kd, then a texture reference: 0 none, 1 file (path follows), 2 embedded
  * (compressed bytes follow) */
-static void put_materials(struct blob *b, const struct aiScene *sc)
+static void put_materials(struct sandbox_blob *b, const struct aiScene *sc)
 {
     uint32_t n = sc->mNumMaterials < IMPORT_MAX_MATERIALS ? sc->mNumMaterials
                                                             : IMPORT_MAX_MATERIALS;
@@ -407,8 +405,9 @@ int import_flatten(const char *data, size_t len, const char *name, bool others,
     }
     struct walk W = {.sc = sc};
     m44 id = {{{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}}};
+    file_axes(sc, &id);
     walk_node(&W, sc->mRootNode, id, 0);
-    struct blob mats = {0};
+    struct sandbox_blob mats = {0};
     put_materials(&mats, sc);
     aiReleaseImport(sc);
     int rc = 0;
@@ -422,7 +421,7 @@ int import_flatten(const char *data, size_t len, const char *name, bool others,
         rc = -1;
     }
     /* one reply: counts, then the arrays */
-    struct blob *out = (struct blob *)&r->reply;
+    struct sandbox_blob *out = &r->reply;
     uint32_t head[4] = {W.n_pos, W.n_tris, W.any_nrm, W.any_uv};
     if (rc == 0) {
         put(out, head, sizeof head);
@@ -555,6 +554,8 @@ int import_build(const uint8_t *reply, size_t n, const struct model_ctx *ctx,
                               .uv = any_uv ? auv : NULL, .n_pos = n_pos,
                               .n_nrm = any_nrm ? n_pos : 0, .n_uv = any_uv ? n_pos : 0,
                               .corners = ac, .tri_material = tri_material, .n_tris = n_tris};
+    src.crease_set = true;
+    src.crease_deg = model_opts_of(ctx)->crease_set ? model_opts_of(ctx)->crease_deg : MESH_CREASE_DEFAULT;
     for (size_t i = 0; i < (size_t)n_tris * 3; i++) {
         if (!any_nrm)
             ac[i].nrm = MESH_NONE;
@@ -598,42 +599,26 @@ done:
     return rc;
 }
 
-/* ---- the child process ---- */
+/* ---- the child process (sandbox.h) ---- */
 
-static void child(const char *data, size_t len, const char *name, bool others, int fd)
+struct import_job {
+    const char *data;
+    size_t len;
+    const char *name;
+    bool others;
+};
+
+static int import_job(void *arg, struct sandbox_blob *reply, char msg[220])
 {
-    int null = open("/dev/null", O_RDWR);
-    if (null >= 0) {
-        dup2(null, 0);
-        dup2(null, 1);
-        dup2(null, 2);
-    }
-    struct rlimit cpu = {IMPORT_MAX_SECONDS, IMPORT_MAX_SECONDS + 1};
-    setrlimit(RLIMIT_CPU, &cpu);
-#ifndef IMPORT_UNDER_ASAN /* ASan reserves terabytes of address space: no RLIMIT_AS there */
-    struct rlimit as = {IMPORT_MAX_MEMORY, IMPORT_MAX_MEMORY};
-    setrlimit(RLIMIT_AS, &as);
-#endif
+    const struct import_job *j = arg;
     struct import_result r;
-    uint8_t status;
-    if (import_flatten(data, len, name, others, &r) == 0) {
-        status = 0;
-    } else {
-        status = 1;
-        r.reply.n = 0;
-        put_reply(&r, r.msg, strlen(r.msg));
+    if (import_flatten(j->data, j->len, j->name, j->others, &r)) {
+        snprintf(msg, 220, "%s", r.msg);
+        import_result_free(&r);
+        return -1;
     }
-    if (write(fd, &status, 1) != 1)
-        _exit(3);
-    for (size_t off = 0; off < r.reply.n;) {
-        ssize_t w = write(fd, r.reply.p + off, r.reply.n - off);
-        if (w < 0 && errno == EINTR)
-            continue;
-        if (w <= 0)
-            _exit(3);
-        off += (size_t)w;
-    }
-    _exit(0);
+    *reply = r.reply;
+    return 0;
 }
 
 static uint32_t le32(const char *p)
@@ -679,74 +664,13 @@ int import_read(const char *data, size_t len, const struct model_ctx *ctx, struc
         snprintf(name, sizeof name, "memory.%s", import_guess_ext(data, len));
         iname = name;
     }
-    int fds[2];
-    if (pipe(fds) != 0)
-        return err_set(e, "%s: cannot start the importer: %s", where, strerror(errno));
-    fflush(NULL);
-    pid_t pid = fork();
-    if (pid < 0) {
-        close(fds[0]);
-        close(fds[1]);
-        return err_set(e, "%s: cannot start the importer: %s", where, strerror(errno));
-    }
-    if (pid == 0) {
-        close(fds[0]);
-        child(data, len, iname, ctx->path != NULL, fds[1]);
-    }
-    close(fds[1]);
-    struct blob in = {0};
-    double deadline = timing_now_s() + IMPORT_MAX_SECONDS + 5;
-    bool timed_out = false;
-    for (;;) {
-        double left = deadline - timing_now_s();
-        if (left <= 0) {
-            timed_out = true;
-            break;
-        }
-        struct pollfd pf = {fds[0], POLLIN, 0};
-        int pr = poll(&pf, 1, (int)(left * 1000) + 1);
-        if (pr < 0 && errno == EINTR)
-            continue;
-        if (pr <= 0)
-            continue;
-        uint8_t buf[65536];
-        ssize_t got = read(fds[0], buf, sizeof buf);
-        if (got < 0 && errno == EINTR)
-            continue;
-        if (got <= 0)
-            break;
-        put(&in, buf, (size_t)got);
-        if (in.failed)
-            break;
-    }
-    close(fds[0]);
-    if (timed_out || in.failed)
-        kill(pid, SIGKILL);
-    int status = 0;
-    while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-    }
-    int rc = -1;
-    if (timed_out) {
-        err_set(e, "%s: the importer took longer than %d s; stopped", where,
-                IMPORT_MAX_SECONDS);
-    } else if (in.failed) {
-        err_set(e, "%s: the importer's result is too large", where);
-    } else if (WIFSIGNALED(status)) {
-        int sig = WTERMSIG(status);
-        err_set(e, "%s: the importer failed (killed by signal %d%s)", where, sig,
-                sig == SIGXCPU ? ": CPU time limit" : sig == SIGKILL ? "" : "");
-    } else if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || in.n < 1) {
-        err_set(e, "%s: the importer failed (exit status %d%s)", where,
-                WIFEXITED(status) ? WEXITSTATUS(status) : -1,
-                in.n < 1 ? ", no reply: perhaps out of memory" : "");
-    } else if (in.p[0] != 0) {
-        char msg[220];
-        err_quote((const char *)in.p + 1, in.n - 1, 200, msg, sizeof msg);
-        err_set(e, "%s: %s", where, msg);
-    } else {
-        rc = import_build(in.p + 1, in.n - 1, ctx, where, out, e);
-    }
-    free(in.p);
+    struct import_job job = {data, len, iname, ctx->path != NULL};
+    uint8_t *reply;
+    size_t n;
+    if (sandbox_run(import_job, &job, where, "importer", &reply, &n, e))
+        return -1;
+    int rc = import_build(reply, n, ctx, where, out, e);
+    free(reply);
     if (rc)
         mesh_free(out);
     return rc;

@@ -61,7 +61,7 @@ static int make_level(const struct mesh *root, const struct mesh *src, const uin
         out->verts[d] = src->verts[v];
         out->vert_material[d] = src->vert_material[v];
         if (out->colors)
-            memcpy(out->colors[d], src->colors[v], 3);
+            memcpy(out->colors[d], src->colors[v], sizeof out->colors[d]);
     }
     for (uint32_t t = 0; t < nt; t++) {
         for (int k = 0; k < 3; k++)
@@ -71,7 +71,7 @@ static int make_level(const struct mesh *root, const struct mesh *src, const uin
     }
     free(remap);
     out->n_verts = (uint32_t)nv;
-    out->n_tris = nt;
+    out->n_tris = out->n_opaque = nt;
     out->materials = root->materials;
     out->n_materials = root->n_materials;
     out->textures = root->textures;
@@ -101,7 +101,10 @@ static float extent(const struct mesh *m)
 
 static bool eligible(const struct mesh *m)
 {
-    return m->n_tris >= 2 * LOD_MIN_TRIS && m->vert_material && !m->lod;
+    /* (a mesh drawn by the features path is drawn in full: its levels would need its second
+     * uvs and tangents, and its blended triangles stay apart) */
+    return m->n_tris >= 2 * LOD_MIN_TRIS && m->vert_material && !m->lod && !m->features &&
+           !m->uv1 && !m->tangents && m->n_opaque == m->n_tris;
 }
 
 /* Level after level, each from the one before, until a stop rule of lod.h says no. */

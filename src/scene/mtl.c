@@ -47,6 +47,14 @@ void mtl_default(struct material *m, const char *name)
     m->ks[0] = m->ks[1] = m->ks[2] = 0.5f;
     m->ns = 32;
     m->texture = -1;
+    m->alpha = 1;
+    m->alpha_cutoff = 0.5f;
+    m->base = m->alpha_map = m->emissive_map = m->normal_map = m->occlusion_map = m->spec_map =
+        (struct tex_slot){.tex = -1};
+    m->normal_scale = 1;
+    m->occlusion_strength = 1;
+    m->base_lin[0] = m->base_lin[1] = m->base_lin[2] = 1;
+    m->spec_lin[0] = m->spec_lin[1] = m->spec_lin[2] = 0.04f;
 }
 
 static char *dup_bytes(const char *s, size_t n)

@@ -8,6 +8,7 @@
 #include "obj.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
@@ -74,6 +75,8 @@ struct oparse {
 
     float *pos, *uv, *nrm; /* 3, 2, 3 floats each */
     size_t n_pos, n_uv, n_nrm, cap_pos, cap_uv, cap_nrm;
+    uint8_t *rgb;          /* per position, once a "v x y z r g b" line came; else NULL */
+    size_t cap_rgb;
 
     struct mesh_corner *corners; /* 3 per triangle */
     uint16_t *tri_slot;          /* per triangle: slot, later material */
@@ -141,7 +144,7 @@ static inline int add_vector(struct oparse *P, const char *kw, const char *p, co
                              const char *kind)
 {
     float v[3] = {0, 0, 0};
-    if (parse_floats(P, kw, p, end, v, want, need) < 0)
+    if (need && parse_floats(P, kw, p, end, v, want, need) < 0)
         return -1;
     if ((long long)*n >= OBJ_MAX_INDEX)
         return err_set(P->e, "%s:%lu: too many %s (limit 2^31-1)", P->where, P->line, kind);
@@ -151,6 +154,35 @@ static inline int add_vector(struct oparse *P, const char *kw, const char *p, co
     *a = na;
     memcpy(&na[*n * (size_t)want], v, (size_t)want * sizeof *v);
     ++*n;
+    return 0;
+}
+
+/* A v line: x y z, and "x y z r g b" (the vertex colours MeshLab and ZBrush write, 0..1
+ * display values, or 0..255 when a component passes 1); a fourth number alone is w,
+ * ignored. Positions without a colour in a file that has some are white. */
+static int add_position(struct oparse *P, const char *p, const char *end)
+{
+    float v[6];
+    int n = parse_floats(P, "v", p, end, v, 6, 3);
+    if (n < 0)
+        return -1;
+    size_t at = P->n_pos;
+    if (add_vector(P, "v", "", "", 3, 0, &P->pos, &P->n_pos, &P->cap_pos, "positions"))
+        return -1;
+    memcpy(&P->pos[at * 3], v, sizeof(float) * 3);
+    if (n < 6 && !P->rgb)
+        return 0;
+    uint8_t *c = grow(P->rgb, &P->cap_rgb, P->n_pos, 3);
+    if (!c)
+        return oom(P);
+    if (!P->rgb)
+        memset(c, 255, at * 3); /* the positions before the first colour */
+    P->rgb = c;
+    float top = n >= 6 ? fmaxf(v[3], fmaxf(v[4], v[5])) : 1, k = top > 1 ? 1 : 255;
+    for (int i = 0; i < 3; i++) {
+        float x = n >= 6 ? v[3 + i] * k : 255;
+        c[at * 3 + (size_t)i] = (uint8_t)(x > 0 ? (x < 255 ? x + 0.5f : 255) : 0);
+    }
     return 0;
 }
 
@@ -437,7 +469,7 @@ static int parse_line(struct oparse *P, const char *p, const char *end)
     if (kn <= 2) {
         /* numbers and indices: '#' anywhere ends the line (see num_end) */
         if (lex_tok_is(kw, kwe, "v"))
-            return add_vector(P, "v", p, end, 3, 3, &P->pos, &P->n_pos, &P->cap_pos, "positions");
+            return add_position(P, p, end);
         if (lex_tok_is(kw, kwe, "vt"))
             return add_vector(P, "vt", p, end, 2, 1, &P->uv, &P->n_uv, &P->cap_uv, "uvs");
         if (lex_tok_is(kw, kwe, "vn"))
@@ -483,7 +515,11 @@ static int finish(struct oparse *P, struct mesh *out)
         .pos = P->pos, .uv = P->uv, .nrm = P->nrm,
         .n_pos = (uint32_t)P->n_pos, .n_uv = (uint32_t)P->n_uv, .n_nrm = (uint32_t)P->n_nrm,
         .corners = P->corners, .tri_material = P->tri_slot, .n_tris = (uint32_t)P->n_tris,
+        .rgb = P->rgb,
     };
+    /* OBJ keeps the conventions' smooth normals (the Mesa contract) unless --crease */
+    src.crease_set = true;
+    src.crease_deg = model_opts_of(P->ctx)->crease_set ? model_opts_of(P->ctx)->crease_deg : 180;
     struct err be;
     if (mesh_build(&src, out, &be))
         return err_set(P->e, "%s: %s", P->where, be.msg);
@@ -495,6 +531,7 @@ static void parser_free(struct oparse *P)
     free(P->pos);
     free(P->uv);
     free(P->nrm);
+    free(P->rgb);
     free(P->corners);
     free(P->tri_slot);
     free(P->face);

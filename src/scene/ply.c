@@ -60,6 +60,8 @@ struct pparse {
     struct element el[PLY_MAX_ELEMENTS];
     int n_el;
     char *texture; /* comment TextureFile */
+    char up;       /* 'x', 'y' or 'z' from a comment or obj_info naming the up axis; 0 */
+    bool warned_extra; /* an ASCII line with more values than declared was met */
     /* data cursor */
     const uint8_t *d, *end, *start;
     unsigned long line;
@@ -115,6 +117,36 @@ static int herr(struct pparse *P, unsigned long line, const char *msg)
     return err_set(P->e, "%s:%lu: %s", P->where, line, msg);
 }
 
+/* The up axis a header line's text names, or 0. PLY has no convention (scanning
+ * repositories write Y-up, CAD programs Z-up); exporters that say write it in a comment or
+ * obj_info: "up_axis Z", "up: z", "UpAxis=Z", "Z-up", "z up", "+Z up". */
+static char header_up(const char *p, const char *end)
+{
+    char t[160], *w[24];
+    size_t n = 0;
+    int nw = 0;
+    for (; p < end && n + 1 < sizeof t; p++) /* lower case, punctuation as blanks */
+        t[n++] = *p >= 'A' && *p <= 'Z' ? (char)(*p - 'A' + 'a')
+                 : (*p >= 'a' && *p <= 'z') || (*p >= '0' && *p <= '9') ? *p
+                                                                        : ' ';
+    t[n] = '\0';
+    for (char *sv, *c = strtok_r(t, " ", &sv); c && nw < 24; c = strtok_r(NULL, " ", &sv))
+        w[nw++] = c;
+    for (int i = 0; i < nw; i++) {
+        bool axis = w[i][0] >= 'x' && w[i][0] <= 'z';
+        if (axis && w[i][1] == '\0' && i + 1 < nw && strcmp(w[i + 1], "up") == 0)
+            return w[i][0]; /* "z up", "Z-up" */
+        if (axis && strcmp(w[i] + 1, "up") == 0)
+            return w[i][0]; /* "zup" */
+        if (strcmp(w[i], "up") == 0 || strcmp(w[i], "upaxis") == 0) {
+            int k = i + 1 + (i + 1 < nw && strcmp(w[i + 1], "axis") == 0);
+            if (k < nw && w[k][0] >= 'x' && w[k][0] <= 'z' && w[k][1] == '\0')
+                return w[k][0]; /* "up_axis Z", "UpAxis=Z", "up: z" */
+        }
+    }
+    return 0;
+}
+
 /* the header; on success P->d points at the first data byte */
 static int parse_header(struct pparse *P, const char *text, size_t len)
 {
@@ -150,7 +182,9 @@ static int parse_header(struct pparse *P, const char *text, size_t len)
                 return herr(P, line, "unknown format (ascii, binary_little_endian or "
                                      "binary_big_endian)");
             have_format = true;
-        } else if (lex_tok_is(kw, kwe, "comment")) {
+        } else if (lex_tok_is(kw, kwe, "comment") || lex_tok_is(kw, kwe, "obj_info")) {
+            char up = header_up(rest, eol);
+            P->up = up ? up : P->up;
             const char *t = rest, *te = lex_tok_end(t, eol);
             if (lex_tok_is(t, te, "TextureFile")) {
                 const char *n = lex_skip_ws(te, eol), *ne = lex_rtrim(n, eol);
@@ -159,8 +193,6 @@ static int parse_header(struct pparse *P, const char *text, size_t len)
                                  ? material_path_beside(P->ctx->path, n, (size_t)(ne - n))
                                  : NULL;
             }
-        } else if (lex_tok_is(kw, kwe, "obj_info")) {
-            /* ignored */
         } else if (lex_tok_is(kw, kwe, "element")) {
             if (P->n_el == PLY_MAX_ELEMENTS)
                 return herr(P, line, "too many elements (limit 32)");
@@ -327,6 +359,28 @@ static int read_count(struct pparse *P, enum ptype type, long limit, long *out)
 
 /* ---- elements ---- */
 
+/* ASCII: an element's values read, the rest of its line is more than the header declares
+ * (exporters append values to face lines; assimp reads such files): skipped, with one
+ * warning naming the first such line. A value on the next line is the next element's. */
+static void ascii_line_end(struct pparse *P, const struct element *el)
+{
+    if (P->format != F_ASCII)
+        return;
+    const char *p = (const char *)P->d, *end = (const char *)P->end;
+    while (p < end && *p != '\n' && lex_is_ws(*p))
+        p++;
+    if (p >= end || *p == '\n')
+        return;
+    if (!P->warned_extra)
+        warn_add(P->ctx->warn, "%s:%lu: a '%s' line holds more values than the header "
+                               "declares; the extra values are skipped",
+                 P->where, P->line, el->name);
+    P->warned_extra = true;
+    while (p < end && *p != '\n')
+        p++;
+    P->d = (const uint8_t *)p;
+}
+
 static int check_room(struct pparse *P, const struct element *el)
 {
     size_t left = (size_t)(P->end - P->d), min = 0;
@@ -397,6 +451,7 @@ static int read_vertices(struct pparse *P, const struct element *el)
             default: break;
             }
         }
+        ascii_line_end(P, el);
     }
     return 0;
 }
@@ -469,6 +524,7 @@ static int read_faces(struct pparse *P, const struct element *el, long index)
             else if (pr->role == R_TEXCOORD && n_tc < 0)
                 n_tc = cnt;
         }
+        ascii_line_end(P, el);
         if (n < 0)
             return data_err(P, "face element has no vertex_indices");
         if (n < 3)
@@ -505,7 +561,7 @@ static int read_faces(struct pparse *P, const struct element *el, long index)
 
 static int skip_element(struct pparse *P, const struct element *el)
 {
-    for (long i = 0; i < el->count; i++)
+    for (long i = 0; i < el->count; i++) {
         for (int k = 0; k < el->n_props; k++) {
             const struct prop *pr = &el->props[k];
             double v;
@@ -516,6 +572,8 @@ static int skip_element(struct pparse *P, const struct element *el)
                 if (read_value(P, pr->type, &v))
                     return -1;
         }
+        ascii_line_end(P, el);
+    }
     return 0;
 }
 
@@ -558,6 +616,9 @@ static int finish(struct pparse *P, struct mesh *out)
         .n_uv = (uint32_t)n_uv, .n_nrm = (uint32_t)P->n_verts,
         .rgb = P->has_rgb ? P->rgb : NULL, .corners = P->corners, .n_tris = (uint32_t)P->n_tris,
     };
+    src.crease_set = true;
+    out->file_up = P->up;
+    src.crease_deg = model_opts_of(P->ctx)->crease_set ? model_opts_of(P->ctx)->crease_deg : MESH_CREASE_DEFAULT;
     struct err be;
     int rc = mesh_build(&src, out, &be);
     free(uv);

@@ -44,11 +44,14 @@ static void update_bounds(struct scene *s)
     s->bound_hi = hi;
 }
 
-int scene_load_model(const char *obj_path, struct scene *s, struct err *e)
+static int load_model(const char *obj_path, const struct model_opts *opts, struct scene *s,
+                      struct err *e)
 {
     memset(s, 0, sizeof *s);
+    if (opts)
+        s->load = *opts;
     set_name(s, obj_path);
-    if (model_load(obj_path, &s->textures, &s->warnings, &s->meshes[0], e)) {
+    if (model_load_with(obj_path, &s->load, &s->textures, &s->warnings, &s->meshes[0], e)) {
         scene_free(s);
         return -1;
     }
@@ -56,8 +59,50 @@ int scene_load_model(const char *obj_path, struct scene *s, struct err *e)
     s->items[0].mesh = &s->meshes[0];
     s->items[0].model = m4_identity();
     s->n_items = 1;
+    s->up = s->load.up == MODEL_UP_X   ? 'x'
+            : s->load.up == MODEL_UP_Z ? 'z'
+            : s->load.up == MODEL_UP_Y ? 'y'
+            : s->meshes[0].file_up     ? s->meshes[0].file_up
+                                       : 'y';
     update_bounds(s);
     return 0;
+}
+
+int scene_load_model(const char *obj_path, struct scene *s, struct err *e)
+{
+    return load_model(obj_path, NULL, s, e);
+}
+
+/* the turn that draws the file's axis a up (mesh_turn_up's): Z-up (x, y, z) -> (x, z, -y),
+ * X-up (x, y, z) -> (-y, x, z) */
+static mat4 up_turn(char a)
+{
+    mat4 m = m4_identity();
+    if (a == 'z')
+        m.m[1][1] = 0, m.m[1][2] = 1, m.m[2][1] = -1, m.m[2][2] = 0;
+    else if (a == 'x')
+        m.m[0][0] = 0, m.m[0][1] = -1, m.m[1][0] = 1, m.m[1][1] = 0;
+    return m;
+}
+
+char scene_turn_up(struct scene *s)
+{
+    char from = s->up ? s->up : 'y', to = from == 'y' ? 'z' : from == 'z' ? 'x' : 'y';
+    mat4 undo = up_turn(from), turn;
+    for (int r = 0; r < 3; r++) /* a rotation's inverse is its transpose */
+        for (int c = r + 1; c < 3; c++) {
+            double x = undo.m[r][c];
+            undo.m[r][c] = undo.m[c][r];
+            undo.m[c][r] = x;
+        }
+    turn = m4_mul(up_turn(to), undo);
+    vec3 c = v3_scale(v3_add(s->bound_lo, s->bound_hi), 0.5);
+    mat4 about = m4_mul(m4_translate(c), m4_mul(turn, m4_translate(v3_scale(c, -1))));
+    for (int i = 0; i < s->n_items; i++)
+        s->items[i].model = m4_mul(about, s->items[i].model);
+    s->up = to;
+    update_bounds(s);
+    return to;
 }
 
 int scene_set_texture(struct scene *s, const char *path, struct err *e)
@@ -222,7 +267,7 @@ static int st_model(struct parser *p, struct scene *s, char (*names)[MAX_PATH])
     }
     if (m < 0) {
         m = s->n_meshes;
-        if (model_load(path, &s->textures, &s->warnings, &s->meshes[m], p->e))
+        if (model_load_with(path, &s->load, &s->textures, &s->warnings, &s->meshes[m], p->e))
             return prefix_err(p);
         memcpy(names[m], path, MAX_PATH);
         s->n_meshes++;
@@ -332,9 +377,12 @@ static int statement(struct parser *p, struct scene *s, char (*names)[MAX_PATH])
     return perr(p, "unknown statement", kw);
 }
 
-int scene_load_file(const char *path, struct scene *s, struct err *e)
+static int load_file(const char *path, const struct model_opts *opts, struct scene *s,
+                     struct err *e)
 {
     memset(s, 0, sizeof *s);
+    if (opts)
+        s->load = *opts;
     set_name(s, path);
     char qpath[200];
     err_quote(path, strlen(path), 160, qpath, sizeof qpath);
@@ -391,12 +439,23 @@ int scene_load_file(const char *path, struct scene *s, struct err *e)
     return 0;
 }
 
-int scene_load(const char *path, struct scene *s, struct err *e)
+int scene_load_file(const char *path, struct scene *s, struct err *e)
+{
+    return load_file(path, NULL, s, e);
+}
+
+int scene_load_with(const char *path, const struct model_opts *opts, struct scene *s,
+                    struct err *e)
 {
     size_t n = strlen(path);
     if (n > 4 && strcmp(path + n - 4, ".rsc") == 0)
-        return scene_load_file(path, s, e);
-    return scene_load_model(path, s, e);
+        return load_file(path, opts, s, e);
+    return load_model(path, opts, s, e);
+}
+
+int scene_load(const char *path, struct scene *s, struct err *e)
+{
+    return scene_load_with(path, NULL, s, e);
 }
 
 int scene_build_lod(struct scene *s, bool wait, struct err *e)

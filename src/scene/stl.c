@@ -17,6 +17,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "file.h"
 #include "lex.h"
@@ -27,6 +28,7 @@
 
 struct sparse {
     float *pos; /* welded positions, 3 floats each */
+    uint8_t *rgb; /* their colours (3 bytes each) when the file has facet colours, else NULL */
     uint32_t n_pos;
     size_t cap_pos;
     struct mesh_corner *corners;
@@ -44,11 +46,19 @@ static uint64_t mix(uint64_t x)
     return x;
 }
 
-static uint64_t pos_hash(const float *p)
+static uint64_t pos_hash(const float *p, uint32_t colour)
 {
     uint32_t b[3];
     memcpy(b, p, sizeof b);
-    return mix(((uint64_t)b[0] << 32 | b[1]) ^ mix(b[2]));
+    return mix(((uint64_t)b[0] << 32 | b[1]) ^ mix(b[2] ^ (uint64_t)colour << 32));
+}
+
+static uint32_t colour_of(const struct sparse *S, uint32_t i)
+{
+    if (!S->rgb)
+        return 0;
+    const uint8_t *c = &S->rgb[3 * (size_t)i];
+    return (uint32_t)c[0] | (uint32_t)c[1] << 8 | (uint32_t)c[2] << 16 | 1u << 24;
 }
 
 static int weld_grow(struct sparse *S)
@@ -58,7 +68,7 @@ static int weld_grow(struct sparse *S)
     if (!ns)
         return -1;
     for (uint32_t i = 0; i < S->n_pos; i++) {
-        size_t h = (size_t)pos_hash(&S->pos[3 * (size_t)i]) & (cap - 1);
+        size_t h = (size_t)pos_hash(&S->pos[3 * (size_t)i], colour_of(S, i)) & (cap - 1);
         while (ns[h])
             h = (h + 1) & (cap - 1);
         ns[h] = i + 1;
@@ -69,15 +79,17 @@ static int weld_grow(struct sparse *S)
     return 0;
 }
 
-/* index of position p, added when new; UINT32_MAX when out of memory */
-static uint32_t weld(struct sparse *S, const float *p)
+/* index of position p (of colour `colour`: welded only with its own colour), added when new;
+ * UINT32_MAX when out of memory */
+static uint32_t weld(struct sparse *S, const float *p, uint32_t colour)
 {
     if (!S->slot || ((size_t)S->n_pos + 1) * 2 > S->mask + 1)
         if (weld_grow(S))
             return UINT32_MAX;
-    size_t h = (size_t)pos_hash(p) & S->mask;
+    size_t h = (size_t)pos_hash(p, colour) & S->mask;
     for (uint32_t v; (v = S->slot[h]) != 0; h = (h + 1) & S->mask)
-        if (memcmp(&S->pos[3 * (size_t)(v - 1)], p, 3 * sizeof *p) == 0)
+        if (memcmp(&S->pos[3 * (size_t)(v - 1)], p, 3 * sizeof *p) == 0 &&
+            colour_of(S, v - 1) == colour)
             return v - 1;
     if (S->n_pos == S->cap_pos) {
         size_t cap = S->cap_pos ? S->cap_pos * 2 : 1024;
@@ -85,16 +97,27 @@ static uint32_t weld(struct sparse *S, const float *p)
         if (!np)
             return UINT32_MAX;
         S->pos = np;
+        if (S->rgb) {
+            uint8_t *nc = realloc(S->rgb, cap * 3);
+            if (!nc)
+                return UINT32_MAX;
+            S->rgb = nc;
+        }
         S->cap_pos = cap;
     }
     memcpy(&S->pos[3 * (size_t)S->n_pos], p, 3 * sizeof *p);
+    if (S->rgb) {
+        S->rgb[3 * (size_t)S->n_pos] = (uint8_t)colour;
+        S->rgb[3 * (size_t)S->n_pos + 1] = (uint8_t)(colour >> 8);
+        S->rgb[3 * (size_t)S->n_pos + 2] = (uint8_t)(colour >> 16);
+    }
     S->slot[h] = ++S->n_pos;
     return S->n_pos - 1;
 }
 
-/* one triangle: corners welded, winding turned to agree with a non-zero normal.
- * 0, or -1 out of memory */
-static int add_tri(struct sparse *S, const float *nrm, float v[3][3])
+/* one triangle (of colour `colour`, 0: none): corners welded, winding turned to agree
+ * with a non-zero normal. 0, or -1 out of memory */
+static int add_tri(struct sparse *S, const float *nrm, float v[3][3], uint32_t colour)
 {
     if (S->n_tris == S->cap_tris) {
         size_t cap = S->cap_tris ? S->cap_tris * 2 : 1024;
@@ -114,7 +137,7 @@ static int add_tri(struct sparse *S, const float *nrm, float v[3][3])
     bool flip = nrm && c[0] * nrm[0] + c[1] * nrm[1] + c[2] * nrm[2] < 0;
     struct mesh_corner *t = &S->corners[(size_t)S->n_tris * 3];
     for (int k = 0; k < 3; k++) {
-        uint32_t id = weld(S, v[flip && k ? 3 - k : k]);
+        uint32_t id = weld(S, v[flip && k ? 3 - k : k], colour);
         if (id == UINT32_MAX)
             return -1;
         t[k] = (struct mesh_corner){id, MESH_NONE, MESH_NONE};
@@ -145,6 +168,24 @@ static int read_binary(struct sparse *S, const uint8_t *d, size_t len, const cha
         return err_set(e, "%s: no triangles", where);
     if (n > STL_MAX_TRIS)
         return err_set(e, "%s: %u triangles (limit %u)", where, n, STL_MAX_TRIS);
+    /* facet colours: Materialise Magics ("COLOR=" r g b a in the header: the part's colour;
+     * a facet's 15 bits, red lowest, its own when bit 15 is clear) or VisCAM/SolidView (no
+     * such header: 15 bits, blue lowest, valid when bit 15 is set) */
+    uint32_t part = 0;
+    bool magics = false, any = false;
+    for (size_t i = 0; i + 10 <= 80; i++)
+        if (memcmp(d + i, "COLOR=", 6) == 0) {
+            magics = true;
+            part = (uint32_t)d[i + 6] | (uint32_t)d[i + 7] << 8 | (uint32_t)d[i + 8] << 16 |
+                   1u << 24;
+            break;
+        }
+    for (uint32_t i = 0; i < n && !any; i++) {
+        uint16_t a = (uint16_t)(d[84 + 50 * (size_t)i + 48] | d[84 + 50 * (size_t)i + 49] << 8);
+        any = magics ? !(a & 0x8000) || part : (a & 0x8000) != 0;
+    }
+    if (any && !(S->rgb = malloc(1)))
+        return err_set(e, "%s: out of memory", where);
     for (uint32_t i = 0; i < n; i++) {
         const uint8_t *p = d + 84 + 50 * (size_t)i;
         float nrm[3], v[3][3];
@@ -160,10 +201,28 @@ static int read_binary(struct sparse *S, const uint8_t *d, size_t len, const cha
                                    i);
             }
         bool use_n = isfinite(nrm[0]) && isfinite(nrm[1]) && isfinite(nrm[2]);
-        if (add_tri(S, use_n ? nrm : NULL, v))
+        uint32_t colour = 0;
+        if (any) {
+            uint16_t a = (uint16_t)(p[48] | p[49] << 8);
+            uint32_t lo = a & 31, mid = (a >> 5) & 31, hi = (a >> 10) & 31;
+            bool own = magics ? !(a & 0x8000) : (a & 0x8000) != 0;
+            uint32_t r = magics ? lo : hi, b = magics ? hi : lo;
+            colour = own ? (r * 255 + 15) / 31 | ((mid * 255 + 15) / 31) << 8 |
+                               ((b * 255 + 15) / 31) << 16 | 1u << 24
+                 : magics && part ? part
+                                  : 204 | 204 << 8 | 204 << 16 | 1u << 24; /* the 0.8 grey */
+        }
+        if (add_tri(S, use_n ? nrm : NULL, v, colour))
             return err_set(e, "%s: out of memory", where);
     }
     return 0;
+}
+
+/* a keyword, in any case ("SOLID", "Facet": exporters write both) */
+static bool kw_is(const char *t, const char *te, const char *w)
+{
+    size_t n = strlen(w);
+    return (size_t)(te - t) == n && strncasecmp(t, w, n) == 0;
 }
 
 struct ascii {
@@ -190,7 +249,7 @@ static int expect(struct ascii *A, const char *w)
     if (!word(A, &t, &te))
         return err_set(A->e, "%s:%lu: unexpected end of file (expected '%s')", A->where,
                        A->line, w);
-    if (!lex_tok_is(t, te, w)) {
+    if (!kw_is(t, te, w)) {
         char q[48];
         err_quote(t, (size_t)(te - t), 40, q, sizeof q);
         return err_set(A->e, "%s:%lu: expected '%s', got '%s'", A->where, A->line, w, q);
@@ -229,17 +288,17 @@ static int read_ascii(struct sparse *S, const char *text, size_t len, const char
     const char *t, *te;
     bool in_solid = false;
     while (word(&A, &t, &te)) {
-        if (lex_tok_is(t, te, "solid")) {
+        if (kw_is(t, te, "solid")) {
             skip_line(&A);
             in_solid = true;
-        } else if (lex_tok_is(t, te, "endsolid")) {
+        } else if (kw_is(t, te, "endsolid")) {
             skip_line(&A);
             in_solid = false;
-        } else if (lex_tok_is(t, te, "facet") && in_solid) {
+        } else if (kw_is(t, te, "facet") && in_solid) {
             float nrm[3] = {0, 0, 0}, v[3][3];
             const char *save = A.p;
             unsigned long save_line = A.line;
-            if (word(&A, &t, &te) && lex_tok_is(t, te, "normal")) {
+            if (word(&A, &t, &te) && kw_is(t, te, "normal")) {
                 if (numbers(&A, nrm, 3))
                     return -1;
             } else {
@@ -255,7 +314,7 @@ static int read_ascii(struct sparse *S, const char *text, size_t len, const char
                 return -1;
             if (S->n_tris >= STL_MAX_TRIS)
                 return err_set(e, "%s:%lu: too many triangles", where, A.line);
-            if (add_tri(S, nrm, v))
+            if (add_tri(S, nrm, v, 0))
                 return err_set(e, "%s: out of memory", where);
         } else {
             char q[48];
@@ -281,7 +340,7 @@ int stl_read(const char *data, size_t len, const struct model_ctx *ctx, struct m
     const char *t = lex_skip_bom(data, data + len);
     while (t < data + len && (lex_is_ws(*t) || *t == '\n'))
         t++;
-    bool ascii = (size_t)(data + len - t) >= 5 && memcmp(t, "solid", 5) == 0;
+    bool ascii = (size_t)(data + len - t) >= 5 && strncasecmp(t, "solid", 5) == 0;
     if (len >= 84) {
         uint32_t n = (uint32_t)d[80] | (uint32_t)d[81] << 8 | (uint32_t)d[82] << 16 |
                      (uint32_t)d[83] << 24;
@@ -305,13 +364,17 @@ int stl_read(const char *data, size_t len, const struct model_ctx *ctx, struct m
             out->materials[0].implicit = true; /* STL names no material: light.h's 0.8 */
             out->n_materials = 1;
             struct mesh_source src = {.pos = S.pos, .n_pos = S.n_pos, .corners = S.corners,
-                                      .n_tris = S.n_tris};
+                                      .n_tris = S.n_tris, .rgb = S.rgb};
+    src.crease_set = true;
+    src.crease_deg = model_opts_of(ctx)->crease_set ? model_opts_of(ctx)->crease_deg : MESH_CREASE_DEFAULT;
             struct err be;
             if (mesh_build(&src, out, &be))
                 rc = err_set(e, "%s: %s", where, be.msg);
+            out->file_up = 'z'; /* the 3D-printing convention (slicers, the OS previews) */
         }
     }
     free(S.pos);
+    free(S.rgb);
     free(S.corners);
     free(S.slot);
     if (rc)

@@ -343,6 +343,12 @@ static void screenshot(struct view *v, double t)
                                 .background_set = v->o->background_set,
                                 .background = v->o->render.background,
                                 .sky = default_sky_used(v)};
+    const struct scene *sc = v->scenes[v->cur];
+    if (sc->load.up != MODEL_UP_AUTO || sc->up != (sc->n_meshes ? (sc->meshes[0].file_up
+                                                                       ? sc->meshes[0].file_up
+                                                                       : 'y')
+                                                                 : 'y'))
+        in.up_axis = sc->up;
     view_shot_command(&v->s, &in, v->shots[v->n_shots++], VIEW_SHOT_MAX);
     char msg[128];
     snprintf(msg, sizeof msg, "saved %s and %s (the render command is printed at exit)", png, ans);
@@ -367,6 +373,14 @@ static int act(struct view *v, enum view_action a, double t, bool *quit, struct 
         break;
     }
     case VIEW_SCREENSHOT: screenshot(v, t); break;
+    case VIEW_TURN_UP: {
+        char up = scene_turn_up(v->scenes[v->cur]);
+        enter_scene(v);
+        char msg[80];
+        snprintf(msg, sizeof msg, "the model's %c axis up  (u: next)", up);
+        view_message(&v->s, msg, t);
+        break;
+    }
     case VIEW_NONE: break;
     }
     (void)e;

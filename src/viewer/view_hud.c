@@ -96,7 +96,7 @@ void view_hud_compose(const struct view_state *s, const struct view_hud_info *in
     }
     if (s->spin)
         add(&f, 3, "%s", s->paused ? "spin paused" : "spin");
-    if (s->ro.cull != CULL_NONE)
+    if (s->ro.cull != CULL_AUTO)
         add(&f, 3, "cull:%s", render_cull_name(s->ro.cull));
     add(&f, 3, "%.1f KB", (double)in->bytes / 1024.0);
     add(&f, 3, "h: help");

@@ -57,6 +57,8 @@ void view_shot_command(const struct view_state *s, const struct view_shot_info *
         put_word(&b, in->texture);
     }
     put(&b, " --size %dx%d", in->width, in->height);
+    if (in->up_axis)
+        put(&b, " --up-axis %c", in->up_axis);
     const struct camera *c = &s->cam;
     put_vec(&b, "--eye", c->eye);
     put_vec(&b, "--target", c->target);

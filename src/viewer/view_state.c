@@ -188,6 +188,9 @@ enum view_action view_key(struct view_state *s, enum input_cmd c, double t)
         }
         return VIEW_QUIT;
     case IN_SCREENSHOT: return VIEW_SCREENSHOT;
+    case IN_TURN_UP:
+        camera_touched(s);
+        return VIEW_TURN_UP;
     default: break;
     }
     return VIEW_NONE;

@@ -163,7 +163,9 @@ def tie(path, tex_path, size=64, tex=32):
 
 
 def grid_stl(obj_path, stl_path):
-    """Binary STL of an OBJ's faces (fanned (0, i, i+1)), normals from the winding."""
+    """Binary STL of an OBJ's faces (fanned (0, i, i+1)), normals from the winding. STL is
+    Z-up (the 3D-printing convention rastty follows): the Y-up OBJ's point (x, y, z) is
+    stored as (x, -z, y), which rastty turns back to (x, y, z) exactly (a swap and a sign)."""
     pos, tris = [], []
     for line in open(obj_path):
         w = line.split()
@@ -184,9 +186,9 @@ def grid_stl(obj_path, stl_path):
         u = [p1[i] - p0[i] for i in range(3)]
         v = [p2[i] - p0[i] for i in range(3)]
         n = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
-        out += struct.pack("<3f", *n)
+        out += struct.pack("<3f", n[0], -n[2], n[1])
         for p in (p0, p1, p2):
-            out += struct.pack("<3f", *p)
+            out += struct.pack("<3f", p[0], -p[2], p[1])
         out += b"\0\0"
     with open(stl_path, "wb") as f:
         f.write(out)
@@ -268,9 +270,11 @@ def globe(d, seg=48, rings=24):
                    "scale": [scale] * 3}],
         "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2},
                                     "indices": 3, "material": 0}]}],
+        # roughness 0.4925: rastty's Blinn-Phong exponent 32, the OBJ twin's Ns (light.h:
+        # n = 2 / r^4 - 2); a dielectric's highlight then has ks 0.484 against the MTL's 0.5
         "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1],
                                                 "baseColorTexture": {"index": 0},
-                                                "metallicFactor": 0}}],
+                                                "metallicFactor": 0, "roughnessFactor": 0.4925}}],
         "textures": [{"source": 0}],
         "images": [{"bufferView": 4, "mimeType": "image/png"}],
         "buffers": [{"byteLength": len(blob)}],

@@ -257,7 +257,8 @@ static int sphere(struct mesh *m)
     if (!m->materials)
         return -1;
     m->n_materials = 1;
-    m->materials[0] = (struct material){"", {1, 1, 1}, {0, 0, 0}, 32, -1, true};
+    m->materials[0] = (struct material){.kd = {1, 1, 1}, .ns = 32, .texture = -1,
+                                        .implicit = true};
     return mesh_build(&src, m, NULL);
 }
 

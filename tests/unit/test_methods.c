@@ -7,6 +7,8 @@
 #include <string.h>
 
 #include "kernel.h"
+#include "model.h"
+#include "mtl.h"
 #include "obj.h"
 #include "pipeline.h"
 #include "skybox.h"
@@ -506,6 +508,164 @@ TEST(every_kernel_draws_the_reference_bytes)
     fprintf(stderr, "      %d frames compared with the reference's%s\n", compared,
             kernel_set(KERNEL_AVX2) ? "" : " (no AVX2 kernel here: the baseline's only)");
     skybox_free(&sky);
+    scene1_free(&s);
+}
+
+/* the grid's mesh made a mesh of the features path (mesh.h): material 1 for half its
+ * triangles (alpha MASK through an alpha map, emission with its map on the second uv set,
+ * a mirrored and transformed base slot, a tangent-space normal map, occlusion, a
+ * metallic-roughness texture, two sides), material 2 for every fifth (BLEND), vertex colours
+ * with alpha and a second uv set; textures of 6x5 texels (no power of two) with mips */
+static int make_features(struct scene1 *s)
+{
+    struct mesh *m = &s->m;
+    struct material *mats = realloc(m->materials, 3 * sizeof *mats);
+    if (!mats)
+        return -1;
+    m->materials = mats;
+    m->n_materials = 3;
+    mtl_default(&mats[1], "cutout");
+    mtl_default(&mats[2], "glass");
+    m->textures = calloc(2, sizeof *m->textures);
+    if (!m->textures)
+        return -1;
+    m->n_textures = 2;
+    for (int k = 0; k < 2; k++) {
+        uint8_t px[6 * 5 * 4];
+        for (int i = 0; i < 6 * 5 * 4; i++)
+            px[i] = (uint8_t)(i * (29 + 8 * k) + (i / 4) * 13);
+        if (texture_from_rgba(6, 5, px, &m->textures[k], NULL) ||
+            texture_build_mips(&m->textures[k], NULL) < 0)
+            return -1;
+    }
+    struct material *a = &mats[1], *b = &mats[2];
+    a->features = b->features = true;
+    a->alpha_mode = MAT_MASK, a->alpha_cutoff = 0.3f;
+    a->alpha_map = (struct tex_slot){.tex = 1, .uv = 1, .wrap = {TEX_WRAP_CLAMP, TEX_WRAP_MIRROR}};
+    a->emissive[0] = 0.3f, a->emissive[2] = 0.2f;
+    a->emissive_map = (struct tex_slot){.tex = 0, .uv = 1};
+    a->base = (struct tex_slot){.tex = -1, .wrap = {TEX_WRAP_MIRROR, TEX_WRAP_CLAMP},
+                                .xform = true, .xf = {0.8f, 0.3f, 0.1f, -0.2f, 1.1f, 0.05f}};
+    a->normal_map = (struct tex_slot){.tex = 1, .nearest = true};
+    a->normal_scale = 0.7f;
+    a->occlusion_map = (struct tex_slot){.tex = 0, .wrap = {TEX_WRAP_CLAMP, TEX_WRAP_CLAMP}};
+    a->occlusion_strength = 0.8f;
+    a->spec_map = (struct tex_slot){.tex = 1};
+    a->pbr = true, a->metallic = 0.6f, a->roughness = 0.7f;
+    a->sides = MAT_TWO_SIDED;
+    b->alpha_mode = MAT_BLEND, b->alpha = 0.6f;
+    b->kd[1] = 0.3f;
+    b->base = (struct tex_slot){.tex = -1, .uv = 1};
+    b->sides = MAT_TWO_SIDED;
+    for (uint32_t t = 0; t < m->n_tris; t++)
+        m->tri_material[t] = t % 5 == 4 ? 2 : t % 2 ? 1 : 0;
+    /* vertices are unique per material: the grid's are shared, which the features path
+     * does not mind (it reads the triangle's material) */
+    m->colors = malloc(m->n_verts * sizeof *m->colors);
+    m->uv1 = malloc(m->n_verts * sizeof *m->uv1);
+    if (!m->colors || !m->uv1)
+        return -1;
+    for (uint32_t v = 0; v < m->n_verts; v++) {
+        for (int k = 0; k < 4; k++)
+            m->colors[v][k] = (uint8_t)(120 + (v * 37 + (uint32_t)k * 51) % 136);
+        m->uv1[v][0] = m->verts[v].uv[1] * 1.3f, m->uv1[v][1] = -m->verts[v].uv[0];
+    }
+    if (mesh_tangents(m, false))
+        return -1;
+    struct model_ctx ctx = {0};
+    return model_finish(m, &ctx, NULL);
+}
+
+TEST(every_kernel_draws_the_features_path_as_the_reference)
+{
+    /* the features path (shade.h: alpha cut-outs and blending, emission, wrap modes,
+     * transforms, the second uv set, normal and occlusion maps, per-pixel highlights, two
+     * sides, vertex colours) through every kernel, every shading mode and filter, depth and
+     * interpolation method, the views, the rasterizers and two threads both ways: the
+     * reference's bytes, depths and counts */
+    char *obj = grid_obj(20, 6);
+    struct scene1 s;
+    REQUIRE(scene1_init(&s, obj, 203, 117, 0) == 0);
+    free(obj);
+    REQUIRE(make_features(&s) == 0);
+    REQUIRE(s.m.features && s.m.n_opaque < s.m.n_tris && s.m.tangents);
+    struct skybox sky;
+    REQUIRE(skybox_procedural(&sky, v3(1, 2, 1), NULL) == 0);
+    struct camera cam = grid_camera(0.4);
+    const enum depth_mode depths[] = {DEPTH_Z, DEPTH_W, DEPTH_Z16, DEPTH_RZ};
+    const enum persp_method persps[] = {PERSP_CORRECT, PERSP_AFFINE, PERSP_SPAN8};
+    int runs = 0, compared = 0, differ = 0;
+    for (enum shade_mode m = SHADE_UNLIT; m <= SHADE_PHONG; m++)
+        for (enum tex_filter f = 0; f < TEX_FILTER_COUNT; f++)
+            for (int di = 0; di < 4; di++)
+                for (int pi = 0; pi < 3; pi++) {
+                    struct render_opts o;
+                    render_opts_default(&o);
+                    o.shade = m, o.filter = f, o.depth = depths[di], o.persp = persps[pi];
+                    o.threads = 1;
+                    struct frame_stats st = {0};
+                    int c, d = frames_differ_from_ref(&s, &sky, &cam, &o, &st, &c);
+                    CHECK(st.pixels_shaded > 1000);
+                    runs += d >= 0 && c >= 1;
+                    compared += c;
+                    differ += d != 0;
+                }
+    CHECK_EQ_INT(runs, 4 * 3 * 4 * 3);
+    fb_free(&s.fb);
+    REQUIRE(fb_init(&s.fb, 203, 117, true, NULL) == 0);
+    for (int v = 0; v < 7; v++) {
+        struct render_opts o;
+        render_opts_default(&o);
+        o.threads = v >= 5 ? 2 : 1;
+        o.split = v == 6 ? SPLIT_SLICES : SPLIT_TILES;
+        o.raster = v == 0 ? RASTER_SCANLINE : v == 1 ? RASTER_TILED : RASTER_EDGE;
+        o.view = v == 2 ? VIEW_NORMALS : v == 3 ? VIEW_DEPTH : v == 4 ? VIEW_OVERDRAW : VIEW_COLOR;
+        struct frame_stats st = {0};
+        int c, d = frames_differ_from_ref(&s, &sky, &cam, &o, &st, &c);
+        runs += d >= 0 && c >= 1;
+        compared += c;
+        differ += d != 0;
+    }
+    CHECK_EQ_INT(runs, 4 * 3 * 4 * 3 + 7);
+    CHECK_EQ_INT(differ, 0);
+    fprintf(stderr, "      %d frames of the features path compared with the reference's\n",
+            compared);
+    skybox_free(&sky);
+    s.item.texture_override = NULL; /* (the mesh's textures: freed with it) */
+    scene1_free(&s);
+}
+
+TEST(features_path_is_the_same_at_any_thread_count)
+{
+    /* the blended pass after the opaque one, on one thread: the picture of 1, 2, 3 and 5
+     * threads, by tiles and by slices, is one thread's */
+    char *obj = grid_obj(24, 6);
+    struct scene1 s;
+    REQUIRE(scene1_init(&s, obj, 160, 96, 0) == 0);
+    free(obj);
+    REQUIRE(make_features(&s) == 0);
+    struct camera cam = grid_camera(0.3);
+    size_t n = (size_t)s.fb.w * s.fb.h * 3;
+    uint8_t *one = malloc(n);
+    REQUIRE(one);
+    struct render_opts o;
+    render_opts_default(&o);
+    o.threads = 1;
+    struct frame_stats st;
+    REQUIRE(pipeline_draw(s.p, &s.item, 1, NULL, &cam, &o, &s.fb, &st, NULL) == 0);
+    memcpy(one, s.fb.rgb, n);
+    int differ = 0;
+    const int threads[] = {2, 3, 5};
+    for (int split = 0; split < 2; split++)
+        for (int k = 0; k < 3; k++) {
+            o.threads = threads[k];
+            o.split = split ? SPLIT_SLICES : SPLIT_TILES;
+            REQUIRE(pipeline_draw(s.p, &s.item, 1, NULL, &cam, &o, &s.fb, &st, NULL) == 0);
+            differ += memcmp(one, s.fb.rgb, n) != 0;
+        }
+    CHECK_EQ_INT(differ, 0);
+    free(one);
+    s.item.texture_override = NULL;
     scene1_free(&s);
 }
 

@@ -50,12 +50,12 @@ TEST(detect_by_content_then_name)
         {"PK\x03\x04", 4, "m.zip", -1, "m.zip: not a model (ZIP archive: extract it first)"},
         {"\xff\xfev\0", 4, "m.obj", -1, "m.obj: UTF-16 text (save the file as UTF-8 or ASCII)"},
         {"ply\nformat ascii 1.0\n", 20, "m.obj", MODEL_PLY, NULL},
-        {"glTF\x02\0\0\0", 8, "m.bin", MODEL_IMPORT, NULL},
-        {" {\"asset\": {\"version\": \"2.0\"}}", 31, "m.json", MODEL_IMPORT, NULL},
+        {"glTF\x02\0\0\0", 8, "m.bin", MODEL_GLTF, NULL},
+        {" {\"asset\": {\"version\": \"2.0\"}}", 31, "m.json", MODEL_GLTF, NULL},
         {"solid x\n facet normal 0 0 1\n", 28, "m.txt", MODEL_STL, NULL},
         {"solid cube\nv 0 0 0\n", 19, "solid.obj", MODEL_OBJ, NULL}, /* "solid" alone */
         {"v 0 0 0\n", 8, "m.stl", MODEL_STL, NULL},
-        {"v 0 0 0\n", 8, "m.gltf", MODEL_IMPORT, NULL},
+        {"v 0 0 0\n", 8, "m.gltf", MODEL_GLTF, NULL},
         {"v 0 0 0\n", 8, "m.dat", MODEL_OBJ, NULL},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
@@ -100,11 +100,12 @@ TEST(stl_ascii_welds_and_follows_facet_normals)
     CHECK_EQ_INT(m.n_tris, 2);
     CHECK_EQ_INT(m.n_verts, 4); /* (0,0,0) and (1,1,0) shared */
     CHECK(!m.has_uvs && !m.has_normals);
-    for (uint32_t i = 0; i < 2; i++) {
+    for (uint32_t i = 0; i < 2; i++) { /* STL is Z-up: the file's +z is drawn as +y */
         const float *a = CORNER(m, i, 0)->pos, *b = CORNER(m, i, 1)->pos, *c = CORNER(m, i, 2)->pos;
-        double z = (double)(b[0] - a[0]) * (c[1] - a[1]) - (double)(b[1] - a[1]) * (c[0] - a[0]);
-        CHECK(z > 0); /* counter-clockwise seen from +z, as the normals say */
-        CHECK_VEC3(CORNER(m, i, 0)->nrm, 0, 0, 1);
+        double y = (double)(b[2] - a[2]) * (c[0] - a[0]) - (double)(b[0] - a[0]) * (c[2] - a[2]);
+        CHECK(y > 0); /* counter-clockwise seen from the file's +z, as the normals say */
+        CHECK_VEC3(CORNER(m, i, 0)->nrm, 0, 1, 0);
+        CHECK(a[1] == 0 && b[1] == 0 && c[1] == 0);
     }
     CHECK_EQ_INT(m.n_materials, 1);
     mesh_free(&m);
@@ -300,7 +301,8 @@ TEST(gltf_node_transform_and_base_colour)
     CHECK_VEC3(CORNER(m, 0, 2)->pos, 0, 2, -2);
     CHECK_VEC3(CORNER(m, 0, 0)->nrm, 0, 0, 1); /* generated */
     REQUIRE(m.tri_material[0] < m.n_materials);
-    CHECK_VEC3(m.materials[m.tri_material[0]].kd, 1, 0.5, 0.25);
+    /* glTF's factors are linear: drawn as their display values (sRGB), 0.5 -> 0.7354 */
+    CHECK_VEC3(m.materials[m.tri_material[0]].kd, 1, 0.735357, 0.537099);
     mesh_free(&m);
 }
 

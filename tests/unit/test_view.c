@@ -142,6 +142,8 @@ TEST(render_option_keys_cycle_through_every_value)
     CHECK_EQ_INT(s.ro.filter, TEX_TRILINEAR);
     view_key(&s, IN_FILTER, 1);
     CHECK_EQ_INT(s.ro.filter, TEX_NEAREST);
+    view_key(&s, IN_CULL, 1); /* from the default, auto (as the model says) */
+    CHECK_EQ_INT(s.ro.cull, CULL_NONE);
     view_key(&s, IN_CULL, 1);
     CHECK_EQ_INT(s.ro.cull, CULL_BACK);
     for (int i = 1; i < VIEW_COUNT; i++)
@@ -304,7 +306,7 @@ TEST(the_screenshot_command_reproduces_the_camera_and_methods_exactly)
     const uint8_t bg[3] = {1, 2, 3};
     struct view_shot_info in = {.model = "models/it's here.obj", .width = 160, .height = 94,
                                 .out = "rastty-001.png", .background_set = true,
-                                .background = bg, .sky = true};
+                                .background = bg, .sky = true, .up_axis = 'x'};
     view_shot_command(&s, &in, cmd, sizeof cmd);
     CHECK_STR_CONTAINS(cmd, "rastty render 'models/it'\\''s here.obj' --size 160x94");
     /* split like sh (the one quoted word by hand) and parse it back */
@@ -332,4 +334,13 @@ TEST(the_screenshot_command_reproduces_the_camera_and_methods_exactly)
     CHECK(o.light_camera && o.sky_procedural && o.background_set);
     CHECK(o.width == 160 && o.height == 94);
     CHECK(strcmp(o.out, "rastty-001.png") == 0);
+    CHECK(o.model.up == MODEL_UP_X); /* the u key's turn */
+}
+
+TEST(u_turns_the_model_to_its_next_axis)
+{
+    struct view_state s;
+    start(&s, true);
+    CHECK_EQ_INT(view_key(&s, IN_TURN_UP, 1), VIEW_TURN_UP);
+    CHECK(!s.spin); /* a camera key: the framing changes */
 }

@@ -53,6 +53,10 @@ static span_fn choose(const struct kernel *k, const struct span_ctx *s, bool one
 
 void kernel_choose_span(const struct kernel_set *ks, struct span_ctx *s)
 {
-    for (int c = 0; c < SPAN_SIZES; c++)
-        s->flush[c] = choose(ks->by_size[c], s, c == SPAN_SIZE_ONE && ks->one_pixel);
+    for (int c = 0; c < SPAN_SIZES; c++) {
+        s->flush_path[0][c] = choose(ks->by_size[c], s, c == SPAN_SIZE_ONE && ks->one_pixel);
+        s->flush_path[1][c] = ks->by_size[c]->span_rich[s->mode];
+        s->flush[c] = s->flush_path[0][c];
+    }
+    s->path = 0;
 }

@@ -51,8 +51,77 @@ static inline int kernel_n_var(const struct span_ctx *s, enum shade_mode mode)
 {
     /* (the depth-only pass has no shading record: never look at s->st there) */
     return mode == SHADE_WIRE        ? 0
+           : s->tri->rich            ? s->st->rich->lay.n
            : s->st->vcolor           ? VARY_COLOR + 3
            : vertex_varying_count(mode, VIEW_COLOR, s->shade->lights.grey);
+}
+
+/* where a triangle's varyings start in its vertices' all[] (vertex.h) */
+static inline int kernel_vary_base(const struct span_ctx *s)
+{
+    return s->tri->rich ? 0 : VARY_BASE;
+}
+
+/* ---- the features path: one scalar pixel, the same in every kernel ---- */
+
+/* Pixel (x, y) of the current triangle (setup done) by the features path, in any depth and
+ * perspective method: depth as the reference kernel computes it, the test, the varyings,
+ * shade_rich; a discarded pixel (alpha MASK) writes nothing, a blended one (alpha BLEND)
+ * mixes its colour over the framebuffer's, src a + dst (1 - a), and keeps the depth (the
+ * blended pass runs after the opaque surfaces, back to front); the rest write depth and
+ * colour. Every kernel calls this for these triangles, so they are the same bytes. */
+static inline void kernel_rich_pixel(struct span_ctx *s, int x, int y)
+{
+    const struct setup_interp *in = &s->in;
+    const struct setup_tri *t = s->tri;
+    struct fb *fb = s->fb;
+    const size_t i = (size_t)y * (size_t)fb->w + (size_t)x;
+    const float X = (float)(x - t->x0), Y = (float)(y - t->y0);
+    float z = in->z.c + ((in->z_c_lo + in->z.dy * Y) + in->z.dx * X);
+    if (s->depth == DEPTH_W)
+        z = z / ((in->zq.c + in->zq.dy * Y) + in->zq.dx * X);
+    z = in->z_lo > z ? in->z_lo : z;
+    z = in->z_hi < z ? in->z_hi : z;
+    if (s->depth == DEPTH_Z16)
+        z = (float)(int32_t)(z * 65535.0f + 0.5f);
+    s->tested++;
+    if (fb->overdraw)
+        fb->overdraw[i]++;
+    if (!fb_depth_passes(s->depth, z, fb->depth[i]))
+        return;
+    const int n_var = s->st->rich->lay.n;
+    const float qr = in->q.c + in->q.dy * Y, rq = 1.0f / (qr + in->q.dx * X);
+    float var[VARY_ALL] = {0}, ar[VARY_ALL];
+    for (int k = 0; k < n_var; k++)
+        ar[k] = in->a_c[k] + in->a_dy[k] * Y;
+    if (s->persp == PERSP_CORRECT || s->persp == PERSP_AFFINE) {
+        for (int k = 0; k < n_var; k++)
+            var[k] = (ar[k] + in->a_dx[k] * X) * rq;
+    } else { /* exact at the span's (clamped) ends, linear between them (span.h) */
+        const int n = s->persp == PERSP_SPAN8 ? 8 : s->persp == PERSP_SPAN16 ? 16 : 32;
+        int row_lo, row_hi;
+        kernel_row_extent(t, y, &row_lo, &row_hi);
+        int a = x - x % n, a0 = a > row_lo ? a : row_lo, a1 = a + n < row_hi ? a + n : row_hi;
+        float va[VARY_ALL], vb[VARY_ALL];
+        kernel_exact_at(qr, in->q.dx, ar, in->a_dx, (float)(a0 - t->x0), n_var, va);
+        kernel_exact_at(qr, in->q.dx, ar, in->a_dx, (float)(a1 - t->x0), n_var, vb);
+        float inv_len = a1 > a0 ? 1.0f / (float)(a1 - a0) : 0, f = (float)(x - a0);
+        for (int k = 0; k < n_var; k++)
+            var[k] = va[k] + f * ((vb[k] - va[k]) * inv_len);
+    }
+    const struct rich_pixel px = {in->a_dx, in->a_dy, in->q.dx, in->q.dy, rq};
+    float c[3], alpha = 1;
+    if (!shade_rich(s->shade, s->mode, s->st, var, &px, c, &alpha))
+        return;
+    uint8_t *p = fb->rgb + 3 * i;
+    s->shaded++;
+    if (s->st->mat->alpha_mode == MAT_BLEND) {
+        for (int k = 0; k < 3; k++)
+            p[k] = pixel_quantize(c[k] * alpha + (float)p[k] * (1.0f / 255.0f) * (1 - alpha));
+        return;
+    }
+    fb->depth[i] = z;
+    p[0] = pixel_quantize(c[0]), p[1] = pixel_quantize(c[1]), p[2] = pixel_quantize(c[2]);
 }
 
 /* ---- the vector bodies' framebuffer writes ---- */

@@ -74,7 +74,7 @@ static struct setup_plane ref_combine(const struct ref_bary *b, const double f[3
 }
 
 static void ref_setup_interp(const struct setup_tri *t, enum depth_mode depth,
-                             const struct fb_depth_proj *proj, int affine, int n_var,
+                             const struct fb_depth_proj *proj, int affine, int base, int n_var,
                              struct setup_interp *in)
 {
     const struct vertex_out *const *v = t->v;
@@ -122,7 +122,7 @@ static void ref_setup_interp(const struct setup_tri *t, enum depth_mode depth,
     in->q = affine ? (struct setup_plane){1, 0, 0} : ref_combine(&b, rw);
     for (int j = 0; j < n_var; j++) {
         for (int k = 0; k < 3; k++)
-            f[k] = (double)v[k]->var[j] * (affine ? 1.0 : rw[k]);
+            f[k] = (double)v[k]->all[base + j] * (affine ? 1.0 : rw[k]);
         struct setup_plane p = ref_combine(&b, f);
         in->a_c[j] = p.c, in->a_dx[j] = p.dx, in->a_dy[j] = p.dy;
     }
@@ -208,14 +208,19 @@ static void ref_span(struct span_ctx *s)
 {
     if (!s->in_ready) {
         ref_setup_interp(s->tri, s->depth, &s->fb->proj, s->persp == PERSP_AFFINE,
+                         s->mode == SHADE_WIRE ? VARY_BASE : kernel_vary_base(s),
                          kernel_n_var(s, s->mode), &s->in);
         s->in_ready = true;
         if (s->hit)
             s->hit[s->tri_index] = 1;
     }
     for (int r = 0; r < s->n_runs; r++)
-        for (int x = s->runs[r].x0; x <= s->runs[r].x1; x++)
-            ref_pixel(s, x, s->runs[r].y);
+        for (int x = s->runs[r].x0; x <= s->runs[r].x1; x++) {
+            if (s->tri->rich)
+                kernel_rich_pixel(s, x, s->runs[r].y);
+            else
+                ref_pixel(s, x, s->runs[r].y);
+        }
 }
 
 /* ---- vertices ---- */
@@ -339,6 +344,7 @@ const struct kernel kernel_ref = {
                      {ref_span, ref_span, ref_span}},
     .span_packs = {ref_span, ref_span, ref_span, ref_span, ref_span},
     .span_runs = {ref_span, ref_span, ref_span, ref_span, ref_span},
+    .span_rich = {ref_span, ref_span, ref_span, ref_span, ref_span},
     .raster = {ref_raster, ref_raster, ref_raster},
     .vertex_run = ref_vertex_run,
     .vertex_shade_many = ref_vertex_shade_many,

@@ -81,7 +81,7 @@ static struct setup_plane combine(const struct bary *b, const d4 *fp)
 }
 
 static void setup_interp(const struct setup_tri *t, enum depth_mode depth,
-                         const struct fb_depth_proj *proj, int affine, int n_var,
+                         const struct fb_depth_proj *proj, int affine, int base, int n_var,
                          struct setup_interp *in)
 {
     const struct vertex_out *v0 = t->v[0], *v1 = t->v[1], *v2 = t->v[2];
@@ -126,7 +126,7 @@ static void setup_interp(const struct setup_tri *t, enum depth_mode depth,
     /* the varyings four (then one) at a time: the same double sums as combine(), with the
      * varyings in lanes */
     typedef float f4v __attribute__((vector_size(16)));
-    const float *va[3] = {v0->var, v1->var, v2->var};
+    const float *va[3] = {v0->all + base, v1->all + base, v2->all + base};
     const d4 sc = affine ? (d4){1, 1, 1, 1} : rw;
     int k = 0;
     for (; k + 4 <= n_var; k += 4) {

@@ -385,11 +385,13 @@ static inline __attribute__((always_inline)) void begin_pixels(struct span_ctx *
     if (s->in_ready)
         return;
     int n_var = kernel_n_var(s, s->mode);
+    const int base = s->mode == SHADE_WIRE ? VARY_BASE : kernel_vary_base(s);
 #ifdef RASTTY_FLOOR_SETUP_TWICE /* measuring only (as RASTTY_FLOOR_TEXELS, texture.h): the
                                    frame with interpolation setup paid twice, the same bytes */
     for (int twice = 0; twice < 2; twice++)
 #endif
-        setup_interp(s->tri, s->depth, &s->fb->proj, s->persp == PERSP_AFFINE, n_var, &s->in);
+        setup_interp(s->tri, s->depth, &s->fb->proj, s->persp == PERSP_AFFINE, base, n_var,
+                     &s->in);
     s->in_ready = true;
     if (s->hit)
         s->hit[s->tri_index] = 1;
@@ -525,6 +527,32 @@ static __attribute__((noinline)) void span_packs_wire(struct span_ctx *s)
 {
     begin_pixels(s);
     packs(s, SHADE_WIRE, TEX_NEAREST, s->depth);
+}
+
+/* the features path (materials with features): every method, pixel by pixel, through the
+ * scalar kernel_rich_pixel every kernel shares (kernel_common.h) */
+static inline __attribute__((always_inline)) void rich(struct span_ctx *s)
+{
+    begin_pixels(s);
+    for (int r = 0; r < s->n_runs; r++)
+        for (int x = s->runs[r].x0; x <= s->runs[r].x1; x++)
+            kernel_rich_pixel(s, x, s->runs[r].y);
+}
+static __attribute__((noinline)) void span_rich_unlit(struct span_ctx *s)
+{
+    rich(s);
+}
+static __attribute__((noinline)) void span_rich_flat(struct span_ctx *s)
+{
+    rich(s);
+}
+static __attribute__((noinline)) void span_rich_gouraud(struct span_ctx *s)
+{
+    rich(s);
+}
+static __attribute__((noinline)) void span_rich_phong(struct span_ctx *s)
+{
+    rich(s);
 }
 
 /* run by run: the span methods, the overdraw count, the normals view */
