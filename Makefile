@@ -63,7 +63,7 @@ UNITOBJ := $(patsubst tests/unit/%.c,$(BUILD)/tests/%.o,$(UNITSRC))
 # end-to-end tests, ncurses-term (xterm-direct terminfo), python3 (asset checks)
 DEBIAN_PKGS := build-essential pkg-config libncurses-dev libstb-dev libpng-dev \
                libjpeg62-turbo-dev libassimp-dev libmeshoptimizer-dev libdraco-dev libosmesa6-dev \
-               chafa tmux ncurses-term procps python3
+               chafa tmux ncurses-term procps python3 groff-base
 
 .PHONY: all layers test unit check-asan asan-build floor-build bench chart deps install uninstall clean help fuzz
 
