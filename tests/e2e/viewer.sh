@@ -102,16 +102,16 @@ method_keys() {
     local want; want=$(md5sum < "$OUT/r0.ans")
     for r in scanline tiled; do
         keys k R || return 1
-        wait_for 3 hud_has k "$r" || { echo "status line lacks $r"; return 1; }
+        said "$r" || { echo "status line lacks $r: $LAST_STATUS"; return 1; }
         picture k "r_$r" >/dev/null
         [ "$(md5sum < "$OUT/r_$r.ans")" = "$want" ] || { echo "--raster $r changed the picture"; return 1; }
     done
     keys k p || return 1
-    wait_for 3 hud_has k "interpolation: affine" || { echo "p: no affine"; return 1; }
+    said "interpolation: affine" || { echo "p: no affine: $LAST_STATUS"; return 1; }
     picture k affine >/dev/null
     [ "$(md5sum < "$OUT/affine.ans")" != "$want" ] || { echo "affine drew the same picture"; return 1; }
     keys k Z || return 1
-    wait_for 3 hud_has k "depth buffer: w" || { echo "Z: no w"; return 1; }
+    said "depth buffer: w" || { echo "Z: no w: $LAST_STATUS"; return 1; }
 }
 check method_keys_cycle_and_rasterizers_agree method_keys
 

@@ -100,7 +100,14 @@ hud_has() { [[ $(status_line "$1") == *"$2"* ]]; }
 frame_no() {
     if [[ $(status_line "$1") =~ \ \#([0-9]+)(\ |$) ]]; then echo "${BASH_REMATCH[1]}"; else echo 0; fi
 }
-frame_past() { [ "$(frame_no "$1")" -gt "$2" ]; }
+# frame_past S N: frame #N is past; the status line it read is kept in LAST_STATUS, so that
+# `said` checks a message in the very frame that followed a key (a message lasts 2.5 s: on a
+# loaded machine a second capture may come after it is gone)
+frame_past() {
+    LAST_STATUS=$(status_line "$1")
+    [[ $LAST_STATUS =~ \ \#([0-9]+)(\ |$) ]] && [ "${BASH_REMATCH[1]}" -gt "$2" ]
+}
+said() { [[ ${LAST_STATUS:-} == *"$1"* ]]; }
 still_after() {
     wait_for 10 frame_past "$1" "$2" ||
         { echo "$1: no still picture after frame #$2; status line: $(status_line "$1")"; return 1; }
