@@ -62,6 +62,53 @@ static inline int kernel_vary_base(const struct span_ctx *s)
     return s->tri->rich ? 0 : VARY_BASE;
 }
 
+/* ---- one pixel's depth and varyings, as the reference computes them ---- */
+
+/* the depth at (X, Y) from the triangle's origin: the plane (c + its small part), divided by
+ * the 1/w plane for w-depth, clamped to the corners' range, rounded to 16 bits for z16 */
+static inline float kernel_depth_at(const struct span_ctx *s, float X, float Y)
+{
+    const struct setup_interp *in = &s->in;
+    float z = in->z.c + ((in->z_c_lo + in->z.dy * Y) + in->z.dx * X);
+    if (s->depth == DEPTH_W)
+        z = z / ((in->zq.c + in->zq.dy * Y) + in->zq.dx * X);
+    z = in->z_lo > z ? in->z_lo : z;
+    z = in->z_hi < z ? in->z_hi : z;
+    if (s->depth == DEPTH_Z16) /* floor(z * 65535 + 0.5); z is in [0, 1] */
+        z = (float)(int32_t)(z * 65535.0f + 0.5f);
+    return z;
+}
+
+/* the n_var varyings of pixel (x, y) (X, Y from the origin) into var, in the perspective
+ * method: divided per pixel (correct, affine: the planes say which), or exact at the span's
+ * clamped ends and linear between them (span.h); returns 1/q at the pixel */
+static inline float kernel_varyings_at(const struct span_ctx *s, int x, int y, float X,
+                                       float Y, int n_var, float *var)
+{
+    const struct setup_interp *in = &s->in;
+    const struct setup_tri *t = s->tri;
+    const float qr = in->q.c + in->q.dy * Y, rq = 1.0f / (qr + in->q.dx * X);
+    float ar[VARY_ALL];
+    for (int k = 0; k < n_var; k++)
+        ar[k] = in->a_c[k] + in->a_dy[k] * Y;
+    if (s->persp == PERSP_CORRECT || s->persp == PERSP_AFFINE) {
+        for (int k = 0; k < n_var; k++)
+            var[k] = (ar[k] + in->a_dx[k] * X) * rq;
+    } else {
+        const int n = s->persp == PERSP_SPAN8 ? 8 : s->persp == PERSP_SPAN16 ? 16 : 32;
+        int row_lo, row_hi;
+        kernel_row_extent(t, y, &row_lo, &row_hi);
+        int a = x - x % n, a0 = a > row_lo ? a : row_lo, a1 = a + n < row_hi ? a + n : row_hi;
+        float va[VARY_ALL], vb[VARY_ALL];
+        kernel_exact_at(qr, in->q.dx, ar, in->a_dx, (float)(a0 - t->x0), n_var, va);
+        kernel_exact_at(qr, in->q.dx, ar, in->a_dx, (float)(a1 - t->x0), n_var, vb);
+        float inv_len = a1 > a0 ? 1.0f / (float)(a1 - a0) : 0, f = (float)(x - a0);
+        for (int k = 0; k < n_var; k++)
+            var[k] = va[k] + f * ((vb[k] - va[k]) * inv_len);
+    }
+    return rq;
+}
+
 /* ---- the features path: one scalar pixel, the same in every kernel ---- */
 
 /* Pixel (x, y) of the current triangle (setup done) by the features path, in any depth and
@@ -77,38 +124,15 @@ static inline void kernel_rich_pixel(struct span_ctx *s, int x, int y)
     struct fb *fb = s->fb;
     const size_t i = (size_t)y * (size_t)fb->w + (size_t)x;
     const float X = (float)(x - t->x0), Y = (float)(y - t->y0);
-    float z = in->z.c + ((in->z_c_lo + in->z.dy * Y) + in->z.dx * X);
-    if (s->depth == DEPTH_W)
-        z = z / ((in->zq.c + in->zq.dy * Y) + in->zq.dx * X);
-    z = in->z_lo > z ? in->z_lo : z;
-    z = in->z_hi < z ? in->z_hi : z;
-    if (s->depth == DEPTH_Z16)
-        z = (float)(int32_t)(z * 65535.0f + 0.5f);
+    const float z = kernel_depth_at(s, X, Y);
     s->tested++;
     if (fb->overdraw)
         fb->overdraw[i]++;
     if (!fb_depth_passes(s->depth, z, fb->depth[i]))
         return;
     const int n_var = s->st->rich->lay.n;
-    const float qr = in->q.c + in->q.dy * Y, rq = 1.0f / (qr + in->q.dx * X);
-    float var[VARY_ALL] = {0}, ar[VARY_ALL];
-    for (int k = 0; k < n_var; k++)
-        ar[k] = in->a_c[k] + in->a_dy[k] * Y;
-    if (s->persp == PERSP_CORRECT || s->persp == PERSP_AFFINE) {
-        for (int k = 0; k < n_var; k++)
-            var[k] = (ar[k] + in->a_dx[k] * X) * rq;
-    } else { /* exact at the span's (clamped) ends, linear between them (span.h) */
-        const int n = s->persp == PERSP_SPAN8 ? 8 : s->persp == PERSP_SPAN16 ? 16 : 32;
-        int row_lo, row_hi;
-        kernel_row_extent(t, y, &row_lo, &row_hi);
-        int a = x - x % n, a0 = a > row_lo ? a : row_lo, a1 = a + n < row_hi ? a + n : row_hi;
-        float va[VARY_ALL], vb[VARY_ALL];
-        kernel_exact_at(qr, in->q.dx, ar, in->a_dx, (float)(a0 - t->x0), n_var, va);
-        kernel_exact_at(qr, in->q.dx, ar, in->a_dx, (float)(a1 - t->x0), n_var, vb);
-        float inv_len = a1 > a0 ? 1.0f / (float)(a1 - a0) : 0, f = (float)(x - a0);
-        for (int k = 0; k < n_var; k++)
-            var[k] = va[k] + f * ((vb[k] - va[k]) * inv_len);
-    }
+    float var[VARY_ALL] = {0};
+    const float rq = kernel_varyings_at(s, x, y, X, Y, n_var, var);
     const struct rich_pixel px = {in->a_dx, in->a_dy, in->q.dx, in->q.dy, rq};
     float c[3], alpha = 1;
     if (!shade_rich(s->shade, s->mode, s->st, var, &px, c, &alpha))

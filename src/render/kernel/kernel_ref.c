@@ -152,14 +152,7 @@ static void ref_pixel(struct span_ctx *s, int x, int y)
     struct fb *fb = s->fb;
     const size_t i = (size_t)y * (size_t)fb->w + (size_t)x;
     const float X = (float)(x - t->x0), Y = (float)(y - t->y0);
-    /* depth: the plane (c + its small part), clamped to the corners' range */
-    float z = in->z.c + ((in->z_c_lo + in->z.dy * Y) + in->z.dx * X);
-    if (s->depth == DEPTH_W)
-        z = z / ((in->zq.c + in->zq.dy * Y) + in->zq.dx * X);
-    z = in->z_lo > z ? in->z_lo : z;
-    z = in->z_hi < z ? in->z_hi : z;
-    if (s->depth == DEPTH_Z16) /* floor(z * 65535 + 0.5); z is in [0, 1] */
-        z = (float)(int32_t)(z * 65535.0f + 0.5f);
+    const float z = kernel_depth_at(s, X, Y); /* the plane, clamped to the corners' range */
     s->tested++;
     if (fb->overdraw)
         fb->overdraw[i]++;
@@ -171,25 +164,8 @@ static void ref_pixel(struct span_ctx *s, int x, int y)
         return;
     /* the varyings in the perspective method */
     const int n_var = kernel_n_var(s, s->mode);
-    const float qr = in->q.c + in->q.dy * Y, rq = 1.0f / (qr + in->q.dx * X);
-    float var[VARY_MAX] = {0}, ar[VARY_MAX];
-    for (int k = 0; k < n_var; k++)
-        ar[k] = in->a_c[k] + in->a_dy[k] * Y;
-    if (s->persp == PERSP_CORRECT || s->persp == PERSP_AFFINE) {
-        for (int k = 0; k < n_var; k++)
-            var[k] = (ar[k] + in->a_dx[k] * X) * rq;
-    } else { /* exact at the span's (clamped) ends, linear between them (span.h) */
-        const int n = s->persp == PERSP_SPAN8 ? 8 : s->persp == PERSP_SPAN16 ? 16 : 32;
-        int row_lo, row_hi;
-        kernel_row_extent(t, y, &row_lo, &row_hi);
-        int a = x - x % n, a0 = a > row_lo ? a : row_lo, a1 = a + n < row_hi ? a + n : row_hi;
-        float va[VARY_MAX], vb[VARY_MAX];
-        kernel_exact_at(qr, in->q.dx, ar, in->a_dx, (float)(a0 - t->x0), n_var, va);
-        kernel_exact_at(qr, in->q.dx, ar, in->a_dx, (float)(a1 - t->x0), n_var, vb);
-        float inv_len = a1 > a0 ? 1.0f / (float)(a1 - a0) : 0, f = (float)(x - a0);
-        for (int k = 0; k < n_var; k++)
-            var[k] = va[k] + f * ((vb[k] - va[k]) * inv_len);
-    }
+    float var[VARY_MAX] = {0};
+    const float rq = kernel_varyings_at(s, x, y, X, Y, n_var, var);
     /* the colour: the texture's level of detail from the planes (trilinear), then shade.h */
     const struct shade_ctx *sc = s->shade;
     float lambda = 0, c[3];
