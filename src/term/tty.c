@@ -156,6 +156,7 @@ static bool foreground(void)
 int tty_open(struct tty *t, struct err *e)
 {
     memset(t, 0, sizeof *t);
+    t->sync = TTY_SYNC_DSR;
     released = false;
     if (!isatty(STDIN_FILENO) || !isatty(STDOUT_FILENO))
         return err_set(e, "rastty: the viewer needs a terminal on stdin and stdout "
@@ -264,17 +265,91 @@ int tty_write(const char *buf, size_t n)
     return n ? -1 : 0;
 }
 
-int tty_query(const char *req, char *reply, size_t cap, int timeout_ms)
+enum tty_sync tty_sync_kind(const char *csi)
+{
+    if (strcmp(csi, "0n") == 0)
+        return TTY_SYNC_DSR;
+    const char *p = csi;
+    if (*p == '?') { /* DA1: ?digits;digits...c */
+        for (p++; (*p >= '0' && *p <= '9') || *p == ';'; p++)
+            ;
+        return p > csi + 1 && p[0] == 'c' && p[1] == '\0' ? TTY_SYNC_DA1 : TTY_SYNC_NONE;
+    }
+    int fields = 0; /* CPR: digits;digitsR */
+    while (*p >= '0' && *p <= '9') {
+        const char *d = p;
+        while (*p >= '0' && *p <= '9')
+            p++;
+        fields += p > d;
+        if (*p != ';')
+            break;
+        p++;
+    }
+    return fields == 2 && p[0] == 'R' && p[1] == '\0' ? TTY_SYNC_CPR : TTY_SYNC_NONE;
+}
+
+/* Which of our answers a[0..n) holds (seen[kind]), and the offset of the first of them. */
+static size_t scan_answers(const char *a, size_t n, bool seen[4])
+{
+    size_t first = n;
+    for (size_t i = 0; i + 2 < n; i++) {
+        if (a[i] != '\033' || a[i + 1] != '[')
+            continue;
+        char csi[32];
+        size_t k = 0;
+        for (size_t j = i + 2; j < n && k + 1 < sizeof csi; j++) {
+            csi[k++] = a[j];
+            if ((unsigned char)a[j] >= 0x40 && (unsigned char)a[j] <= 0x7e)
+                break;
+        }
+        csi[k] = '\0';
+        enum tty_sync kind = tty_sync_kind(csi);
+        if (kind != TTY_SYNC_NONE) {
+            seen[kind] = true;
+            first = i < first ? i : first;
+        }
+    }
+    return first;
+}
+
+enum tty_sync tty_sync_from_answers(const char *a, size_t n, size_t *first_out)
+{
+    bool seen[4] = {false};
+    size_t first = scan_answers(a, n, seen);
+    if (first_out)
+        *first_out = first;
+    return seen[TTY_SYNC_DSR] ? TTY_SYNC_DSR : seen[TTY_SYNC_CPR] ? TTY_SYNC_CPR
+         : seen[TTY_SYNC_DA1] ? TTY_SYNC_DA1 : TTY_SYNC_NONE;
+}
+
+size_t tty_sync_request(const struct tty *t, char *buf, size_t cap)
+{
+    int k = 0;
+    switch (t->sync) {
+    case TTY_SYNC_DSR: k = snprintf(buf, cap, "\033[5n"); break;
+    case TTY_SYNC_CPR:
+        k = snprintf(buf, cap, "\033[%d;1H\033[6n", t->rows > 1 ? t->rows : 1);
+        break;
+    case TTY_SYNC_DA1: k = snprintf(buf, cap, "\033[c"); break;
+    case TTY_SYNC_NONE: k = snprintf(buf, cap, "%s", ""); break;
+    }
+    return k > 0 && (size_t)k < cap ? (size_t)k : 0;
+}
+
+#define TTY_AFTER_DSR_MS 100 /* with DSR answered, the DA1 answer is awaited this long */
+
+int tty_query(struct tty *t, const char *req, char *reply, size_t cap, int timeout_ms)
 {
     size_t len = 0;
     reply[0] = '\0';
-    if (tty_write(req, strlen(req)) || tty_write(TTY_SYNC_REQUEST, sizeof TTY_SYNC_REQUEST - 1))
+    t->sync = TTY_SYNC_NONE;
+    if (tty_write(req, strlen(req)) || tty_write(TTY_PROBE, sizeof TTY_PROBE - 1))
         return -1;
-    double t0 = timing_now_ms();
+    double t0 = timing_now_ms(), end = t0 + timeout_ms;
     for (;;) {
-        int left = timeout_ms - (int)(timing_now_ms() - t0);
+        int left = (int)(end - timing_now_ms());
         if (left <= 0 || quit_signal || !wait_input(STDIN_FILENO, left))
-            return -1; /* no answer to DSR in time (what came is in reply) */
+            break; /* what came in time is in reply */
         char buf[256];
         ssize_t n = read(STDIN_FILENO, buf, sizeof buf);
         if (n <= 0)
@@ -283,12 +358,19 @@ int tty_query(const char *req, char *reply, size_t cap, int timeout_ms)
             if (len + 1 < cap)
                 reply[len++] = buf[i];
         reply[len] = '\0';
-        char *dsr = strstr(reply, "\033[0n");
-        if (dsr) { /* everything before the DSR answer is the reply */
-            *dsr = '\0';
-            return (int)(dsr - reply);
-        }
+        bool seen[4] = {false};
+        scan_answers(reply, len, seen);
+        if (seen[TTY_SYNC_DA1])
+            break; /* the DA1 answer, the last: everything has come */
+        if (seen[TTY_SYNC_DSR] && end > timing_now_ms() + TTY_AFTER_DSR_MS)
+            end = timing_now_ms() + TTY_AFTER_DSR_MS; /* DSR is enough; DA1 may be missing */
     }
+    size_t first;
+    t->sync = tty_sync_from_answers(reply, len, &first);
+    if (t->sync == TTY_SYNC_NONE)
+        return -1;
+    reply[first] = '\0';
+    return (int)first;
 }
 
 bool tty_stop_requested(void)
@@ -377,7 +459,7 @@ static enum tty_event_kind sgr_mouse(const char *seq, struct tty_event *ev)
  * Esc key followed by another sequence; ESC [ ... is a CSI sequence (our DSR answer "0n", an
  * SGR mouse report, or a key this terminfo does not know: ignored); ESC O x an unknown SS3
  * key (ignored); ESC x is Alt+x (ignored, so Alt never quits). */
-static enum tty_event_kind after_escape(struct tty_event *ev)
+static enum tty_event_kind after_escape(struct tty *t, struct tty_event *ev)
 {
     wtimeout(keys, 0);
     int c = wgetch(keys);
@@ -409,7 +491,12 @@ static enum tty_event_kind after_escape(struct tty_event *ev)
     seq[n] = '\0';
     if (seq[0] == '<')
         return sgr_mouse(seq, ev);
-    ev->kind = strcmp(seq, "0n") == 0 ? TTY_SYNC_REPLY : TTY_NONE;
+    /* the answer to the frames' query; a terminal taken to answer nothing whose answer to
+     * tty_query's probe comes late (a slow link) is paced on the first one that comes */
+    enum tty_sync kind = tty_sync_kind(seq);
+    if (kind != TTY_SYNC_NONE && t->sync == TTY_SYNC_NONE)
+        t->sync = kind;
+    ev->kind = kind != TTY_SYNC_NONE && kind == t->sync ? TTY_SYNC_REPLY : TTY_NONE;
     return ev->kind;
 }
 
@@ -436,7 +523,7 @@ enum tty_event_kind tty_next_event(struct tty *t, int timeout_ms, struct tty_eve
         return ev->kind;
     }
     if (c == 27)
-        return after_escape(ev);
+        return after_escape(t, ev);
     if (c == KEY_MOUSE) {
         MEVENT m;
         if (getmouse(&m) != OK)

@@ -287,19 +287,25 @@ static int draw_frame(struct view *v, double t, struct err *e)
         hud_draw(v, t); /* the count changed: always drawn */
     if (v->out_len == 0)
         return 0;
-    out_add(v, TTY_SYNC_REQUEST, sizeof TTY_SYNC_REQUEST - 1);
+    char req[TTY_SYNC_REQUEST_MAX];
+    out_add(v, req, tty_sync_request(&v->tty, req, sizeof req));
     size_t total = v->out_len;
+    /* the link's time starts with the write: drawing and encoding the frame are not the
+     * link's (counted in, a heavy model measured a local terminal as a slow link) */
+    double sent_at = timing_now_s();
     if (out_flush(v))
         return err_set(e, "rastty: cannot write to the terminal");
-    pace_sent(&v->pace, t, total, v->est.demand + (total - n), v->fb_cols * v->fb_rows);
+    pace_sent(&v->pace, sent_at, total, v->est.demand + (total - n), v->fb_cols * v->fb_rows);
     return 0;
 }
 
-/* A bare DSR: measures the round trip before the first frame (and after Ctrl-Z). */
+/* A bare query: measures the round trip before the first frame (and after Ctrl-Z). */
 static void probe(struct view *v)
 {
-    if (tty_write(TTY_SYNC_REQUEST, sizeof TTY_SYNC_REQUEST - 1) == 0)
-        pace_sent(&v->pace, timing_now_s(), sizeof TTY_SYNC_REQUEST - 1, 0, v->fb_cols * v->fb_rows);
+    char req[TTY_SYNC_REQUEST_MAX];
+    size_t n = tty_sync_request(&v->tty, req, sizeof req);
+    if (n > 0 && tty_write(req, n) == 0)
+        pace_sent(&v->pace, timing_now_s(), n, 0, v->fb_cols * v->fb_rows);
 }
 
 /* ---- screenshots ---- */
@@ -532,7 +538,7 @@ static int load_scenes(struct view *v, struct err *e)
     return 0;
 }
 
-#define QUERY_MS 500 /* a terminal that does not answer DSR within this is not asked again */
+#define QUERY_MS 1000 /* a terminal that answers no query within this is not asked again */
 
 /* The colour mode: --colors (or RASTTY_COLORS, or the config file, which main put there),
  * else what the environment says (termcaps.h); *ask_out: 256 or 16 and nothing explicit,
@@ -555,17 +561,22 @@ static enum palette_mode colour_mode(const struct options *o, bool *ask_out)
     return m;
 }
 
-/* Ask the terminal (termcaps.h, TERMCAPS_QUERY); its DSR answer also measures the round
- * trip for the pacing. */
-static void ask_terminal(struct view *v)
+/* Learn which query the terminal answers (tty_query: DSR, CPR or DA1, or none: then the
+ * frames are paced by time and carry no query), and when ask, its colours (termcaps.h,
+ * TERMCAPS_QUERY). The answer also measures the round trip for the pacing. */
+static void ask_terminal(struct view *v, bool ask)
 {
     char reply[1024];
+    const char *req = ask ? TERMCAPS_QUERY : "";
     double t0 = timing_now_s();
-    if (tty_query(TERMCAPS_QUERY, reply, sizeof reply, QUERY_MS) < 0)
+    if (tty_query(&v->tty, req, reply, sizeof reply, QUERY_MS) < 0) {
+        pace_no_answers(&v->pace);
         return;
-    pace_sent(&v->pace, t0, sizeof TERMCAPS_QUERY - 1 + sizeof TTY_SYNC_REQUEST - 1, 0, 1);
+    }
+    pace_sent(&v->pace, t0, strlen(req) + sizeof TTY_PROBE - 1, 0, 1);
     pace_answer(&v->pace, timing_now_s());
-    v->mode = termcaps_from_reply(v->mode, reply, NULL);
+    if (ask)
+        v->mode = termcaps_from_reply(v->mode, reply, NULL);
 }
 
 int view_run(const struct options *o, struct err *e)
@@ -591,10 +602,10 @@ int view_run(const struct options *o, struct err *e)
     bool ask;
     v->mode = colour_mode(o, &ask);
     /* over ssh, default to a small tolerance: far fewer bytes, invisible change */
-    bool ssh = getenv("SSH_CONNECTION") || getenv("SSH_TTY");
+    bool ssh = getenv("SSH_CONNECTION") || getenv("SSH_TTY") || getenv("SSH_CLIENT");
     v->eo.tolerance = o->tolerance >= 0 ? o->tolerance : ssh ? 3 : 0;
     v->eo.dither = o->dither;
-    pace_init(&v->pace, o->fps, o->bandwidth);
+    pace_init(&v->pace, o->fps, o->bandwidth, !ssh);
     rc = 1;
     if (!(v->pipe = pipeline_new())) {
         err_set(e, "out of memory");
@@ -604,8 +615,7 @@ int view_run(const struct options *o, struct err *e)
         rc = 2;
         goto out_tty;
     }
-    if (ask)
-        ask_terminal(v);
+    ask_terminal(v, ask);
     v->eo.mode = v->mode;
     if (resize(v, e) == 0) {
         enter_scene(v);
