@@ -33,13 +33,13 @@
  *     budget, no colour tolerance, no drop to 256 colours, nothing on the status line.
  *   - Frame period T = the frames' demand (encoder bytes without a budget, EWMA) / rate,
  *     between 1/fps and PACE_MAX_PERIOD: a picture that changes little runs at the full
- *     frame rate, a photo panning over a slow link drops to 8 fps rather than lag.
+ *     frame rate, a photo panning over a slow link drops to 12 fps rather than lag.
  *   - Byte budget for a frame = rate * T - PACE_OVERHEAD (status line, DSR): the encoder's
  *     rate-distortion choice spends it (encode.h, "Budget"), leaving the rest of the change
  *     for later frames, so the colour tolerance rises by itself when bytes are short.
  *     Before the first measurement: PACE_FIRST_BUDGET.
  *   - Colours: truecolor drops to 256 when the link carries fewer than PACE_256_BELOW
- *     bytes per cell in PACE_MAX_PERIOD, and comes back above PACE_256_ABOVE (hysteresis).
+ *     bytes per cell in PACE_COLOUR_PERIOD (1/8 s), and comes back above PACE_256_ABOVE (hysteresis).
  *     make bench's curve: below ~0.3 byte/cell a frame, a 256-colour budgeted frame is as
  *     close to the picture as a truecolor one; above it truecolor wins.
  *   - --bandwidth RATE: rate <= RATE, and a frame of n bytes is followed by n / RATE s. */
@@ -51,7 +51,9 @@
 
 #include "palette.h"
 
-#define PACE_MAX_PERIOD 0.125      /* s: never below 8 frames per second while changing */
+#define PACE_MAX_PERIOD (1.0 / 12) /* s: never below 12 frames per second while changing:
+                                    * a key waits for the rest of one frame at most */
+#define PACE_COLOUR_PERIOD 0.125   /* s: the 256-colour rule counts bytes per cell in this */
 #define PACE_FIRST_BUDGET 16000    /* bytes, before the link has been measured */
 #define PACE_SLOWEST_RATE 8000.0   /* bytes/s assumed for deadlines before it has */
 #define PACE_LOST_S 2.0            /* an answer later than this (+ transfer) is lost */
@@ -62,7 +64,7 @@
 #define PACE_SAMPLE_MIN 512        /* frames from this size may measure the throughput */
 #define PACE_RATE_WEIGHT 0.3
 #define PACE_OVERHEAD 256          /* status line and DSR, outside the encoder's budget */
-#define PACE_256_BELOW 0.30        /* bytes per cell per PACE_MAX_PERIOD */
+#define PACE_256_BELOW 0.30        /* bytes per cell per PACE_COLOUR_PERIOD */
 #define PACE_256_ABOVE 0.45
 
 struct pace {

@@ -86,7 +86,7 @@ void pace_sent(struct pace *p, double t, size_t bytes, size_t demand, int cells)
         double period = p->demand / r;
         p->period = period < p->min_period ? p->min_period
                     : period > PACE_MAX_PERIOD ? PACE_MAX_PERIOD : period;
-        double per_cell = r * PACE_MAX_PERIOD / (cells > 0 ? cells : 1);
+        double per_cell = r * PACE_COLOUR_PERIOD / (cells > 0 ? cells : 1);
         if (per_cell < PACE_256_BELOW)
             p->use_256 = true;
         else if (per_cell > PACE_256_ABOVE)

@@ -164,7 +164,7 @@ TEST(bandwidth_caps_the_bytes_per_second)
     char hud[64];
     pace_describe(&p, 12, hud, sizeof hud);
     CHECK_STR_CONTAINS(hud, "cap 50KB/s");
-    CHECK_STR_CONTAINS(hud, "8fps");
+    CHECK_STR_CONTAINS(hud, "12fps");
     CHECK_STR_CONTAINS(hud, "tol 12");
 }
 
