@@ -2,6 +2,7 @@
 #include "tty.h"
 
 #include <curses.h>
+#include <term.h>
 #include <errno.h>
 #include <signal.h>
 #include <stdio.h>
@@ -31,6 +32,10 @@ static sigset_t wait_signals, unblocked;
  * never refreshed by wgetch, so ncurses draws only where we ask it to. */
 static WINDOW *keys;
 static bool released; /* the terminal was given back (suspended, continued in the background) */
+/* the terminal has no alternate screen (TERM=linux, dumb): the last frame would stay on the
+ * screen under the shell's prompt, so leaving clears it */
+static bool no_alt_screen;
+#define CLEAR_BYTES "\033[0m\033[H\033[2J"
 
 /* ... and leave keypad-transmit mode (xterm rmkx: normal cursor keys, numeric keypad), which
  * keypad(stdscr, TRUE) entered: without it a shell after SIGABRT gets ESC O A for the arrows */
@@ -169,6 +174,8 @@ int tty_open(struct tty *t, struct err *e)
         return err_set(e, "rastty: cannot use this terminal (TERM=%s)",
                        getenv("TERM") ? "set but unknown" : "unset");
     set_term(screen_handle);
+    const char *smcup = tigetstr("smcup");
+    no_alt_screen = smcup == NULL || smcup == (char *)-1 || !*smcup;
     cbreak();
     noecho();
     nonl();
@@ -222,6 +229,8 @@ void tty_close(struct tty *t)
             write_restore(MOUSE_OFF, sizeof MOUSE_OFF - 1);
         mousemask(0, NULL);
         write_restore("\033[?2026l\033[0m", 12);
+        if (no_alt_screen)
+            write_restore(CLEAR_BYTES, sizeof CLEAR_BYTES - 1);
         curs_set(1);
         endwin();
         delwin(keys);
@@ -388,6 +397,8 @@ bool tty_suspend(struct tty *t)
     if (t->mouse)
         write_restore(MOUSE_OFF, sizeof MOUSE_OFF - 1);
     write_restore("\033[0m", 4);
+    if (no_alt_screen)
+        write_restore(CLEAR_BYTES, sizeof CLEAR_BYTES - 1);
     endwin();
     tcflush(STDIN_FILENO, TCIFLUSH);
     do {

@@ -36,6 +36,7 @@
 #define HUD_PERIOD_S 0.5 /* while animating, refresh the status line at most this often */
 #define DRAIN_S 1.0      /* Ctrl-Z: wait this long (+ the transfer) for the answer in flight */
 #define MAX_SHOTS 16
+#define FPS_GAP_S 0.5    /* frames further apart than this are not counted in the frame rate */
 
 struct view {
     const struct options *o;
@@ -137,6 +138,18 @@ static void enter_scene(struct view *v)
     view_state_scene(&v->s, &cam, &ro, v3_len(v3_sub(s->bound_hi, s->bound_lo)));
     v->lod_pending = !scene_lod_done(s);
     skybox_free(&v->default_sky); /* its sun follows the scene's first light */
+    /* the load's warnings went to stderr, which the alternate screen hides until the exit:
+     * say the first on the status line (all of them are on the screen after q) */
+    if (s->warnings.n > 0) {
+        char msg[sizeof v->s.message];
+        int more = s->warnings.n - 1 + s->warnings.dropped;
+        char tail[48] = "";
+        if (more > 0)
+            snprintf(tail, sizeof tail, " (+%d more)", more);
+        snprintf(msg, sizeof msg, "warning: %.*s%s", (int)(sizeof msg - 10 - strlen(tail)),
+                 s->warnings.msg[0], tail);
+        view_message(&v->s, msg, timing_now_s());
+    }
 }
 
 /* ---- output ---- */
@@ -224,11 +237,9 @@ static void help_draw(struct view *v)
     struct view_hud_rect r = view_hud_help_rect(v->fb_cols, v->fb_rows);
     const char *sgr = v->eo.mode == PALETTE_NONE ? "" : "\033[0;97;44m";
     for (int i = 0; i < r.rows; i++) {
-        /* a blank margin above and below the lines (input_help_line is NULL past the last) */
-        const char *text = i > 0 ? input_help_line(i - 1) : NULL;
-        char pos[32], line[256];
+        char pos[32], line[512];
         int k = snprintf(pos, sizeof pos, "\033[%d;%dH", r.row + i + 1, r.col + 1);
-        snprintf(line, sizeof line, "  %-*.*s  ", r.text_w, r.text_w, text ? text : "");
+        view_hud_help_text(&r, i, line, sizeof line);
         out_add(v, pos, (size_t)k);
         out_add(v, sgr, strlen(sgr));
         out_add(v, line, (size_t)r.cols); /* clipped to the picture: never wraps */
@@ -263,7 +274,9 @@ static int draw_frame(struct view *v, double t, struct err *e)
     size_t n;
     const char *bytes = encode_fb(&v->es, &v->fb, &v->eo, &n, &v->est);
     v->encode_ms = (timing_now_s() - t0) * 1e3;
-    if (v->last_frame_at > 0) {
+    /* the frame rate of motion: a frame after an idle pause (a key after a still picture)
+     * says nothing about it, and would make the rate decay toward 0 while nothing moves */
+    if (v->last_frame_at > 0 && t - v->last_frame_at < FPS_GAP_S) {
         double inst = 1.0 / (t - v->last_frame_at > 1e-4 ? t - v->last_frame_at : 1e-4);
         v->fps = v->fps > 0 ? 0.8 * v->fps + 0.2 * inst : inst;
     }
@@ -399,7 +412,11 @@ static int act(struct view *v, enum view_action a, double t, bool *quit, struct 
 static void drain_answers(struct view *v)
 {
     double r = v->pace.rate > 0 ? v->pace.rate : PACE_SLOWEST_RATE;
-    double end = timing_now_s() + DRAIN_S + (double)v->pace.sent_bytes / r;
+    /* a round trip measured: a few of them, not a second (Ctrl-Z took 1.1 s, and keys typed
+     * meanwhile, a `fg`, were dropped with the typeahead) */
+    double grace = v->pace.rtt >= 0 && 0.1 + 4 * v->pace.rtt < DRAIN_S ? 0.1 + 4 * v->pace.rtt
+                                                                        : DRAIN_S;
+    double end = timing_now_s() + grace + (double)v->pace.sent_bytes / r;
     struct tty_event ev;
     while (v->pace.inflight && !tty_signalled()) {
         double t = timing_now_s();

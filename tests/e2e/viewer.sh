@@ -9,7 +9,8 @@ NAMES=(suspend_and_resume_repaints demo_scene_starts_and_fills_window zoom_in_gr
        tiny_and_huge_terminals quit_restores_terminal sigterm_on_a_stalled_terminal
        stopped_continued_viewer_ends_on_sigterm hung_up_terminal_ends_the_viewer
        help_overlay_drawn_once_and_closed_by_q status_line_at_80_columns spin_rules
-       status_line_names_the_texture
+       status_line_names_the_texture a_models_warning_shows_on_the_status_line
+       no_alt_screen_terminal_is_cleared_at_exit
        screenshot_key_writes_png_ans_and_a_command_that_reproduces_it)
 if ! have_tmux; then
     for n in "${NAMES[@]}"; do skip "$n" "tmux not installed"; done
@@ -355,7 +356,8 @@ texture_named() {
 check status_line_names_the_texture texture_named
 
 # Auto-rotation: on for the demo, off for a model; --spin turns it on; the first camera key
-# stops it for good (Space does not bring it back); --no-spin keeps the demo still.
+# stops it; Space starts it again and pauses it (issue 25: it said to quit and use --spin);
+# --no-spin keeps the demo still.
 spin_rules() {
     local a b
     start sd 80 24 || return 1
@@ -365,10 +367,12 @@ spin_rules() {
     a=$(screen sd); sleep 0.5
     b=$(screen sd)
     [ "$a" = "$b" ] || { echo "a camera key did not stop the spin"; return 1; }
-    keys sd Space || { echo "Space restarted a spin a camera key stopped (no still picture)"; return 1; }
-    sleep 0.5
+    tm send-keys -t sd Space
+    changes sd "$a" || { echo "Space did not start the spin a camera key stopped"; return 1; }
+    keys sd Space || { echo "Space did not pause the spin (no still picture)"; return 1; }
+    a=$(screen sd); sleep 0.5
     b=$(screen sd)
-    [ "$a" = "$b" ] || { echo "Space restarted a spin a camera key stopped"; return 1; }
+    [ "$a" = "$b" ] || { echo "Space did not pause the spin"; return 1; }
     start sm 80 24 --spin assets/cube.obj || return 1
     a=$(screen sm)
     changes sm "$a" || { echo "--spin does not spin a model"; return 1; }
@@ -463,5 +467,35 @@ hangup() {
     wait_for 5 gone "$pid" || { echo "still running after the hangup: $(ps -o stat=,pcpu= -p "$pid")"; kill -KILL "$pid"; return 1; }
 }
 check hung_up_terminal_ends_the_viewer hangup
+
+# A model's warnings (a missing mtllib) go to stderr, which the alternate screen hides until
+# the exit: the status line says the first (issue 25).
+warning_shown() {
+    local d=$OUT/warn; mkdir -p $d
+    printf 'mtllib nothere.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' > $d/m.obj
+    tm new-session -d -s wn -x 160 -y 24 "$(printf '%q ' "$BIN" --colors truecolor $d/m.obj); sleep 60"
+    wait_for 10 hud_has wn "warning: " || { echo "no warning: $(status_line wn)"; return 1; }
+    hud_has wn "m.obj:1: cannot open material library" || { status_line wn; return 1; }
+    wait_for 10 hud_has wn " fps" || { echo "the status line did not come back"; return 1; }
+    tm kill-session -t wn
+}
+check a_models_warning_shows_on_the_status_line warning_shown
+
+# TERM=linux and dumb have no alternate screen: q leaves no frame under the prompt (issue 25)
+no_alt_screen() {
+    local term s
+    for term in linux dumb; do
+        s=na$term
+        tm new-session -d -s $s -x 80 -y 24 "TERM=$term $(printf '%q ' "$BIN") --colors 256 assets/cube.obj; echo EXITED; sleep 60"
+        wait_for 15 frame_past $s 0 || { echo "$term: no still picture"; return 1; }
+        tm send-keys -t $s q
+        wait_for 10 sh -c "tmux -L $SOCK capture-pane -t $s -p | grep -q EXITED" || { echo "$term: q did not quit"; return 1; }
+        if tm capture-pane -t $s -p | grep -q '[▀▄]'; then
+            echo "TERM=$term: the last frame is still on the screen:"; tm capture-pane -t $s -p | grep -v '^$' | tail -3; return 1
+        fi
+        tm kill-session -t $s
+    done
+}
+check no_alt_screen_terminal_is_cleared_at_exit no_alt_screen
 
 finish
