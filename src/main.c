@@ -17,6 +17,7 @@
 #include "cmd.h"
 #include "config.h"
 #include "options.h"
+#include "outputs.h"
 #include "view.h"
 
 #define RASTTY_VERSION "0.1.0"
@@ -38,6 +39,11 @@ int main(int argc, char **argv)
     struct options o;
     struct err e = {""};
     if (options_parse(argc, argv, &o, &e)) {
+        fprintf(stderr, "%s\n", e.msg);
+        return 2;
+    }
+    /* an output that is an input (or another output) would destroy it: refused first */
+    if (o.cmd != CMD_VIEW && o.cmd != CMD_HELP && o.cmd != CMD_VERSION && outputs_check(&o, &e)) {
         fprintf(stderr, "%s\n", e.msg);
         return 2;
     }
