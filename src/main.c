@@ -16,6 +16,7 @@
 #include "bench.h"
 #include "cmd.h"
 #include "config.h"
+#include "file.h"
 #include "options.h"
 #include "outputs.h"
 #include "view.h"
@@ -42,6 +43,8 @@ int main(int argc, char **argv)
         fprintf(stderr, "%s\n", e.msg);
         return 2;
     }
+    if (o.cmd == CMD_RENDER || o.cmd == CMD_DUMP || o.cmd == CMD_ANSI2PPM || o.cmd == CMD_BENCH)
+        file_out_cleanup_on_signals(); /* no temporaries left behind by a signal */
     /* an output that is an input (or another output) would destroy it: refused first */
     if (o.cmd != CMD_VIEW && o.cmd != CMD_HELP && o.cmd != CMD_VERSION && outputs_check(&o, &e)) {
         fprintf(stderr, "%s\n", e.msg);
