@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <poll.h>
 #include <sys/select.h>
 #include <termios.h>
 #include <time.h>
@@ -124,6 +125,14 @@ static int wait_input(int fd, int timeout_ms)
     FD_SET(fd, &rd);
     struct timespec ts = {timeout_ms / 1000, (long)(timeout_ms % 1000) * 1000000L};
     int r = pselect(fd + 1, &rd, NULL, NULL, timeout_ms < 0 ? NULL : &ts, &unblocked);
+    struct pollfd pfd = {.fd = fd, .events = POLLIN};
+    if (r > 0 && poll(&pfd, 1, 0) < 0)
+        pfd.revents = 0;
+    /* the terminal went away (its emulator or tmux server killed) without a SIGHUP reaching
+     * us (we were started from a shell): every read is an end of file, forever; leave as a
+     * hangup would make us */
+    if (r > 0 && (pfd.revents & (POLLHUP | POLLERR | POLLNVAL)) && !quit_signal)
+        quit_signal = SIGHUP;
     /* pselect that finds input ready returns without delivering a signal that is pending
      * (Linux restores the mask first): a hung-up terminal is always "ready", so its SIGHUP
      * would wait forever. Let pending signals in now. */

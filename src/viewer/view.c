@@ -198,8 +198,10 @@ static bool still(struct view *v, double t)
 
 static void hud_draw(struct view *v, double t)
 {
-    if (v->o->no_hud || v->tty.rows < 1)
+    if (v->o->no_hud || v->tty.rows < 1) {
+        v->s.hud_dirty = false; /* nothing to draw: or the loop never waits (100% CPU idle) */
         return;
+    }
     char text[512], pos[32];
     struct view_hud_info in = {
         .scene = v->scenes[v->cur]->name, .scene_i = v->cur, .n_scenes = v->n_scenes,

@@ -10,7 +10,7 @@ NAMES=(suspend_and_resume_repaints demo_scene_starts_and_fills_window zoom_in_gr
        stopped_continued_viewer_ends_on_sigterm hung_up_terminal_ends_the_viewer
        help_overlay_drawn_once_and_closed_by_q status_line_at_80_columns spin_rules
        status_line_names_the_texture a_models_warning_shows_on_the_status_line
-       no_alt_screen_terminal_is_cleared_at_exit
+       no_alt_screen_terminal_is_cleared_at_exit no_hud_viewer_idles_and_ends_with_its_terminal
        screenshot_key_writes_png_ans_and_a_command_that_reproduces_it)
 if ! have_tmux; then
     for n in "${NAMES[@]}"; do skip "$n" "tmux not installed"; done
@@ -497,5 +497,25 @@ no_alt_screen() {
     done
 }
 check no_alt_screen_terminal_is_cleared_at_exit no_alt_screen
+
+# --no-hud (issue 25): idle costs no CPU (a status line it never drew kept the loop from
+# waiting: ~85 ticks in 2 s), and the viewer, started from a shell, ends when its terminal
+# goes away (tmux server killed): it stayed, at ~40 % CPU, deaf to SIGTERM
+no_hud_gone() {
+    local tag=$PWD/$OUT/rastty-nohud-$$ sock=$SOCK-gone pid a b
+    ln -sf "$(cd "$(dirname "$BIN")" && pwd)/$(basename "$BIN")" "$tag"
+    tmux -L $sock -f /dev/null new-session -d -s g -x 80 -y 24 "bash --norc --noprofile" || return 1
+    tmux -L $sock send-keys -t g "$tag --no-hud --colors truecolor assets/cube.obj" Enter
+    wait_for 15 sh -c "tmux -L $sock capture-pane -t g -p | grep -q '[▀▄]'" || { echo "no picture"; tmux -L $sock kill-server; return 1; }
+    pid=$(pgrep -f -- "^$tag --no-hud" | head -1)
+    [ -n "$pid" ] || { echo "no viewer process"; tmux -L $sock kill-server; return 1; }
+    nap 1
+    a=$(awk '{print $14 + $15}' /proc/$pid/stat); nap 2; b=$(awk '{print $14 + $15}' /proc/$pid/stat)
+    echo "idle: $((b - a)) ticks of CPU in 2 s"
+    tmux -L $sock kill-server
+    if [ $((b - a)) -gt $((20 * SLOW)) ]; then kill -9 $pid; return 1; fi
+    wait_for 10 sh -c "! kill -0 $pid 2>/dev/null" || { echo "still running after its terminal went"; kill -9 $pid; return 1; }
+}
+check no_hud_viewer_idles_and_ends_with_its_terminal no_hud_gone
 
 finish
