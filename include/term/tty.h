@@ -14,6 +14,10 @@
  *                           waits for, then tty_suspend() restores the terminal, stops, and
  *                           takes it back on fg (in the background it stays stopped, and a
  *                           quit signal then ends it without touching the terminal)
+ *   kill -STOP, kill -CONT  (SIGSTOP cannot be caught) SIGCONT sets a flag: continued in the
+ *                           background, tty_suspend gives the terminal back as for Ctrl-Z
+ *                           and stops until fg; continued in the foreground (fg), it takes
+ *                           its modes and screen back (the shell may have set its own)
  *   crash signals           (SEGV, BUS, FPE, ILL, ABRT) an async-signal-safe handler restores
  *                           the saved termios with tcsetattr, writes fixed xterm reset bytes
  *                           (leave alternate screen, show cursor, mouse off, SGR reset), then
@@ -62,7 +66,7 @@ enum tty_event_kind tty_next_event(struct tty *t, int timeout_ms, struct tty_eve
 /* Write all of buf to the terminal (retrying short writes); 0, or -1 on an error or when a
  * quit signal arrived meanwhile. */
 int tty_write(const char *buf, size_t n);
-/* Was Ctrl-Z pressed? The caller first collects the answers to its outstanding requests
+/* Was Ctrl-Z pressed, or were we continued after a stop from outside? The caller first collects the answers to its outstanding requests
  * (so that none lands at the shell's prompt), then calls tty_suspend. */
 bool tty_stop_requested(void);
 /* If Ctrl-Z was pressed: restore the terminal, drop unread input, stop the process, and when

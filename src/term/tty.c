@@ -20,7 +20,7 @@
  * mutable globals in rastty, written before the handlers are installed (saved termios) or
  * only as sig_atomic_t flags. */
 static struct termios saved_termios;
-static volatile sig_atomic_t have_saved, quit_signal, stop_requested;
+static volatile sig_atomic_t have_saved, quit_signal, stop_requested, continued;
 static SCREEN *screen_handle;
 /* The signals that end a wait (quit, Ctrl-Z, resize) are blocked between tty_open and
  * tty_close except while we wait for the terminal (ppoll) or write to it: a signal can then
@@ -64,6 +64,14 @@ static void on_stop(int sig)
     stop_requested = 1;
 }
 
+/* SIGCONT after a stop we did not ask for (kill -STOP, then kill -CONT or the shell's fg):
+ * only note it; tty_suspend looks at where we are now. */
+static void on_cont(int sig)
+{
+    (void)sig;
+    continued = 1;
+}
+
 static void on_crash(int sig)
 {
     if (have_saved)
@@ -96,6 +104,8 @@ static void install_handlers(void)
     sigaction(SIGQUIT, &sa, NULL);
     sa.sa_handler = on_stop;
     sigaction(SIGTSTP, &sa, NULL);
+    sa.sa_handler = on_cont;
+    sigaction(SIGCONT, &sa, NULL);
     sa.sa_handler = on_crash;
     sa.sa_flags = SA_RESETHAND;
     static const int crash[] = {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT};
@@ -103,7 +113,7 @@ static void install_handlers(void)
         sigaction(crash[i], &sa, NULL);
     signal(SIGPIPE, SIG_IGN);
     sigemptyset(&wait_signals);
-    static const int waits[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGTSTP, SIGWINCH};
+    static const int waits[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGTSTP, SIGWINCH, SIGCONT};
     for (unsigned i = 0; i < sizeof waits / sizeof waits[0]; i++)
         sigaddset(&wait_signals, waits[i]);
     sigprocmask(SIG_BLOCK, &wait_signals, &unblocked);
@@ -113,6 +123,7 @@ static void install_handlers(void)
     sigdelset(&unblocked, SIGQUIT);
     sigdelset(&unblocked, SIGTSTP);
     sigdelset(&unblocked, SIGWINCH);
+    sigdelset(&unblocked, SIGCONT);
 }
 
 /* Wait up to timeout_ms (-1 = forever) for input on fd, with the wait signals deliverable
@@ -393,23 +404,44 @@ int tty_query(struct tty *t, const char *req, char *reply, size_t cap, int timeo
 
 bool tty_stop_requested(void)
 {
-    return stop_requested != 0;
+    return stop_requested != 0 || continued != 0;
 }
 
 bool tty_suspend(struct tty *t)
 {
-    if (!stop_requested)
+    if (!stop_requested && !continued)
         return false;
+    bool asked = stop_requested != 0;
     stop_requested = 0;
+    continued = 0;
+    /* leaving anyway (a hangup sends SIGHUP and SIGCONT together), or continued with no
+     * terminal to go back to: never stop for a shell that is not there */
+    if (quit_signal || (!asked && tcgetpgrp(STDIN_FILENO) < 0))
+        return false;
+    if (!asked && foreground()) {
+        /* stopped from outside and continued in the foreground (the shell's fg, which may
+         * have put its own modes on the terminal): our modes and screen again, repainted */
+        endwin();
+        goto back;
+    }
     /* give the shell a normal terminal, drop input nobody read (typeahead: it would land at
-     * the prompt), stop, and take the terminal back when continued in the foreground */
+     * the prompt), stop, and take the terminal back when continued in the foreground. Stopped
+     * from outside and continued in the background (kill -STOP, kill -CONT): the shell has
+     * its prompt on our screen; give the terminal back the same way, with SIGTTOU held off
+     * (a background process may then still set the modes) */
+    sigset_t ttou, before;
+    sigemptyset(&ttou);
+    sigaddset(&ttou, SIGTTOU);
+    sigprocmask(SIG_BLOCK, &ttou, &before);
     if (t->mouse)
         write_restore(MOUSE_OFF, sizeof MOUSE_OFF - 1);
     write_restore("\033[0m", 4);
     if (no_alt_screen)
         write_restore(CLEAR_BYTES, sizeof CLEAR_BYTES - 1);
     endwin();
-    tcflush(STDIN_FILENO, TCIFLUSH);
+    if (asked)
+        tcflush(STDIN_FILENO, TCIFLUSH);
+    sigprocmask(SIG_SETMASK, &before, NULL);
     do {
         kill(getpid(), SIGSTOP);
         /* continued: in the background (bg, kill -CONT) the terminal is the shell's, and
@@ -427,6 +459,14 @@ bool tty_suspend(struct tty *t)
             return true;
         }
     } while (!foreground());
+back:;
+    /* the SIGCONT of this fg is this very return: not another one to act on */
+    sigset_t pending;
+    if (sigpending(&pending) == 0 && sigismember(&pending, SIGCONT)) {
+        sigprocmask(SIG_SETMASK, &unblocked, NULL);
+        sigprocmask(SIG_BLOCK, &wait_signals, NULL);
+    }
+    continued = 0;
     /* continued (fg): ncurses re-enters its modes and the alternate screen, cleared */
     refresh();
     curs_set(0);

@@ -11,6 +11,7 @@ NAMES=(suspend_and_resume_repaints demo_scene_starts_and_fills_window zoom_in_gr
        help_overlay_drawn_once_and_closed_by_q status_line_at_80_columns spin_rules
        status_line_names_the_texture a_models_warning_shows_on_the_status_line
        no_alt_screen_terminal_is_cleared_at_exit no_hud_viewer_idles_and_ends_with_its_terminal
+       an_outside_stop_and_continue_leaves_the_prompt_alone
        screenshot_key_writes_png_ans_and_a_command_that_reproduces_it)
 if ! have_tmux; then
     for n in "${NAMES[@]}"; do skip "$n" "tmux not installed"; done
@@ -517,5 +518,28 @@ no_hud_gone() {
     wait_for 10 sh -c "! kill -0 $pid 2>/dev/null" || { echo "still running after its terminal went"; kill -9 $pid; return 1; }
 }
 check no_hud_viewer_idles_and_ends_with_its_terminal no_hud_gone
+
+# Stopped and continued from outside under an interactive shell (issue 25): continued in the
+# background, the viewer gives the terminal back (main screen, mouse off) and waits stopped,
+# instead of drawing over the prompt; after fg it repaints in its own modes, and q quits
+# without Enter.
+external_stop() {
+    local s=es$RANDOM tag pid; tag=$(tagged extstop)
+    tm new-session -d -s $s -x 80 -y 24 "bash --norc --noprofile -i"
+    tm send-keys -t $s "$(printf '%q ' "$BIN" --colors truecolor "$tag")" Enter
+    wait_for 15 hud_has $s " fps" || { echo "viewer did not start"; return 1; }
+    pid=$(pid_of "$tag")
+    kill -STOP "$pid"
+    wait_for 10 sh -c "tmux -L $SOCK capture-pane -t $s -p | grep -q Stopped" || { echo "the shell did not see the stop"; kill -CONT $pid; return 1; }
+    kill -CONT "$pid"
+    wait_for 10 sh -c "[ \"\$(tmux -L $SOCK display -p -t $s '#{alternate_on}#{mouse_any_flag}')\" = 00 ]" ||
+        { echo "continued in the background: alternate screen/mouse $(tm display -p -t $s '#{alternate_on}/#{mouse_any_flag}')"; kill -KILL $pid; return 1; }
+    tm send-keys -t $s "fg" Enter
+    wait_for 15 hud_has $s " fps" || { echo "no repaint after fg"; kill -KILL $pid; return 1; }
+    tm send-keys -t $s q
+    wait_for 10 gone "$pid" || { echo "q did not quit after fg (raw mode lost?)"; kill -KILL $pid; return 1; }
+    tm kill-session -t $s
+}
+check an_outside_stop_and_continue_leaves_the_prompt_alone external_stop
 
 finish
