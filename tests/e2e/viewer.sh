@@ -11,7 +11,7 @@ NAMES=(suspend_and_resume_repaints demo_scene_starts_and_fills_window zoom_in_gr
        help_overlay_drawn_once_and_closed_by_q status_line_at_80_columns spin_rules
        status_line_names_the_texture a_models_warning_shows_on_the_status_line
        no_alt_screen_terminal_is_cleared_at_exit no_hud_viewer_idles_and_ends_with_its_terminal
-       an_outside_stop_and_continue_leaves_the_prompt_alone
+       an_outside_stop_and_continue_leaves_the_prompt_alone a_1000x300_terminal_draws_its_frame_and_idles
        screenshot_key_writes_png_ans_and_a_command_that_reproduces_it)
 if ! have_tmux; then
     for n in "${NAMES[@]}"; do skip "$n" "tmux not installed"; done
@@ -541,5 +541,28 @@ external_stop() {
     tm kill-session -t $s
 }
 check an_outside_stop_and_continue_leaves_the_prompt_alone external_stop
+
+# A 1000x300 terminal (issue 25): the first frame is drawn whole and then idle costs nothing,
+# locally and as over ssh (budgeted frames). The time spent drawing a frame that size was
+# taken for the link's (5 KB/s): 'tol 255' for ever, ~115 ticks of CPU in 3 s.
+large_window() {
+    local env s pid a b n1 n2 log
+    for env in "-u SSH_CONNECTION -u SSH_CLIENT -u SSH_TTY" "SSH_CONNECTION=test"; do
+        s=lw${env:0:1}; log=$OUT/$s.log
+        tm new-session -d -s $s -x 1000 -y 300 \
+            "env $env $(printf '%q ' "$BIN") --colors truecolor assets/teapot.obj; sleep 120"
+        wait_for 30 frame_past $s 0 || { echo "$env: no whole frame: $(status_line $s | cut -c1-150)"; return 1; }
+        tm pipe-pane -o -t $s "cat >> $log"
+        pid=$(pgrep -f -- "^$BIN --colors truecolor assets/teapot.obj" | head -1)
+        nap 1
+        a=$(awk '{print $14 + $15}' /proc/$pid/stat); n1=$(stat -c %s $log)
+        nap 2
+        b=$(awk '{print $14 + $15}' /proc/$pid/stat); n2=$(stat -c %s $log)
+        echo "$env: $(status_line $s | cut -c1-80); idle: $((b - a)) ticks, $((n2 - n1)) bytes in 2 s"
+        tm kill-session -t $s
+        [ $((b - a)) -le $((20 * SLOW)) ] && [ $((n2 - n1)) -eq 0 ] || return 1
+    done
+}
+check a_1000x300_terminal_draws_its_frame_and_idles large_window
 
 finish
