@@ -143,4 +143,27 @@ out_kept() {
 }
 check outputs_keep_links_modes_and_long_names out_kept
 
+# Sky faces (issue 25 item 18): a first face of 4x2 says it is not square (it said "(4x2,
+# first face 4x4)"); faces past 2048 on a side are downscaled with the warning the man page
+# promises (it was silent).
+sky_faces() {
+    local d=$D/sky; rm -rf $d; mkdir -p $d
+    /usr/bin/python3 - $d <<'PY' || return 1
+import struct, sys, zlib
+def png(path, w, h):
+    raw = b"".join(b"\x00" + bytes([90, 140, 200]) * w for _ in range(h))
+    def chunk(t, b): return struct.pack(">I", len(b)) + t + b + struct.pack(">I", zlib.crc32(t + b))
+    open(path, "wb").write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 2, 0, 0, 0))
+                           + chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
+png(sys.argv[1] + "/wide.png", 4, 2)
+png(sys.argv[1] + "/sq.png", 4, 4)
+png(sys.argv[1] + "/big.png", 2100, 2100)
+PY
+    printf 'model %s\nsky wide.png sq.png sq.png sq.png sq.png sq.png\n' "$CUBE" > $d/wide.rsc
+    printf 'model %s\nsky big.png big.png big.png big.png big.png big.png\n' "$CUBE" > $d/big.rsc
+    quick 2 "wide.png: skybox faces must be square \(this one is 4x2\)" "$BIN" render $d/wide.rsc --out $d/x.ppm || return 1
+    quick 0 "big.png: 2100x2100 image downscaled to 1050x1050" "$BIN" render $d/big.rsc --size 64x48 --out $d/y.ppm
+}
+check sky_faces_say_what_is_wrong_and_when_downscaled sky_faces
+
 finish
