@@ -65,7 +65,7 @@ DEBIAN_PKGS := build-essential pkg-config libncurses-dev libstb-dev libpng-dev \
                libjpeg62-turbo-dev libassimp-dev libmeshoptimizer-dev libdraco-dev libosmesa6-dev \
                chafa tmux ncurses-term procps python3 groff-base
 
-.PHONY: all layers test unit check-asan asan-build floor-build bench chart deps install uninstall clean help fuzz
+.PHONY: all layers test unit check-asan asan-build floor-build bench chart deps install uninstall clean help fuzz deb
 
 all: rastty assets
 
@@ -78,6 +78,7 @@ help:
 	@echo "make layers     the include graph against the layer rule: files per layer, circles"
 	@echo "make check-asan unit + end-to-end tests built with -fsanitize=address,undefined"
 	@echo "make bench      speed and bytes/frame benchmarks (not a test)"
+	@echo "make deb        a Debian package of this build: build/rastty_VERSION_ARCH.deb"
 	@echo "make floor-build  the measuring builds of tests/bench_floor.sh (make bench makes them)"
 	@echo "make chart      regenerate assets/doc/chart.svg (+ .csv): every method's speed against accuracy"
 	@echo "make fuzz       libFuzzer on every parser and decoder (FUZZ_SECONDS=60 each)"
@@ -200,6 +201,10 @@ install: rastty assets
 	install -m 755 rastty $(DESTDIR)$(PREFIX)/bin/rastty
 	install -m 644 man/rastty.1 $(DESTDIR)$(PREFIX)/share/man/man1/rastty.1
 	install -m 644 $(ASSET_FILES) assets/demo.rsc $(DESTDIR)$(PREFIX)/share/rastty/
+
+# A Debian package of this build (dpkg-deb, no network): build/rastty_VERSION_ARCH.deb
+deb: rastty assets
+	@packaging/mkdeb.sh
 
 uninstall:
 	rm -f $(DESTDIR)$(PREFIX)/bin/rastty $(DESTDIR)$(PREFIX)/share/man/man1/rastty.1

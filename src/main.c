@@ -16,7 +16,9 @@
 #include "bench.h"
 #include "cmd.h"
 #include "config.h"
+#include "file.h"
 #include "options.h"
+#include "outputs.h"
 #include "view.h"
 
 #define RASTTY_VERSION "0.1.0"
@@ -38,6 +40,13 @@ int main(int argc, char **argv)
     struct options o;
     struct err e = {""};
     if (options_parse(argc, argv, &o, &e)) {
+        fprintf(stderr, "%s\n", e.msg);
+        return 2;
+    }
+    if (o.cmd == CMD_RENDER || o.cmd == CMD_DUMP || o.cmd == CMD_ANSI2PPM || o.cmd == CMD_BENCH)
+        file_out_cleanup_on_signals(); /* no temporaries left behind by a signal */
+    /* an output that is an input (or another output) would destroy it: refused first */
+    if (o.cmd != CMD_VIEW && o.cmd != CMD_HELP && o.cmd != CMD_VERSION && outputs_check(&o, &e)) {
         fprintf(stderr, "%s\n", e.msg);
         return 2;
     }

@@ -2,7 +2,9 @@
 # tests/bench.sh: `make bench` — render and terminal-output costs (numbers, never verdicts).
 #   1. bytes/frame and decoded PSNR for an orbit of the shared african_head (textured,
 #      2 deg/frame, 160x48 cells) on black, on the shared photo skybox, and on rastty's own sky;
-#   2. key -> screen latency of the viewer behind a slow link (1 and 4 Mbit/s);
+#   2. key -> screen latency of the viewer behind a slow link (256 kbit/s, 1 and 4 Mbit/s,
+#      unthrottled) in terminals that answer every query, only CPR and DA1 (st), only DA1,
+#      and none (tests/bench_latency.sh);
 #   3. render time per frame of the demo scene and the big shared models;
 #   4. every rendering method: ms/frame and error against Mesa (tests/bench_methods.sh);
 #   5. mesh level of detail: --lod auto's bound against error and speed (tests/bench_lod.sh);
@@ -35,21 +37,7 @@ else
     echo "-- skipped terminal-bytes benchmark: no shared models at $S"
 fi
 echo
-LINK=${RASTTY_SHARED:-../shared}/tools/slowlink.py
-if [ -f "$LINK" ] && [ -d "$S/african_head" ] && command -v tmux >/dev/null; then
-    echo "-- key -> screen latency behind slowlink.py (1 MB queue), the textured head spinning in"
-    echo "   truecolor; 20 presses of f, the status line timed (tests/e2e/lib/keylat.py)"
-    for link in "128000 160x48 1 Mbit/s" "512000 320x90 4 Mbit/s"; do
-        set -- $link
-        printf '   %-8s %-7s ' "$3 $4" "$2"
-        /usr/bin/python3 tests/e2e/lib/keylat.py --socket "rastty-bench-$$" --rate "$1" \
-            --queue 1000000 --size "$2" --presses 20 --slowlink "$LINK" \
-            --log "$D/link-$1.log" -- "$BIN" --colors truecolor --spin \
-            "$S/african_head/african_head.obj" | tail -n 1
-    done
-else
-    echo "-- skipped latency benchmark: no $LINK, shared african_head or tmux"
-fi
+tests/bench_latency.sh
 echo
 echo "-- render time: demo scene and shared models, 160x48 and 320x96 cells, 36 frames"
 models=("assets/demo.rsc")

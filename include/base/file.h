@@ -57,6 +57,12 @@ int file_out_open(struct file_out *o, const char *path, struct err *e);
 int file_out_commit(struct file_out *o, struct err *e);
 /* Give up: remove the temporary file, free o. Harmless on a zeroed or finished o. */
 void file_out_abort(struct file_out *o);
+/* For commands that write files (not the viewer, whose handlers only set flags): SIGINT,
+ * SIGTERM, SIGHUP and SIGQUIT remove the temporary files being written, then end the process
+ * as the signal would; SIGXFSZ is ignored, so a write past `ulimit -f` fails with a message.
+ * A symbolic link given as the target is written through (the link stays), an existing
+ * target keeps its mode, and a name too long for ".NAME.XXXXXX" gets ".rastty.XXXXXX". */
+void file_out_cleanup_on_signals(void);
 
 /* Does path lie in the folder tree of the file `of` (its directory or below)? Both are
  * resolved first (realpath: symbolic links followed, so a link inside that points out is

@@ -38,8 +38,10 @@ struct skybox {
     struct skybox_level level[SKYBOX_MAX_LEVELS];
 };
 
-/* Load six face images (order posx negx posy negy posz negz). */
-int skybox_load(struct skybox *s, const char *const paths[6], struct err *e);
+/* Load six face images (order posx negx posy negy posz negz); a face larger than
+ * SKYBOX_MAX_FACE is downscaled with a warning in w (may be NULL). */
+int skybox_load(struct skybox *s, const char *const paths[6], struct warnings *w,
+                struct err *e);
 /* The default sky: sun toward sun_dir (need not be unit). */
 int skybox_procedural(struct skybox *s, vec3 sun_dir, struct err *e);
 void skybox_free(struct skybox *s);

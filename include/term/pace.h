@@ -4,9 +4,12 @@
  * Pure: the caller passes the time (seconds, monotonic) and reports what it sent and what
  * came back; tests drive it with a simulated link. Owned by the viewer loop (view.c).
  *
- * Measuring. Every frame ends with a status request (DSR, ESC[5n); the terminal answers
- * (ESC[0n) once it has processed everything written before it, so an answer marks the frame
- * as arrived. For a frame of n bytes sent at s and answered at a:
+ * Measuring. Every frame ends with a query the terminal answers once it has processed
+ * everything written before it (DSR ESC[5n, or CPR or DA1 for a terminal that does not answer
+ * DSR, such as st: the one tty_query found answered at start, tty.h), so an answer marks the
+ * frame as arrived. A terminal that answers none of them costs one timeout at start
+ * (pace_no_answers), never one a frame. For a frame of n bytes whose write began at s and
+ * that was answered at a (the time spent drawing and encoding it is not the link's):
  *   round trip  rtt  = a - s - n / rate, the least seen (slowly forgotten: +2% a sample):
  *                      the link's latency without the transfer. The viewer sends a bare DSR
  *                      (a 4-byte frame) first, which measures it before the rate is known.
@@ -20,18 +23,23 @@
  *   - Pacing never switches itself off. An answer that does not come within PACE_LOST_S
  *     plus the frame's expected transfer time (at PACE_SLOWEST_RATE before the rate is
  *     known) counts the frame as lost and the next one goes out; the next answer, which may
- *     be the late one, ends the wait but is not taken as a sample; a terminal that has answered nothing after PACE_LOST_LIMIT frames is taken not to
- *     answer DSR at all: frames are then paced by time (bytes / rate, rate assumed
- *     PACE_BLIND_RATE or --bandwidth).
+ *     be the late one, ends the wait but is not taken as a sample; a terminal that has
+ *     answered nothing after PACE_LOST_LIMIT frames, or that answered none of the queries
+ *     at start (pace_no_answers), is taken not to answer at all: frames are then paced by
+ *     time (bytes / rate, rate assumed PACE_BLIND_RATE or --bandwidth), with no queries;
+ *     a local one by --fps alone (the pty's small buffer blocks a write it cannot take).
+ *   - A local terminal (not over ssh, no --bandwidth): the answers time the terminal's own
+ *     drawing, not a narrow link, so they only pace the frames (one in flight): no byte
+ *     budget, no colour tolerance, no drop to 256 colours, nothing on the status line.
  *   - Frame period T = the frames' demand (encoder bytes without a budget, EWMA) / rate,
  *     between 1/fps and PACE_MAX_PERIOD: a picture that changes little runs at the full
- *     frame rate, a photo panning over a slow link drops to 8 fps rather than lag.
+ *     frame rate, a photo panning over a slow link drops to 12 fps rather than lag.
  *   - Byte budget for a frame = rate * T - PACE_OVERHEAD (status line, DSR): the encoder's
  *     rate-distortion choice spends it (encode.h, "Budget"), leaving the rest of the change
  *     for later frames, so the colour tolerance rises by itself when bytes are short.
  *     Before the first measurement: PACE_FIRST_BUDGET.
  *   - Colours: truecolor drops to 256 when the link carries fewer than PACE_256_BELOW
- *     bytes per cell in PACE_MAX_PERIOD, and comes back above PACE_256_ABOVE (hysteresis).
+ *     bytes per cell in PACE_COLOUR_PERIOD (1/8 s), and comes back above PACE_256_ABOVE (hysteresis).
  *     make bench's curve: below ~0.3 byte/cell a frame, a 256-colour budgeted frame is as
  *     close to the picture as a truecolor one; above it truecolor wins.
  *   - --bandwidth RATE: rate <= RATE, and a frame of n bytes is followed by n / RATE s. */
@@ -43,22 +51,28 @@
 
 #include "palette.h"
 
-#define PACE_MAX_PERIOD 0.125      /* s: never below 8 frames per second while changing */
+#define PACE_MAX_PERIOD (1.0 / 12) /* s: never below 12 frames per second while changing:
+                                    * a key waits for the rest of one frame at most */
+#define PACE_COLOUR_PERIOD 0.125   /* s: the 256-colour rule counts bytes per cell in this */
 #define PACE_FIRST_BUDGET 16000    /* bytes, before the link has been measured */
 #define PACE_SLOWEST_RATE 8000.0   /* bytes/s assumed for deadlines before it has */
 #define PACE_LOST_S 2.0            /* an answer later than this (+ transfer) is lost */
 #define PACE_LOST_LIMIT 3          /* frames lost without any answer: no DSR support */
-#define PACE_BLIND_RATE 1000000.0  /* bytes/s assumed for a terminal that never answers */
+#define PACE_BLIND_RATE 32000.0    /* bytes/s assumed for a remote terminal that never
+                                      * answers: 256 kbit/s, the slowest link make bench
+                                      * tries (a faster one is only used less well) */
 #define PACE_SAMPLE_MIN 512        /* frames from this size may measure the throughput */
 #define PACE_RATE_WEIGHT 0.3
 #define PACE_OVERHEAD 256          /* status line and DSR, outside the encoder's budget */
-#define PACE_256_BELOW 0.30        /* bytes per cell per PACE_MAX_PERIOD */
+#define PACE_256_BELOW 0.30        /* bytes per cell per PACE_COLOUR_PERIOD */
 #define PACE_256_ABOVE 0.45
 
 struct pace {
     /* settings */
     double min_period;  /* 1 / --fps */
     double cap;         /* --bandwidth in bytes/s, 0 = none */
+    bool local;         /* the terminal is on this machine (pace_init) */
+    bool no_answers;    /* the terminal answered none of the start's queries */
     /* measured */
     double rate;        /* bytes/s, 0 = not measured yet */
     double rtt;         /* s, -1 = not measured yet */
@@ -76,11 +90,14 @@ struct pace {
     bool use_256;       /* truecolor dropped to 256 colours for the link */
 };
 
-void pace_init(struct pace *p, double fps, double cap_bytes_s);
+/* local: the terminal is on this machine (no ssh); ignored with a cap. */
+void pace_init(struct pace *p, double fps, double cap_bytes_s, bool local);
+/* The terminal answers no query: pace by time from now on (until an answer comes). */
+void pace_no_answers(struct pace *p);
 /* May a frame go out at time t? If not, *wait_out (may be NULL) is how long until it may,
  * or until the answer in flight is given up (never negative). */
 bool pace_ready(const struct pace *p, double t, double *wait_out);
-/* Bytes the next frame may take (the encoder's budget); never 0. */
+/* Bytes the next frame may take (the encoder's budget); 0 = no budget (a local terminal). */
 size_t pace_budget(const struct pace *p);
 /* The colour mode to draw in: want, or 256 when want is truecolor and the link is slow. */
 enum palette_mode pace_mode(const struct pace *p, enum palette_mode want);
@@ -94,7 +111,8 @@ void pace_tick(struct pace *p, double t);
 /* Forget the frame in flight (the terminal was reset: Ctrl-Z, resize). */
 void pace_forget(struct pace *p);
 /* For the status line, what the pacing does to the picture, e.g. "link 125KB/s: 8fps tol 14"
- * or "cap 50KB/s: 8fps 256c tol 30": the link's measured rate (or the cap), the frame rate if
+ * or "cap 50KB/s: 8fps 256c tol 30": the link's measured rate (or the cap, or "guess" for
+ * PACE_BLIND_RATE when the terminal answers nothing), the frame rate if
  * lowered, 256c if the colours dropped, and max_err (the largest channel error the last frame
  * left, encode_stats) as the tolerance it came to. "" when the link keeps up. */
 void pace_describe(const struct pace *p, int max_err, char *out, size_t n);

@@ -33,7 +33,8 @@
  * --colors, RASTTY_COLORS or config file decided): inside tmux, tmux's own record of the
  * attached client, #{client_termfeatures}, says whether it passes 24-bit colour on (RGB);
  * with no client attached, or elsewhere (ssh does not forward COLORTERM), TERMCAPS_QUERY goes
- * to the terminal followed by a DSR, whose answer ends the wait (tty_query, short timeout):
+ * to the terminal followed by TTY_PROBE (DSR, CPR, DA1), whose answers end the wait
+ * (tty_query, short timeout):
  *   XTVERSION  ESC[>0q            -> DCS >|NAME ST: tmux (which converts 24-bit colour for a
  *                                    client that lacks it), XTerm(N >= 331), kitty,
  *                                    WezTerm, foot, contour, iTerm2, ghostty -> truecolor

@@ -46,10 +46,15 @@ void view_hud_compose(const struct view_state *s, const struct view_hud_info *in
                       double now, char *out, size_t n);
 
 /* The help overlay: centred on a cols x rows picture and clipped to it; text_w is the width
- * of the widest help line (input.h). */
+ * of the widest help line (input.h). A picture too short for the lines (80x24) gets them in
+ * two columns, each cut to half the width if it must be: every key stays on the screen. */
 struct view_hud_rect {
     int col, row, cols, rows, text_w;
+    int columns, per_col; /* 1 or 2 columns of per_col lines */
 };
 struct view_hud_rect view_hud_help_rect(int cols, int rows);
+/* Row i of the help box (0 and rows - 1 are its blank margins), columns padded: at least
+ * r->cols characters when n allows (the caller clips it to the picture). */
+void view_hud_help_text(const struct view_hud_rect *r, int i, char *out, size_t n);
 
 #endif

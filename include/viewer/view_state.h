@@ -12,8 +12,8 @@
  *
  * Motion follows elapsed time: a key press moves for TAP_S, auto-repeat keeps it moving.
  * Auto-rotation ("spin"): on for the demo and with --spin; the first camera key (movement,
- * turning, field of view, reset, mouse) stops it for good. Space pauses and resumes it, and
- * never restarts a spin a camera key stopped. Without input for spin_timeout seconds it
+ * turning, field of view, reset, mouse) stops it. Space pauses and resumes it, and starts
+ * it again after a camera key stopped it. Without input for spin_timeout seconds it
  * pauses by itself, so a viewer left open does not stream forever.
  * Cycling a render option is one line in view_key's switch (cycle(), or cycle_method() for
  * the methods R, p and Z, which also say which one is on). */
@@ -53,7 +53,7 @@ struct view_state {
     enum cell_glyphs glyphs;  /* how cells show pixels (the g key) */
     int shade_i;              /* position in the m key's cycle */
     bool orbit;               /* orbit the target (else fly) */
-    bool spin;                /* auto-rotation wanted (off for good after a camera key) */
+    bool spin;                /* auto-rotation wanted (off after a camera key, Space: on) */
     bool paused;              /* Space, or the idle timeout */
     bool headlight;           /* the light follows the camera (else the world lights) */
     bool help;                /* the key help overlay is shown */

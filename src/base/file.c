@@ -2,6 +2,10 @@
 #include "file.h"
 
 #include <errno.h>
+#include <limits.h>
+#include <signal.h>
+#include <stdbool.h>
+#include <stdio.h>
 #include <fcntl.h>
 #include <stdlib.h>
 #include <string.h>
@@ -145,26 +149,114 @@ const char *file_strerror(int code)
 
 /* ---- atomic writes ---- */
 
+/* Temporary files being written, for the signal handler (file_out_cleanup_on_signals): a
+ * quit signal removes them before the process dies. Besides tty.c's, the only mutable
+ * globals in rastty; a slot is filled before it is marked used and unmarked before it is
+ * reused, so the handler sees whole names. */
+#define PENDING_MAX 8
+static char pending[PENDING_MAX][4096];
+static volatile sig_atomic_t pending_used[PENDING_MAX];
+
+static void pending_add(const char *tmp)
+{
+    size_t n = strlen(tmp);
+    for (int i = 0; i < PENDING_MAX; i++)
+        if (!pending_used[i] && n < sizeof pending[i]) {
+            memcpy(pending[i], tmp, n + 1);
+            pending_used[i] = 1;
+            return;
+        }
+}
+
+static void pending_remove(const char *tmp)
+{
+    for (int i = 0; i < PENDING_MAX; i++)
+        if (pending_used[i] && strcmp(pending[i], tmp) == 0)
+            pending_used[i] = 0;
+}
+
+static void on_quit_signal(int sig)
+{
+    for (int i = 0; i < PENDING_MAX; i++)
+        if (pending_used[i])
+            unlink(pending[i]); /* async-signal-safe */
+    signal(sig, SIG_DFL);
+    raise(sig);
+}
+
+void file_out_cleanup_on_signals(void)
+{
+    struct sigaction sa, old;
+    memset(&sa, 0, sizeof sa);
+    sigemptyset(&sa.sa_mask);
+    sa.sa_handler = on_quit_signal;
+    static const int sigs[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT};
+    for (unsigned i = 0; i < sizeof sigs / sizeof sigs[0]; i++) /* an ignored one (nohup, a */
+        if (sigaction(sigs[i], NULL, &old) == 0 && old.sa_handler != SIG_IGN) /* background */
+            sigaction(sigs[i], &sa, NULL);                                 /* job) stays so */
+    /* past ulimit -f a write fails with EFBIG (a message, the temporary removed) instead of
+     * the signal killing the process */
+    signal(SIGXFSZ, SIG_IGN);
+}
+
+/* The file a symbolic link --out names (links followed, at most 40, a missing target
+ * included): writing replaces the link's target and keeps the link. NULL when path is no
+ * link (or the chain is too long to follow: then the link itself is replaced). */
+static char *link_target(const char *path)
+{
+    char cur[4096], link[4096];
+    if (strlen(path) >= sizeof cur)
+        return NULL;
+    snprintf(cur, sizeof cur, "%s", path);
+    bool followed = false;
+    for (int hops = 0;; hops++) {
+        struct stat st;
+        if (lstat(cur, &st) != 0 || !S_ISLNK(st.st_mode))
+            break;
+        ssize_t n = readlink(cur, link, sizeof link - 1);
+        if (hops == 40 || n <= 0)
+            return NULL;
+        link[n] = '\0';
+        if (link[0] == '/') {
+            snprintf(cur, sizeof cur, "%s", link);
+        } else { /* relative to the link's folder */
+            char *slash = strrchr(cur, '/');
+            size_t dir = slash ? (size_t)(slash - cur) + 1 : 0;
+            if (dir + (size_t)n >= sizeof cur)
+                return NULL;
+            memcpy(cur + dir, link, (size_t)n + 1);
+        }
+        followed = true;
+    }
+    return followed ? strdup(cur) : NULL;
+}
+
 int file_out_open(struct file_out *o, const char *path, struct err *e)
 {
     memset(o, 0, sizeof *o);
     char q[FILE_QUOTE_SIZE];
-    const char *slash = strrchr(path, '/');
-    size_t dir = slash ? (size_t)(slash - path) + 1 : 0;
-    size_t n = strlen(path);
-    o->path = strdup(path);
-    o->tmp = malloc(n + 16);
-    if (!o->path || !o->tmp) {
+    char *target = link_target(path);
+    o->path = target ? target : strdup(path);
+    if (!o->path)
+        return err_set(e, "%s: out of memory", file_quote(path, q, sizeof q));
+    const char *slash = strrchr(o->path, '/');
+    size_t dir = slash ? (size_t)(slash - o->path) + 1 : 0;
+    size_t n = strlen(o->path);
+    o->tmp = malloc(n + 24);
+    if (!o->tmp) {
         file_out_abort(o);
         return err_set(e, "%s: out of memory", file_quote(path, q, sizeof q));
     }
-    /* ".NAME.XXXXXX" in the target's directory: same file system, so rename is atomic */
-    memcpy(o->tmp, path, dir);
-    o->tmp[dir] = '.';
-    memcpy(o->tmp + dir + 1, path + dir, n - dir);
-    memcpy(o->tmp + n + 1, ".XXXXXX", 8);
+    /* ".NAME.XXXXXX" in the target's directory: same file system, so rename is atomic; a name
+     * too long for that (NAME_MAX 255 with the 8 added bytes) gets ".rastty.XXXXXX" */
+    memcpy(o->tmp, o->path, dir);
+    if (n - dir + 8 <= 255)
+        snprintf(o->tmp + dir, n + 24 - dir, ".%s.XXXXXX", o->path + dir);
+    else
+        snprintf(o->tmp + dir, n + 24 - dir, ".rastty.XXXXXX");
     struct stat st;
-    if (stat(path, &st) == 0 && !S_ISREG(st.st_mode)) {
+    bool exists = stat(o->path, &st) == 0;
+    if (exists && !S_ISREG(st.st_mode)) {
         /* /dev/null, a FIFO, a terminal: write to it directly, nothing to replace */
         free(o->tmp);
         o->tmp = NULL;
@@ -173,18 +265,21 @@ int file_out_open(struct file_out *o, const char *path, struct err *e)
             return err_set(e, "%s: cannot create: %s", file_quote(path, q, sizeof q),
                            strerror(EISDIR));
         }
-        o->f = fopen(path, "wb");
+        o->f = fopen(o->path, "wb");
     } else {
         int fd = mkstemp(o->tmp);
         if (fd >= 0) {
-            /* mkstemp makes 0600; give the file the mode open(2) would (0666 & ~umask) */
+            pending_add(o->tmp);
+            /* mkstemp makes 0600; give the file the mode the old one had, or the mode open(2)
+             * would (0666 & ~umask) */
             mode_t um = umask(0);
             umask(um);
-            fchmod(fd, 0666 & ~um);
+            fchmod(fd, exists ? st.st_mode & 07777 : 0666 & ~um);
             o->f = fdopen(fd, "wb");
             if (!o->f) {
                 close(fd);
                 unlink(o->tmp);
+                pending_remove(o->tmp);
             }
         }
     }
@@ -224,9 +319,11 @@ int file_out_commit(struct file_out *o, struct err *e)
         bad = 1;
         err_no = errno;
     }
+    if (o->tmp && bad)
+        unlink(o->tmp);
+    if (o->tmp)
+        pending_remove(o->tmp);
     if (bad) {
-        if (o->tmp)
-            unlink(o->tmp);
         out_free(o);
         return err_set(e, "%s: write failed: %s", q, strerror(err_no ? err_no : EIO));
     }
@@ -240,6 +337,8 @@ void file_out_abort(struct file_out *o)
         fclose(o->f);
     if (o->tmp && o->f)
         unlink(o->tmp);
+    if (o->tmp)
+        pending_remove(o->tmp);
     o->f = NULL;
     out_free(o);
 }

@@ -164,6 +164,9 @@ int cmd_dump(const struct options *o, struct err *e)
     struct render_opts ro;
     struct cell_geom geom = cell_geom(o->glyphs);
     prepare_camera(o, &scene, cols * CELL_ASPECT / rows, o->frame, &cam, &ro);
+    /* a dump is what the viewer shows: its light, the headlight, unless --light X,Y,Z (or the
+     * config file's light = world); render keeps the conventions' fixed light */
+    bool headlight = o->light_camera || (!o->light_set && !o->light_world);
     bool to_tty = !o->out && isatty(STDOUT_FILENO);
     bool cast = o->out && ends_with(o->out, ".cast");
     struct encode_opts eo = {.mode = color_mode(o, to_tty),
@@ -205,7 +208,7 @@ int cmd_dump(const struct options *o, struct err *e)
         } else if (o->orbit_deg != 0) {
             camera_turn(&c, o->orbit_deg * k, 0, 1);
         }
-        if (o->light_camera) /* the headlight follows the camera */
+        if (headlight) /* the headlight follows the camera */
             light_use_camera(&ro, &c);
         struct frame_stats st;
         if (ssaa_draw(&ss, p, scene.items, scene.n_items, sky, &c, &ro, &fb, &st, e))

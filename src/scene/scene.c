@@ -365,7 +365,7 @@ static int statement(struct parser *p, struct scene *s, char (*names)[MAX_PATH])
                     return -1;
                 pp[k] = paths[k];
             }
-            if (skybox_load(&s->sky, pp, p->e))
+            if (skybox_load(&s->sky, pp, &s->warnings, p->e))
                 return prefix_err(p);
         } else {
             return perr(p, "sky needs 'procedural' or six files POSX NEGX POSY NEGY POSZ NEGZ",

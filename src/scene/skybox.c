@@ -112,22 +112,25 @@ static int build_chain(struct skybox *s, struct err *e)
     return 0;
 }
 
-int skybox_load(struct skybox *s, const char *const paths[6], struct err *e)
+int skybox_load(struct skybox *s, const char *const paths[6], struct warnings *w,
+                struct err *e)
 {
     memset(s, 0, sizeof *s);
     /* one face at a time, straight into level 0: never six decoded images at once */
     int rc = 0;
     for (int f = 0; f < 6 && rc == 0; f++) {
         struct texture t;
-        rc = texture_load_level0(paths[f], SKYBOX_MAX_FACE, &t, NULL, e);
+        rc = texture_load_level0(paths[f], SKYBOX_MAX_FACE, &t, w, e);
         if (rc)
             break;
         int n = s->n_levels ? s->level[0].n : t.w;
-        if (t.w != t.h || t.w != n) {
-            char q[200];
-            rc = err_set(e, "%s: skybox faces must be square and equal (%dx%d, first face %dx%d)",
-                         err_quote(paths[f], strlen(paths[f]), 160, q, sizeof q), t.w, t.h, n,
-                         n);
+        char q[200];
+        err_quote(paths[f], strlen(paths[f]), 160, q, sizeof q);
+        if (t.w != t.h) {
+            rc = err_set(e, "%s: skybox faces must be square (this one is %dx%d)", q, t.w, t.h);
+        } else if (t.w != n) {
+            rc = err_set(e, "%s: skybox faces must be equal (this one is %dx%d, the first %dx%d)",
+                         q, t.w, t.h, n, n);
         } else if (!s->n_levels && alloc_level(&s->level[0], n)) {
             rc = err_set(e, "out of memory for the skybox");
         } else {

@@ -3,9 +3,10 @@
 
 #include <stdio.h>
 
-void pace_init(struct pace *p, double fps, double cap_bytes_s)
+void pace_init(struct pace *p, double fps, double cap_bytes_s, bool local)
 {
     *p = (struct pace){0};
+    p->local = local && !(cap_bytes_s > 0);
     p->min_period = fps > 0 ? 1.0 / fps : 0;
     p->cap = cap_bytes_s > 0 ? cap_bytes_s : 0;
     p->rtt = -1;
@@ -13,9 +14,20 @@ void pace_init(struct pace *p, double fps, double cap_bytes_s)
 }
 
 /* The rate frames are sized for: measured, capped; 0 = unknown. */
+static bool is_blind(const struct pace *p)
+{
+    return p->no_answers || (p->answers == 0 && p->lost >= PACE_LOST_LIMIT);
+}
+
+void pace_no_answers(struct pace *p)
+{
+    p->no_answers = true;
+    p->inflight = false;
+}
+
 static double link_rate(const struct pace *p)
 {
-    bool blind = p->answers == 0 && p->lost >= PACE_LOST_LIMIT;
+    bool blind = is_blind(p);
     double r = blind ? PACE_BLIND_RATE : p->rate;
     if (p->cap > 0 && (r == 0 || r > p->cap))
         r = p->cap;
@@ -36,6 +48,8 @@ bool pace_ready(const struct pace *p, double t, double *wait_out)
 
 size_t pace_budget(const struct pace *p)
 {
+    if (p->local)
+        return 0; /* the terminal's own speed, not a link's: every frame whole */
     double r = link_rate(p);
     if (r == 0)
         return PACE_FIRST_BUDGET;
@@ -45,7 +59,7 @@ size_t pace_budget(const struct pace *p)
 
 enum palette_mode pace_mode(const struct pace *p, enum palette_mode want)
 {
-    return want == PALETTE_TRUECOLOR && p->use_256 ? PALETTE_256 : want;
+    return want == PALETTE_TRUECOLOR && p->use_256 && !p->local ? PALETTE_256 : want;
 }
 
 void pace_sent(struct pace *p, double t, size_t bytes, size_t demand, int cells)
@@ -59,10 +73,12 @@ void pace_sent(struct pace *p, double t, size_t bytes, size_t demand, int cells)
     p->next_at = t + p->min_period;
     if (p->cap > 0 && t + (double)bytes / p->cap > p->next_at)
         p->next_at = t + (double)bytes / p->cap;
-    bool blind = p->answers == 0 && p->lost >= PACE_LOST_LIMIT;
-    if (blind) { /* nobody answers: the time the bytes take is all we have */
+    if (is_blind(p)) { /* nobody answers: the time the bytes take is all we have */
         p->inflight = false;
-        p->next_at = t + (transfer > p->period ? transfer : p->period);
+        /* a local terminal's pty holds a few KB: a write it cannot take blocks, which
+         * paces by itself; over a link, the time the bytes take at the assumed rate */
+        if (!p->local)
+            p->next_at = t + (transfer > p->period ? transfer : p->period);
     }
     /* the frame period: what the frames need, at the link's rate, within [1/fps, max] */
     p->demand = p->demand > 0 ? 0.5 * p->demand + 0.5 * (double)demand : (double)demand;
@@ -70,7 +86,7 @@ void pace_sent(struct pace *p, double t, size_t bytes, size_t demand, int cells)
         double period = p->demand / r;
         p->period = period < p->min_period ? p->min_period
                     : period > PACE_MAX_PERIOD ? PACE_MAX_PERIOD : period;
-        double per_cell = r * PACE_MAX_PERIOD / (cells > 0 ? cells : 1);
+        double per_cell = r * PACE_COLOUR_PERIOD / (cells > 0 ? cells : 1);
         if (per_cell < PACE_256_BELOW)
             p->use_256 = true;
         else if (per_cell > PACE_256_ABOVE)
@@ -81,6 +97,7 @@ void pace_sent(struct pace *p, double t, size_t bytes, size_t demand, int cells)
 void pace_answer(struct pace *p, double t)
 {
     p->answers++;
+    p->no_answers = false; /* a late answer to the first query: pace on the answers */
     if (!p->inflight) /* the answer to a frame already given up on */
         return;
     p->inflight = false;
@@ -125,13 +142,13 @@ void pace_describe(const struct pace *p, int max_err, char *out, size_t n)
 {
     double r = link_rate(p);
     bool slow_fps = p->period > p->min_period * 1.5;
-    if (r == 0 || (!slow_fps && !p->use_256 && max_err == 0)) {
+    if (r == 0 || p->local || (!slow_fps && !p->use_256 && max_err == 0)) {
         if (n)
             out[0] = '\0';
         return;
     }
-    int k = snprintf(out, n, "%s %.0fKB/s:", p->cap > 0 && r >= p->cap ? "cap" : "link",
-                     r / 1000);
+    int k = snprintf(out, n, "%s %.0fKB/s:", p->cap > 0 && r >= p->cap ? "cap"
+                                             : is_blind(p) ? "guess" : "link", r / 1000);
     if (slow_fps && k >= 0 && (size_t)k < n)
         k += snprintf(out + k, n - (size_t)k, " %.0ffps", 1.0 / p->period);
     if (p->use_256 && k >= 0 && (size_t)k < n)

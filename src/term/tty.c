@@ -2,11 +2,13 @@
 #include "tty.h"
 
 #include <curses.h>
+#include <term.h>
 #include <errno.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <poll.h>
 #include <sys/select.h>
 #include <termios.h>
 #include <time.h>
@@ -18,7 +20,7 @@
  * mutable globals in rastty, written before the handlers are installed (saved termios) or
  * only as sig_atomic_t flags. */
 static struct termios saved_termios;
-static volatile sig_atomic_t have_saved, quit_signal, stop_requested;
+static volatile sig_atomic_t have_saved, quit_signal, stop_requested, continued;
 static SCREEN *screen_handle;
 /* The signals that end a wait (quit, Ctrl-Z, resize) are blocked between tty_open and
  * tty_close except while we wait for the terminal (ppoll) or write to it: a signal can then
@@ -31,6 +33,10 @@ static sigset_t wait_signals, unblocked;
  * never refreshed by wgetch, so ncurses draws only where we ask it to. */
 static WINDOW *keys;
 static bool released; /* the terminal was given back (suspended, continued in the background) */
+/* the terminal has no alternate screen (TERM=linux, dumb): the last frame would stay on the
+ * screen under the shell's prompt, so leaving clears it */
+static bool no_alt_screen;
+#define CLEAR_BYTES "\033[0m\033[H\033[2J"
 
 /* ... and leave keypad-transmit mode (xterm rmkx: normal cursor keys, numeric keypad), which
  * keypad(stdscr, TRUE) entered: without it a shell after SIGABRT gets ESC O A for the arrows */
@@ -56,6 +62,14 @@ static void on_stop(int sig)
 {
     (void)sig;
     stop_requested = 1;
+}
+
+/* SIGCONT after a stop we did not ask for (kill -STOP, then kill -CONT or the shell's fg):
+ * only note it; tty_suspend looks at where we are now. */
+static void on_cont(int sig)
+{
+    (void)sig;
+    continued = 1;
 }
 
 static void on_crash(int sig)
@@ -90,6 +104,8 @@ static void install_handlers(void)
     sigaction(SIGQUIT, &sa, NULL);
     sa.sa_handler = on_stop;
     sigaction(SIGTSTP, &sa, NULL);
+    sa.sa_handler = on_cont;
+    sigaction(SIGCONT, &sa, NULL);
     sa.sa_handler = on_crash;
     sa.sa_flags = SA_RESETHAND;
     static const int crash[] = {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT};
@@ -97,7 +113,7 @@ static void install_handlers(void)
         sigaction(crash[i], &sa, NULL);
     signal(SIGPIPE, SIG_IGN);
     sigemptyset(&wait_signals);
-    static const int waits[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGTSTP, SIGWINCH};
+    static const int waits[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGTSTP, SIGWINCH, SIGCONT};
     for (unsigned i = 0; i < sizeof waits / sizeof waits[0]; i++)
         sigaddset(&wait_signals, waits[i]);
     sigprocmask(SIG_BLOCK, &wait_signals, &unblocked);
@@ -107,6 +123,7 @@ static void install_handlers(void)
     sigdelset(&unblocked, SIGQUIT);
     sigdelset(&unblocked, SIGTSTP);
     sigdelset(&unblocked, SIGWINCH);
+    sigdelset(&unblocked, SIGCONT);
 }
 
 /* Wait up to timeout_ms (-1 = forever) for input on fd, with the wait signals deliverable
@@ -119,6 +136,14 @@ static int wait_input(int fd, int timeout_ms)
     FD_SET(fd, &rd);
     struct timespec ts = {timeout_ms / 1000, (long)(timeout_ms % 1000) * 1000000L};
     int r = pselect(fd + 1, &rd, NULL, NULL, timeout_ms < 0 ? NULL : &ts, &unblocked);
+    struct pollfd pfd = {.fd = fd, .events = POLLIN};
+    if (r > 0 && poll(&pfd, 1, 0) < 0)
+        pfd.revents = 0;
+    /* the terminal went away (its emulator or tmux server killed) without a SIGHUP reaching
+     * us (we were started from a shell): every read is an end of file, forever; leave as a
+     * hangup would make us */
+    if (r > 0 && (pfd.revents & (POLLHUP | POLLERR | POLLNVAL)) && !quit_signal)
+        quit_signal = SIGHUP;
     /* pselect that finds input ready returns without delivering a signal that is pending
      * (Linux restores the mask first): a hung-up terminal is always "ready", so its SIGHUP
      * would wait forever. Let pending signals in now. */
@@ -156,6 +181,7 @@ static bool foreground(void)
 int tty_open(struct tty *t, struct err *e)
 {
     memset(t, 0, sizeof *t);
+    t->sync = TTY_SYNC_DSR;
     released = false;
     if (!isatty(STDIN_FILENO) || !isatty(STDOUT_FILENO))
         return err_set(e, "rastty: the viewer needs a terminal on stdin and stdout "
@@ -168,6 +194,8 @@ int tty_open(struct tty *t, struct err *e)
         return err_set(e, "rastty: cannot use this terminal (TERM=%s)",
                        getenv("TERM") ? "set but unknown" : "unset");
     set_term(screen_handle);
+    const char *smcup = tigetstr("smcup");
+    no_alt_screen = smcup == NULL || smcup == (char *)-1 || !*smcup;
     cbreak();
     noecho();
     nonl();
@@ -221,6 +249,8 @@ void tty_close(struct tty *t)
             write_restore(MOUSE_OFF, sizeof MOUSE_OFF - 1);
         mousemask(0, NULL);
         write_restore("\033[?2026l\033[0m", 12);
+        if (no_alt_screen)
+            write_restore(CLEAR_BYTES, sizeof CLEAR_BYTES - 1);
         curs_set(1);
         endwin();
         delwin(keys);
@@ -264,17 +294,91 @@ int tty_write(const char *buf, size_t n)
     return n ? -1 : 0;
 }
 
-int tty_query(const char *req, char *reply, size_t cap, int timeout_ms)
+enum tty_sync tty_sync_kind(const char *csi)
+{
+    if (strcmp(csi, "0n") == 0)
+        return TTY_SYNC_DSR;
+    const char *p = csi;
+    if (*p == '?') { /* DA1: ?digits;digits...c */
+        for (p++; (*p >= '0' && *p <= '9') || *p == ';'; p++)
+            ;
+        return p > csi + 1 && p[0] == 'c' && p[1] == '\0' ? TTY_SYNC_DA1 : TTY_SYNC_NONE;
+    }
+    int fields = 0; /* CPR: digits;digitsR */
+    while (*p >= '0' && *p <= '9') {
+        const char *d = p;
+        while (*p >= '0' && *p <= '9')
+            p++;
+        fields += p > d;
+        if (*p != ';')
+            break;
+        p++;
+    }
+    return fields == 2 && p[0] == 'R' && p[1] == '\0' ? TTY_SYNC_CPR : TTY_SYNC_NONE;
+}
+
+/* Which of our answers a[0..n) holds (seen[kind]), and the offset of the first of them. */
+static size_t scan_answers(const char *a, size_t n, bool seen[4])
+{
+    size_t first = n;
+    for (size_t i = 0; i + 2 < n; i++) {
+        if (a[i] != '\033' || a[i + 1] != '[')
+            continue;
+        char csi[32];
+        size_t k = 0;
+        for (size_t j = i + 2; j < n && k + 1 < sizeof csi; j++) {
+            csi[k++] = a[j];
+            if ((unsigned char)a[j] >= 0x40 && (unsigned char)a[j] <= 0x7e)
+                break;
+        }
+        csi[k] = '\0';
+        enum tty_sync kind = tty_sync_kind(csi);
+        if (kind != TTY_SYNC_NONE) {
+            seen[kind] = true;
+            first = i < first ? i : first;
+        }
+    }
+    return first;
+}
+
+enum tty_sync tty_sync_from_answers(const char *a, size_t n, size_t *first_out)
+{
+    bool seen[4] = {false};
+    size_t first = scan_answers(a, n, seen);
+    if (first_out)
+        *first_out = first;
+    return seen[TTY_SYNC_DSR] ? TTY_SYNC_DSR : seen[TTY_SYNC_CPR] ? TTY_SYNC_CPR
+         : seen[TTY_SYNC_DA1] ? TTY_SYNC_DA1 : TTY_SYNC_NONE;
+}
+
+size_t tty_sync_request(const struct tty *t, char *buf, size_t cap)
+{
+    int k = 0;
+    switch (t->sync) {
+    case TTY_SYNC_DSR: k = snprintf(buf, cap, "\033[5n"); break;
+    case TTY_SYNC_CPR:
+        k = snprintf(buf, cap, "\033[%d;1H\033[6n", t->rows > 1 ? t->rows : 1);
+        break;
+    case TTY_SYNC_DA1: k = snprintf(buf, cap, "\033[c"); break;
+    case TTY_SYNC_NONE: k = snprintf(buf, cap, "%s", ""); break;
+    }
+    return k > 0 && (size_t)k < cap ? (size_t)k : 0;
+}
+
+#define TTY_AFTER_DSR_MS 100 /* with DSR answered, the DA1 answer is awaited this long */
+
+int tty_query(struct tty *t, const char *req, char *reply, size_t cap, int timeout_ms)
 {
     size_t len = 0;
     reply[0] = '\0';
-    if (tty_write(req, strlen(req)) || tty_write(TTY_SYNC_REQUEST, sizeof TTY_SYNC_REQUEST - 1))
+    t->sync = TTY_SYNC_NONE;
+    if (tty_write(req, strlen(req)) || tty_write(TTY_PROBE, sizeof TTY_PROBE - 1))
         return -1;
-    double t0 = timing_now_ms();
+    double t0 = timing_now_ms(), end = t0 + timeout_ms;
     for (;;) {
-        int left = timeout_ms - (int)(timing_now_ms() - t0);
+        int left = (int)(end - timing_now_ms());
         if (left <= 0 || quit_signal || !wait_input(STDIN_FILENO, left))
-            return -1; /* no answer to DSR in time (what came is in reply) */
+            break; /* what came in time is in reply */
         char buf[256];
         ssize_t n = read(STDIN_FILENO, buf, sizeof buf);
         if (n <= 0)
@@ -283,31 +387,61 @@ int tty_query(const char *req, char *reply, size_t cap, int timeout_ms)
             if (len + 1 < cap)
                 reply[len++] = buf[i];
         reply[len] = '\0';
-        char *dsr = strstr(reply, "\033[0n");
-        if (dsr) { /* everything before the DSR answer is the reply */
-            *dsr = '\0';
-            return (int)(dsr - reply);
-        }
+        bool seen[4] = {false};
+        scan_answers(reply, len, seen);
+        if (seen[TTY_SYNC_DA1])
+            break; /* the DA1 answer, the last: everything has come */
+        if (seen[TTY_SYNC_DSR] && end > timing_now_ms() + TTY_AFTER_DSR_MS)
+            end = timing_now_ms() + TTY_AFTER_DSR_MS; /* DSR is enough; DA1 may be missing */
     }
+    size_t first;
+    t->sync = tty_sync_from_answers(reply, len, &first);
+    if (t->sync == TTY_SYNC_NONE)
+        return -1;
+    reply[first] = '\0';
+    return (int)first;
 }
 
 bool tty_stop_requested(void)
 {
-    return stop_requested != 0;
+    return stop_requested != 0 || continued != 0;
 }
 
 bool tty_suspend(struct tty *t)
 {
-    if (!stop_requested)
+    if (!stop_requested && !continued)
         return false;
+    bool asked = stop_requested != 0;
     stop_requested = 0;
+    continued = 0;
+    /* leaving anyway (a hangup sends SIGHUP and SIGCONT together), or continued with no
+     * terminal to go back to: never stop for a shell that is not there */
+    if (quit_signal || (!asked && tcgetpgrp(STDIN_FILENO) < 0))
+        return false;
+    if (!asked && foreground()) {
+        /* stopped from outside and continued in the foreground (the shell's fg, which may
+         * have put its own modes on the terminal): our modes and screen again, repainted */
+        endwin();
+        goto back;
+    }
     /* give the shell a normal terminal, drop input nobody read (typeahead: it would land at
-     * the prompt), stop, and take the terminal back when continued in the foreground */
+     * the prompt), stop, and take the terminal back when continued in the foreground. Stopped
+     * from outside and continued in the background (kill -STOP, kill -CONT): the shell has
+     * its prompt on our screen; give the terminal back the same way, with SIGTTOU held off
+     * (a background process may then still set the modes) */
+    sigset_t ttou, before;
+    sigemptyset(&ttou);
+    sigaddset(&ttou, SIGTTOU);
+    sigprocmask(SIG_BLOCK, &ttou, &before);
     if (t->mouse)
         write_restore(MOUSE_OFF, sizeof MOUSE_OFF - 1);
     write_restore("\033[0m", 4);
+    if (no_alt_screen)
+        write_restore(CLEAR_BYTES, sizeof CLEAR_BYTES - 1);
     endwin();
-    tcflush(STDIN_FILENO, TCIFLUSH);
+    if (asked)
+        tcflush(STDIN_FILENO, TCIFLUSH);
+    sigprocmask(SIG_SETMASK, &before, NULL);
     do {
         kill(getpid(), SIGSTOP);
         /* continued: in the background (bg, kill -CONT) the terminal is the shell's, and
@@ -325,6 +459,14 @@ bool tty_suspend(struct tty *t)
             return true;
         }
     } while (!foreground());
+back:;
+    /* the SIGCONT of this fg is this very return: not another one to act on */
+    sigset_t pending;
+    if (sigpending(&pending) == 0 && sigismember(&pending, SIGCONT)) {
+        sigprocmask(SIG_SETMASK, &unblocked, NULL);
+        sigprocmask(SIG_BLOCK, &wait_signals, NULL);
+    }
+    continued = 0;
     /* continued (fg): ncurses re-enters its modes and the alternate screen, cleared */
     refresh();
     curs_set(0);
@@ -377,7 +519,7 @@ static enum tty_event_kind sgr_mouse(const char *seq, struct tty_event *ev)
  * Esc key followed by another sequence; ESC [ ... is a CSI sequence (our DSR answer "0n", an
  * SGR mouse report, or a key this terminfo does not know: ignored); ESC O x an unknown SS3
  * key (ignored); ESC x is Alt+x (ignored, so Alt never quits). */
-static enum tty_event_kind after_escape(struct tty_event *ev)
+static enum tty_event_kind after_escape(struct tty *t, struct tty_event *ev)
 {
     wtimeout(keys, 0);
     int c = wgetch(keys);
@@ -409,7 +551,12 @@ static enum tty_event_kind after_escape(struct tty_event *ev)
     seq[n] = '\0';
     if (seq[0] == '<')
         return sgr_mouse(seq, ev);
-    ev->kind = strcmp(seq, "0n") == 0 ? TTY_SYNC_REPLY : TTY_NONE;
+    /* the answer to the frames' query; a terminal taken to answer nothing whose answer to
+     * tty_query's probe comes late (a slow link) is paced on the first one that comes */
+    enum tty_sync kind = tty_sync_kind(seq);
+    if (kind != TTY_SYNC_NONE && t->sync == TTY_SYNC_NONE)
+        t->sync = kind;
+    ev->kind = kind != TTY_SYNC_NONE && kind == t->sync ? TTY_SYNC_REPLY : TTY_NONE;
     return ev->kind;
 }
 
@@ -436,7 +583,7 @@ enum tty_event_kind tty_next_event(struct tty *t, int timeout_ms, struct tty_eve
         return ev->kind;
     }
     if (c == 27)
-        return after_escape(ev);
+        return after_escape(t, ev);
     if (c == KEY_MOUSE) {
         MEVENT m;
         if (getmouse(&m) != OK)

@@ -36,6 +36,7 @@
 #define HUD_PERIOD_S 0.5 /* while animating, refresh the status line at most this often */
 #define DRAIN_S 1.0      /* Ctrl-Z: wait this long (+ the transfer) for the answer in flight */
 #define MAX_SHOTS 16
+#define FPS_GAP_S 0.5    /* frames further apart than this are not counted in the frame rate */
 
 struct view {
     const struct options *o;
@@ -137,6 +138,18 @@ static void enter_scene(struct view *v)
     view_state_scene(&v->s, &cam, &ro, v3_len(v3_sub(s->bound_hi, s->bound_lo)));
     v->lod_pending = !scene_lod_done(s);
     skybox_free(&v->default_sky); /* its sun follows the scene's first light */
+    /* the load's warnings went to stderr, which the alternate screen hides until the exit:
+     * say the first on the status line (all of them are on the screen after q) */
+    if (s->warnings.n > 0) {
+        char msg[sizeof v->s.message];
+        int more = s->warnings.n - 1 + s->warnings.dropped;
+        char tail[48] = "";
+        if (more > 0)
+            snprintf(tail, sizeof tail, " (+%d more)", more);
+        snprintf(msg, sizeof msg, "warning: %.*s%s", (int)(sizeof msg - 10 - strlen(tail)),
+                 s->warnings.msg[0], tail);
+        view_message(&v->s, msg, timing_now_s());
+    }
 }
 
 /* ---- output ---- */
@@ -185,8 +198,10 @@ static bool still(struct view *v, double t)
 
 static void hud_draw(struct view *v, double t)
 {
-    if (v->o->no_hud || v->tty.rows < 1)
+    if (v->o->no_hud || v->tty.rows < 1) {
+        v->s.hud_dirty = false; /* nothing to draw: or the loop never waits (100% CPU idle) */
         return;
+    }
     char text[512], pos[32];
     struct view_hud_info in = {
         .scene = v->scenes[v->cur]->name, .scene_i = v->cur, .n_scenes = v->n_scenes,
@@ -224,11 +239,9 @@ static void help_draw(struct view *v)
     struct view_hud_rect r = view_hud_help_rect(v->fb_cols, v->fb_rows);
     const char *sgr = v->eo.mode == PALETTE_NONE ? "" : "\033[0;97;44m";
     for (int i = 0; i < r.rows; i++) {
-        /* a blank margin above and below the lines (input_help_line is NULL past the last) */
-        const char *text = i > 0 ? input_help_line(i - 1) : NULL;
-        char pos[32], line[256];
+        char pos[32], line[512];
         int k = snprintf(pos, sizeof pos, "\033[%d;%dH", r.row + i + 1, r.col + 1);
-        snprintf(line, sizeof line, "  %-*.*s  ", r.text_w, r.text_w, text ? text : "");
+        view_hud_help_text(&r, i, line, sizeof line);
         out_add(v, pos, (size_t)k);
         out_add(v, sgr, strlen(sgr));
         out_add(v, line, (size_t)r.cols); /* clipped to the picture: never wraps */
@@ -263,7 +276,9 @@ static int draw_frame(struct view *v, double t, struct err *e)
     size_t n;
     const char *bytes = encode_fb(&v->es, &v->fb, &v->eo, &n, &v->est);
     v->encode_ms = (timing_now_s() - t0) * 1e3;
-    if (v->last_frame_at > 0) {
+    /* the frame rate of motion: a frame after an idle pause (a key after a still picture)
+     * says nothing about it, and would make the rate decay toward 0 while nothing moves */
+    if (v->last_frame_at > 0 && t - v->last_frame_at < FPS_GAP_S) {
         double inst = 1.0 / (t - v->last_frame_at > 1e-4 ? t - v->last_frame_at : 1e-4);
         v->fps = v->fps > 0 ? 0.8 * v->fps + 0.2 * inst : inst;
     }
@@ -287,19 +302,25 @@ static int draw_frame(struct view *v, double t, struct err *e)
         hud_draw(v, t); /* the count changed: always drawn */
     if (v->out_len == 0)
         return 0;
-    out_add(v, TTY_SYNC_REQUEST, sizeof TTY_SYNC_REQUEST - 1);
+    char req[TTY_SYNC_REQUEST_MAX];
+    out_add(v, req, tty_sync_request(&v->tty, req, sizeof req));
     size_t total = v->out_len;
+    /* the link's time starts with the write: drawing and encoding the frame are not the
+     * link's (counted in, a heavy model measured a local terminal as a slow link) */
+    double sent_at = timing_now_s();
     if (out_flush(v))
         return err_set(e, "rastty: cannot write to the terminal");
-    pace_sent(&v->pace, t, total, v->est.demand + (total - n), v->fb_cols * v->fb_rows);
+    pace_sent(&v->pace, sent_at, total, v->est.demand + (total - n), v->fb_cols * v->fb_rows);
     return 0;
 }
 
-/* A bare DSR: measures the round trip before the first frame (and after Ctrl-Z). */
+/* A bare query: measures the round trip before the first frame (and after Ctrl-Z). */
 static void probe(struct view *v)
 {
-    if (tty_write(TTY_SYNC_REQUEST, sizeof TTY_SYNC_REQUEST - 1) == 0)
-        pace_sent(&v->pace, timing_now_s(), sizeof TTY_SYNC_REQUEST - 1, 0, v->fb_cols * v->fb_rows);
+    char req[TTY_SYNC_REQUEST_MAX];
+    size_t n = tty_sync_request(&v->tty, req, sizeof req);
+    if (n > 0 && tty_write(req, n) == 0)
+        pace_sent(&v->pace, timing_now_s(), n, 0, v->fb_cols * v->fb_rows);
 }
 
 /* ---- screenshots ---- */
@@ -393,7 +414,11 @@ static int act(struct view *v, enum view_action a, double t, bool *quit, struct 
 static void drain_answers(struct view *v)
 {
     double r = v->pace.rate > 0 ? v->pace.rate : PACE_SLOWEST_RATE;
-    double end = timing_now_s() + DRAIN_S + (double)v->pace.sent_bytes / r;
+    /* a round trip measured: a few of them, not a second (Ctrl-Z took 1.1 s, and keys typed
+     * meanwhile, a `fg`, were dropped with the typeahead) */
+    double grace = v->pace.rtt >= 0 && 0.1 + 4 * v->pace.rtt < DRAIN_S ? 0.1 + 4 * v->pace.rtt
+                                                                        : DRAIN_S;
+    double end = timing_now_s() + grace + (double)v->pace.sent_bytes / r;
     struct tty_event ev;
     while (v->pace.inflight && !tty_signalled()) {
         double t = timing_now_s();
@@ -532,7 +557,7 @@ static int load_scenes(struct view *v, struct err *e)
     return 0;
 }
 
-#define QUERY_MS 500 /* a terminal that does not answer DSR within this is not asked again */
+#define QUERY_MS 1000 /* a terminal that answers no query within this is not asked again */
 
 /* The colour mode: --colors (or RASTTY_COLORS, or the config file, which main put there),
  * else what the environment says (termcaps.h); *ask_out: 256 or 16 and nothing explicit,
@@ -555,17 +580,22 @@ static enum palette_mode colour_mode(const struct options *o, bool *ask_out)
     return m;
 }
 
-/* Ask the terminal (termcaps.h, TERMCAPS_QUERY); its DSR answer also measures the round
- * trip for the pacing. */
-static void ask_terminal(struct view *v)
+/* Learn which query the terminal answers (tty_query: DSR, CPR or DA1, or none: then the
+ * frames are paced by time and carry no query), and when ask, its colours (termcaps.h,
+ * TERMCAPS_QUERY). The answer also measures the round trip for the pacing. */
+static void ask_terminal(struct view *v, bool ask)
 {
     char reply[1024];
+    const char *req = ask ? TERMCAPS_QUERY : "";
     double t0 = timing_now_s();
-    if (tty_query(TERMCAPS_QUERY, reply, sizeof reply, QUERY_MS) < 0)
+    if (tty_query(&v->tty, req, reply, sizeof reply, QUERY_MS) < 0) {
+        pace_no_answers(&v->pace);
         return;
-    pace_sent(&v->pace, t0, sizeof TERMCAPS_QUERY - 1 + sizeof TTY_SYNC_REQUEST - 1, 0, 1);
+    }
+    pace_sent(&v->pace, t0, strlen(req) + sizeof TTY_PROBE - 1, 0, 1);
     pace_answer(&v->pace, timing_now_s());
-    v->mode = termcaps_from_reply(v->mode, reply, NULL);
+    if (ask)
+        v->mode = termcaps_from_reply(v->mode, reply, NULL);
 }
 
 int view_run(const struct options *o, struct err *e)
@@ -591,10 +621,10 @@ int view_run(const struct options *o, struct err *e)
     bool ask;
     v->mode = colour_mode(o, &ask);
     /* over ssh, default to a small tolerance: far fewer bytes, invisible change */
-    bool ssh = getenv("SSH_CONNECTION") || getenv("SSH_TTY");
+    bool ssh = getenv("SSH_CONNECTION") || getenv("SSH_TTY") || getenv("SSH_CLIENT");
     v->eo.tolerance = o->tolerance >= 0 ? o->tolerance : ssh ? 3 : 0;
     v->eo.dither = o->dither;
-    pace_init(&v->pace, o->fps, o->bandwidth);
+    pace_init(&v->pace, o->fps, o->bandwidth, !ssh);
     rc = 1;
     if (!(v->pipe = pipeline_new())) {
         err_set(e, "out of memory");
@@ -604,8 +634,7 @@ int view_run(const struct options *o, struct err *e)
         rc = 2;
         goto out_tty;
     }
-    if (ask)
-        ask_terminal(v);
+    ask_terminal(v, ask);
     v->eo.mode = v->mode;
     if (resize(v, e) == 0) {
         enter_scene(v);

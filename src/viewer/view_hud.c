@@ -26,6 +26,15 @@ static void add(struct fields *f, int prio, const char *fmt, ...)
     f->prio[f->n++] = prio;
 }
 
+/* a triangle count: as it is below 1000, else in thousands ("149.6k") */
+static void tri_count(unsigned long long n, char *out, size_t cap)
+{
+    if (n < 1000)
+        snprintf(out, cap, "%llu", n);
+    else
+        snprintf(out, cap, "%.1fk", (double)n / 1e3);
+}
+
 /* length of " a | b | c" */
 static size_t line_len(const struct fields *f, const bool *drop)
 {
@@ -51,7 +60,13 @@ void view_hud_compose(const struct view_state *s, const struct view_hud_info *in
     struct fields f = {0};
     const struct frame_stats *st = in->st;
     add(&f, 0, "%s [%d/%d]", in->scene, in->scene_i + 1, in->n_scenes);
-    add(&f, 0, "%s %s", view_shade_name(s), render_filter_name(s->ro.filter));
+    /* the filter only where there is a texture to filter; "textured" without one draws phong */
+    bool textured = in->texture && s->ro.textures;
+    const char *shade = view_shade_name(s);
+    if (textured && strcmp(shade, "textured") == 0)
+        add(&f, 0, "%s %s", shade, render_filter_name(s->ro.filter));
+    else
+        add(&f, 0, "%s", strcmp(shade, "textured") == 0 ? "phong" : shade);
     if (s->glyphs != CELL_HALF)
         add(&f, 0, "%s %s", palette_mode_name(in->mode), cell_glyphs_name(s->glyphs));
     else
@@ -69,6 +84,7 @@ void view_hud_compose(const struct view_state *s, const struct view_hud_info *in
         add(&f, 1, "eye %.2f,%.2f,%.2f target %.2f,%.2f,%.2f fov %.0f", s->cam.eye.x,
             s->cam.eye.y, s->cam.eye.z, s->cam.target.x, s->cam.target.y, s->cam.target.z,
             s->cam.fov_deg);
+    add(&f, 1, "h: help"); /* the key a new user needs: goes only after every field below */
     if (in->texture && s->ro.textures)
         add(&f, 2, "tex:%s", in->texture);
     else
@@ -91,15 +107,16 @@ void view_hud_compose(const struct view_state *s, const struct view_hud_info *in
             snprintf(level, sizeof level, " L%d-%d", st->lod_min, st->lod_max);
         else if (st->lod_max >= 0)
             snprintf(level, sizeof level, " L%d", st->lod_max);
-        add(&f, 2, "lod %s%s%s %.1fk/%.1fk", mode, in->lod_building ? "..." : "", level,
-            (double)st->tris_in / 1e3, (double)st->tris_full / 1e3);
+        char in_k[24], full_k[24]; /* 36, not 0.0k */
+        tri_count(st->tris_in, in_k, sizeof in_k);
+        tri_count(st->tris_full, full_k, sizeof full_k);
+        add(&f, 2, "lod %s%s%s %s/%s", mode, in->lod_building ? "..." : "", level, in_k, full_k);
     }
     if (s->spin)
         add(&f, 3, "%s", s->paused ? "spin paused" : "spin");
     if (s->ro.cull != CULL_AUTO)
         add(&f, 3, "cull:%s", render_cull_name(s->ro.cull));
     add(&f, 3, "%.1f KB", (double)in->bytes / 1024.0);
-    add(&f, 3, "h: help");
     add(&f, 4, "render %.1f ms enc %.2f ms", in->render_ms, in->encode_ms);
     if (st)
         add(&f, 5, "tris %llu clip %llu cull %llu", (unsigned long long)st->tris_drawn,
@@ -135,8 +152,16 @@ struct view_hud_rect view_hud_help_rect(int cols, int rows)
         int l = (int)strlen(input_help_line(lines++));
         r.text_w = l > r.text_w ? l : r.text_w;
     }
-    r.cols = r.text_w + 4;
-    r.rows = lines + 2;
+    r.columns = 1;
+    r.per_col = lines;
+    if (lines + 2 > rows) { /* too tall: two columns, cut to the width if they must be */
+        r.columns = 2;
+        r.per_col = (lines + 1) / 2;
+        int w = (cols - 6) / 2;
+        r.text_w = r.text_w > w ? (w > 1 ? w : 1) : r.text_w;
+    }
+    r.cols = r.columns * r.text_w + (r.columns - 1) * 2 + 4;
+    r.rows = r.per_col + 2;
     r.col = (cols - r.cols) / 2;
     r.row = (rows - r.rows) / 2;
     r.col = r.col < 0 ? 0 : r.col;
@@ -144,4 +169,17 @@ struct view_hud_rect view_hud_help_rect(int cols, int rows)
     r.cols = r.col + r.cols > cols ? cols - r.col : r.cols;
     r.rows = r.row + r.rows > rows ? rows - r.row : r.rows;
     return r;
+}
+
+void view_hud_help_text(const struct view_hud_rect *r, int i, char *out, size_t n)
+{
+    /* a blank margin above and below the lines (input_help_line is NULL past the last) */
+    const char *left = i > 0 && i <= r->per_col ? input_help_line(i - 1) : NULL;
+    const char *right = r->columns == 2 && i > 0 && i <= r->per_col
+                            ? input_help_line(i - 1 + r->per_col) : NULL;
+    int k = snprintf(out, n, "  %-*.*s", r->text_w, r->text_w, left ? left : "");
+    if (r->columns == 2 && k >= 0 && (size_t)k < n)
+        k += snprintf(out + k, n - (size_t)k, "  %-*.*s", r->text_w, r->text_w, right ? right : "");
+    if (k >= 0 && (size_t)k < n)
+        snprintf(out + k, n - (size_t)k, "  ");
 }

@@ -93,7 +93,7 @@ static int cycle_method(struct view_state *s, const char *axis, const struct ren
     return next;
 }
 
-/* A camera key or mouse move: the auto-rotation stops for good. */
+/* A camera key or mouse move: the auto-rotation stops (Space starts it again). */
 static void camera_touched(struct view_state *s)
 {
     if (s->spin) {
@@ -171,11 +171,15 @@ enum view_action view_key(struct view_state *s, enum input_cmd c, double t)
         view_message(s, s->headlight ? "light follows the camera (l: fixed in the world)"
                                      : "light fixed in the world (l: follows the camera)", t);
         break;
-    case IN_PAUSE:
-        if (s->spin)
+    case IN_PAUSE: /* pause and resume; after a camera key stopped it, start it again */
+        if (s->spin) {
             s->paused = !s->paused;
-        else
-            view_message(s, "no auto-rotation (a camera key stopped it; --spin starts it)", t);
+        } else {
+            s->spin = true;
+            s->paused = false;
+            s->hud_dirty = true;
+            view_message(s, "auto-rotation on  (Space: pause)", t);
+        }
         break;
     case IN_INFO: s->hud_camera = !s->hud_camera; break;
     case IN_HELP:

@@ -94,4 +94,27 @@ help_full() {
 check help_to_a_full_disk_fails help_full
 check viewer_bad_file_before_terminal expect 2 "bad_index.obj:4:" "$BIN" $D/bad_index.obj
 
+# An output named like an input (or like another output) is refused, exit 2, and the input
+# is untouched (issue 25: each of these destroyed it, exit 0). Compared by device and inode:
+# a symlink or a hard link to the input is the input.
+same_file() {
+    local d=$OUT/same; rm -rf $d; mkdir -p $d
+    cp assets/cube.obj $d/m.obj; cp assets/checker.png $d/t.png
+    printf '0 0 3 0 0 0\n' > $d/p.txt
+    ln -s m.obj $d/link.obj; ln $d/m.obj $d/hard.obj
+    cp $d/m.obj $d/m.orig; cp $d/t.png $d/t.orig; cp $d/p.txt $d/p.orig
+    expect 2 "--out .*m.obj.* is the same file as the model" "$BIN" dump $d/m.obj --out $d/m.obj || return 1
+    expect 2 "same file as the model" "$BIN" render $d/m.obj --out $d/link.obj || return 1
+    expect 2 "same file as the model" "$BIN" render $d/m.obj --out $d/hard.obj || return 1
+    expect 2 "same file as the --camera-path" "$BIN" dump $d/m.obj --camera-path $d/p.txt --out $d/p.txt || return 1
+    expect 2 "same file as the --texture" "$BIN" render $d/m.obj --texture $d/t.png --out $d/t.png || return 1
+    expect 2 "same file as the input" "$BIN" ansi2ppm $d/p.txt --out $d/./p.txt || return 1
+    expect 2 "--out .*x.ppm.* and --depth-out .*x.ppm.* are the same file" "$BIN" render $d/m.obj --out $d/x.ppm --depth-out $d/x.ppm || return 1
+    [ ! -e $d/x.ppm ] || { echo "x.ppm written"; return 1; }
+    cmp $d/m.obj $d/m.orig && cmp $d/t.png $d/t.orig && cmp $d/p.txt $d/p.orig || { echo "an input changed"; return 1; }
+    [ -L $d/link.obj ] || { echo "the symlink was replaced"; return 1; }
+    "$BIN" render $d/m.obj --out $d/ok.ppm --depth-out $d/ok.pfm || { echo "distinct outputs refused"; return 1; }
+}
+check an_output_that_is_an_input_is_refused same_file
+
 finish

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # cli.sh (issue 11): the command line's rough edges — textures found beside a model, the
-# light conventions of render, what dump writes to files.
+# light conventions of render and dump (the viewer's light), what dump writes to files.
 source "$(dirname "$0")/lib/common.sh"
 
 HEAD=$SHARED/african_head
@@ -92,5 +92,28 @@ PY
     fi
 }
 check dump_out_cast_is_asciicast_v2 cast
+
+# A dump is what the viewer shows (issue 25): the headlight by default, so an orbit is lit
+# from every side (with the fixed light the far side was near black); --light 1,1,1 is the
+# fixed light still. Mean brightness of the sphere's frames at 0 and 180 degrees.
+mean_of() { /usr/bin/python3 -c '
+import sys
+d = open(sys.argv[1], "rb").read()
+parts = d.split(maxsplit=4)
+px = parts[4]
+print(int(sum(px) / len(px)))' "$1"; }
+dump_light() {
+    local d=$OUT/light; mkdir -p $d/head $d/fixed
+    "$BIN" dump assets/sphere.obj --frame --cols 40 --rows 20 --frames 3 --orbit 90 \
+        --ppm-dir $d/head --out $d/head.ans || return 1
+    "$BIN" dump assets/sphere.obj --frame --cols 40 --rows 20 --frames 3 --orbit 90 \
+        --light 1,1,1 --ppm-dir $d/fixed --out $d/fixed.ans || return 1
+    local h0 h2 f0 f2
+    h0=$(mean_of $d/head/frame-0000.ppm); h2=$(mean_of $d/head/frame-0002.ppm)
+    f0=$(mean_of $d/fixed/frame-0000.ppm); f2=$(mean_of $d/fixed/frame-0002.ppm)
+    echo "mean brightness, 0 and 180 degrees: default $h0 $h2; --light 1,1,1 $f0 $f2"
+    [ $((h2 * 10)) -ge $((h0 * 8)) ] && [ $((f2 * 10)) -lt $((f0 * 6)) ]
+}
+check dump_lights_an_orbit_from_every_side_as_the_viewer dump_light
 
 finish

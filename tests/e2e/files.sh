@@ -102,4 +102,70 @@ segv=11; [ -n "${RASTTY_ASAN:-}" ] && segv=6
 check assimp_crash_is_an_error quick 2 "assimp_segv.dae: the importer crashed on this file \\(killed by signal $segv\\)" "$BIN" render tests/data/models/assimp_segv.dae --out "$OUT/x.png"
 check jpeg_is_not_a_model quick 2 "stb_jpeg_ub.jpg: not a model \(JPEG image\)" "$BIN" render tests/data/tex/stb_jpeg_ub.jpg --out "$OUT/x.png"
 
+# Outputs and the things around them (issue 25 item 14), each its own reproducer:
+# no_temporary_after_SIG: a dump writing a big file, stopped by SIG: no .NAME.XXXXXX left,
+# ended as the signal ends a process (128 + its number)
+temps_after() {
+    local sig=$1 num=$2 d=$D/sig-$1 rc
+    rm -rf $d; mkdir -p $d
+    # (a background job ignores SIGINT: started with every signal at its default)
+    /usr/bin/python3 -c 'import os, signal, sys
+for s in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP): signal.signal(s, signal.SIG_DFL)
+os.execv(sys.argv[1], sys.argv[1:])' "$BIN" dump "$CUBE" --cols 200 --rows 60 --frames 100000 --orbit 1 --out $d/spin.ans &
+    local pid=$!
+    wait_for 20 sh -c "ls -a $d | grep -q '^\.spin\.ans\.'" || { echo "no temporary seen"; kill $pid; return 1; }
+    kill -$sig $pid; wait $pid; rc=$?
+    echo "exit $rc; left: $(ls -A $d | tr '\n' ' ')"
+    [ $rc -eq $((128 + num)) ] && [ -z "$(ls -A $d)" ]
+}
+check no_temporary_after_sigterm temps_after TERM 15
+check no_temporary_after_sigint temps_after INT 2
+check no_temporary_after_sighup temps_after HUP 1
+# past ulimit -f: a message and exit 1 (a failed write), not SIGXFSZ's 153; no temporary left
+file_size_limit() {
+    local d=$D/fsize; rm -rf $d; mkdir -p $d
+    (ulimit -f 16; exec "$BIN" dump "$CUBE" --cols 200 --rows 60 --frames 50 --orbit 3 --out $d/big.ans) 2> $d/err; local rc=$?
+    echo "exit $rc: $(cat $d/err); left: $(ls -A $d | grep -v '^err$' | tr '\n' ' ')"
+    [ $rc -eq 1 ] && grep -q 'big.ans: write failed: File too large' $d/err && [ -z "$(ls -A $d | grep -v '^err$')" ]
+}
+check file_size_limit_is_an_error_message file_size_limit
+# a symlink given as --out is written through (the link stays); an existing 0600 output
+# stays 0600; a 250-byte name works (the temporary's name is not longer than allowed)
+out_kept() {
+    local d=$D/outs; rm -rf $d; mkdir -p $d/real
+    ln -s real/pic.ppm $d/link.ppm
+    "$BIN" render "$CUBE" --size 32x32 --out $d/link.ppm || return 1
+    [ -L $d/link.ppm ] && [ -s $d/real/pic.ppm ] || { echo "symlink replaced: $(ls -l $d)"; return 1; }
+    "$BIN" render "$CUBE" --size 32x32 --out $d/private.ppm && chmod 600 $d/private.ppm &&
+        "$BIN" render "$CUBE" --size 40x40 --out $d/private.ppm || return 1
+    [ "$(stat -c %a $d/private.ppm)" = 600 ] || { echo "mode now $(stat -c %a $d/private.ppm)"; return 1; }
+    local long; long=$(printf 'a%.0s' $(seq 246)).ppm
+    "$BIN" render "$CUBE" --size 32x32 --out "$d/$long" || return 1
+    [ -s "$d/$long" ] && [ -z "$(ls -A $d | grep '^\.')" ]
+}
+check outputs_keep_links_modes_and_long_names out_kept
+
+# Sky faces (issue 25 item 18): a first face of 4x2 says it is not square (it said "(4x2,
+# first face 4x4)"); faces past 2048 on a side are downscaled with the warning the man page
+# promises (it was silent).
+sky_faces() {
+    local d=$D/sky; rm -rf $d; mkdir -p $d
+    /usr/bin/python3 - $d <<'PY' || return 1
+import struct, sys, zlib
+def png(path, w, h):
+    raw = b"".join(b"\x00" + bytes([90, 140, 200]) * w for _ in range(h))
+    def chunk(t, b): return struct.pack(">I", len(b)) + t + b + struct.pack(">I", zlib.crc32(t + b))
+    open(path, "wb").write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 2, 0, 0, 0))
+                           + chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
+png(sys.argv[1] + "/wide.png", 4, 2)
+png(sys.argv[1] + "/sq.png", 4, 4)
+png(sys.argv[1] + "/big.png", 2100, 2100)
+PY
+    printf 'model %s\nsky wide.png sq.png sq.png sq.png sq.png sq.png\n' "$CUBE" > $d/wide.rsc
+    printf 'model %s\nsky big.png big.png big.png big.png big.png big.png\n' "$CUBE" > $d/big.rsc
+    quick 2 "wide.png: skybox faces must be square \(this one is 4x2\)" "$BIN" render $d/wide.rsc --out $d/x.ppm || return 1
+    quick 0 "big.png: 2100x2100 image downscaled to 1050x1050" "$BIN" render $d/big.rsc --size 64x48 --out $d/y.ppm
+}
+check sky_faces_say_what_is_wrong_and_when_downscaled sky_faces
+
 finish

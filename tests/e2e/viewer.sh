@@ -9,7 +9,9 @@ NAMES=(suspend_and_resume_repaints demo_scene_starts_and_fills_window zoom_in_gr
        tiny_and_huge_terminals quit_restores_terminal sigterm_on_a_stalled_terminal
        stopped_continued_viewer_ends_on_sigterm hung_up_terminal_ends_the_viewer
        help_overlay_drawn_once_and_closed_by_q status_line_at_80_columns spin_rules
-       status_line_names_the_texture
+       status_line_names_the_texture a_models_warning_shows_on_the_status_line
+       no_alt_screen_terminal_is_cleared_at_exit no_hud_viewer_idles_and_ends_with_its_terminal
+       an_outside_stop_and_continue_leaves_the_prompt_alone a_1000x300_terminal_draws_its_frame_and_idles
        screenshot_key_writes_png_ans_and_a_command_that_reproduces_it)
 if ! have_tmux; then
     for n in "${NAMES[@]}"; do skip "$n" "tmux not installed"; done
@@ -355,7 +357,8 @@ texture_named() {
 check status_line_names_the_texture texture_named
 
 # Auto-rotation: on for the demo, off for a model; --spin turns it on; the first camera key
-# stops it for good (Space does not bring it back); --no-spin keeps the demo still.
+# stops it; Space starts it again and pauses it (issue 25: it said to quit and use --spin);
+# --no-spin keeps the demo still.
 spin_rules() {
     local a b
     start sd 80 24 || return 1
@@ -365,10 +368,12 @@ spin_rules() {
     a=$(screen sd); sleep 0.5
     b=$(screen sd)
     [ "$a" = "$b" ] || { echo "a camera key did not stop the spin"; return 1; }
-    keys sd Space || { echo "Space restarted a spin a camera key stopped (no still picture)"; return 1; }
-    sleep 0.5
+    tm send-keys -t sd Space
+    changes sd "$a" || { echo "Space did not start the spin a camera key stopped"; return 1; }
+    keys sd Space || { echo "Space did not pause the spin (no still picture)"; return 1; }
+    a=$(screen sd); sleep 0.5
     b=$(screen sd)
-    [ "$a" = "$b" ] || { echo "Space restarted a spin a camera key stopped"; return 1; }
+    [ "$a" = "$b" ] || { echo "Space did not pause the spin"; return 1; }
     start sm 80 24 --spin assets/cube.obj || return 1
     a=$(screen sm)
     changes sm "$a" || { echo "--spin does not spin a model"; return 1; }
@@ -463,5 +468,101 @@ hangup() {
     wait_for 5 gone "$pid" || { echo "still running after the hangup: $(ps -o stat=,pcpu= -p "$pid")"; kill -KILL "$pid"; return 1; }
 }
 check hung_up_terminal_ends_the_viewer hangup
+
+# A model's warnings (a missing mtllib) go to stderr, which the alternate screen hides until
+# the exit: the status line says the first (issue 25).
+warning_shown() {
+    local d=$OUT/warn; mkdir -p $d
+    printf 'mtllib nothere.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' > $d/m.obj
+    tm new-session -d -s wn -x 160 -y 24 "$(printf '%q ' "$BIN" --colors truecolor $d/m.obj); sleep 60"
+    wait_for 10 hud_has wn "warning: " || { echo "no warning: $(status_line wn)"; return 1; }
+    hud_has wn "m.obj:1: cannot open material library" || { status_line wn; return 1; }
+    wait_for 10 hud_has wn " fps" || { echo "the status line did not come back"; return 1; }
+    tm kill-session -t wn
+}
+check a_models_warning_shows_on_the_status_line warning_shown
+
+# TERM=linux and dumb have no alternate screen: q leaves no frame under the prompt (issue 25)
+no_alt_screen() {
+    local term s
+    for term in linux dumb; do
+        s=na$term
+        tm new-session -d -s $s -x 80 -y 24 "TERM=$term $(printf '%q ' "$BIN") --colors 256 assets/cube.obj; echo EXITED; sleep 60"
+        wait_for 15 frame_past $s 0 || { echo "$term: no still picture"; return 1; }
+        tm send-keys -t $s q
+        wait_for 10 sh -c "tmux -L $SOCK capture-pane -t $s -p | grep -q EXITED" || { echo "$term: q did not quit"; return 1; }
+        if tm capture-pane -t $s -p | grep -q '[▀▄]'; then
+            echo "TERM=$term: the last frame is still on the screen:"; tm capture-pane -t $s -p | grep -v '^$' | tail -3; return 1
+        fi
+        tm kill-session -t $s
+    done
+}
+check no_alt_screen_terminal_is_cleared_at_exit no_alt_screen
+
+# --no-hud (issue 25): idle costs no CPU (a status line it never drew kept the loop from
+# waiting: ~85 ticks in 2 s), and the viewer, started from a shell, ends when its terminal
+# goes away (tmux server killed): it stayed, at ~40 % CPU, deaf to SIGTERM
+no_hud_gone() {
+    local tag=$PWD/$OUT/rastty-nohud-$$ sock=$SOCK-gone pid a b
+    ln -sf "$(cd "$(dirname "$BIN")" && pwd)/$(basename "$BIN")" "$tag"
+    tmux -L $sock -f /dev/null new-session -d -s g -x 80 -y 24 "bash --norc --noprofile" || return 1
+    tmux -L $sock send-keys -t g "$tag --no-hud --colors truecolor assets/cube.obj" Enter
+    wait_for 15 sh -c "tmux -L $sock capture-pane -t g -p | grep -q '[▀▄]'" || { echo "no picture"; tmux -L $sock kill-server; return 1; }
+    pid=$(pgrep -f -- "^$tag --no-hud" | head -1)
+    [ -n "$pid" ] || { echo "no viewer process"; tmux -L $sock kill-server; return 1; }
+    nap 1
+    a=$(awk '{print $14 + $15}' /proc/$pid/stat); nap 2; b=$(awk '{print $14 + $15}' /proc/$pid/stat)
+    echo "idle: $((b - a)) ticks of CPU in 2 s"
+    tmux -L $sock kill-server
+    if [ $((b - a)) -gt $((20 * SLOW)) ]; then kill -9 $pid; return 1; fi
+    wait_for 10 sh -c "! kill -0 $pid 2>/dev/null" || { echo "still running after its terminal went"; kill -9 $pid; return 1; }
+}
+check no_hud_viewer_idles_and_ends_with_its_terminal no_hud_gone
+
+# Stopped and continued from outside under an interactive shell (issue 25): continued in the
+# background, the viewer gives the terminal back (main screen, mouse off) and waits stopped,
+# instead of drawing over the prompt; after fg it repaints in its own modes, and q quits
+# without Enter.
+external_stop() {
+    local s=es$RANDOM tag pid; tag=$(tagged extstop)
+    tm new-session -d -s $s -x 80 -y 24 "bash --norc --noprofile -i"
+    tm send-keys -t $s "$(printf '%q ' "$BIN" --colors truecolor "$tag")" Enter
+    wait_for 15 hud_has $s " fps" || { echo "viewer did not start"; return 1; }
+    pid=$(pid_of "$tag")
+    kill -STOP "$pid"
+    wait_for 10 sh -c "tmux -L $SOCK capture-pane -t $s -p | grep -q Stopped" || { echo "the shell did not see the stop"; kill -CONT $pid; return 1; }
+    kill -CONT "$pid"
+    wait_for 10 sh -c "[ \"\$(tmux -L $SOCK display -p -t $s '#{alternate_on}#{mouse_any_flag}')\" = 00 ]" ||
+        { echo "continued in the background: alternate screen/mouse $(tm display -p -t $s '#{alternate_on}/#{mouse_any_flag}')"; kill -KILL $pid; return 1; }
+    tm send-keys -t $s "fg" Enter
+    wait_for 15 hud_has $s " fps" || { echo "no repaint after fg"; kill -KILL $pid; return 1; }
+    tm send-keys -t $s q
+    wait_for 10 gone "$pid" || { echo "q did not quit after fg (raw mode lost?)"; kill -KILL $pid; return 1; }
+    tm kill-session -t $s
+}
+check an_outside_stop_and_continue_leaves_the_prompt_alone external_stop
+
+# A 1000x300 terminal (issue 25): the first frame is drawn whole and then idle costs nothing,
+# locally and as over ssh (budgeted frames). The time spent drawing a frame that size was
+# taken for the link's (5 KB/s): 'tol 255' for ever, ~115 ticks of CPU in 3 s.
+large_window() {
+    local env s pid a b n1 n2 log
+    for env in "-u SSH_CONNECTION -u SSH_CLIENT -u SSH_TTY" "SSH_CONNECTION=test"; do
+        s=lw${env:0:1}; log=$OUT/$s.log
+        tm new-session -d -s $s -x 1000 -y 300 \
+            "env $env $(printf '%q ' "$BIN") --colors truecolor assets/teapot.obj; sleep 120"
+        wait_for 30 frame_past $s 0 || { echo "$env: no whole frame: $(status_line $s | cut -c1-150)"; return 1; }
+        tm pipe-pane -o -t $s "cat >> $log"
+        pid=$(pgrep -f -- "^$BIN --colors truecolor assets/teapot.obj" | head -1)
+        nap 1
+        a=$(awk '{print $14 + $15}' /proc/$pid/stat); n1=$(stat -c %s $log)
+        nap 2
+        b=$(awk '{print $14 + $15}' /proc/$pid/stat); n2=$(stat -c %s $log)
+        echo "$env: $(status_line $s | cut -c1-80); idle: $((b - a)) ticks, $((n2 - n1)) bytes in 2 s"
+        tm kill-session -t $s
+        [ $((b - a)) -le $((20 * SLOW)) ] && [ $((n2 - n1)) -eq 0 ] || return 1
+    done
+}
+check a_1000x300_terminal_draws_its_frame_and_idles large_window
 
 finish

@@ -71,7 +71,7 @@ static struct sim_result simulate(struct pace *p, struct link *l, double secs, s
         }
         if (pace_ready(p, t, NULL)) {
             size_t budget = pace_budget(p);
-            size_t n = (budget < demand ? budget : demand) + 100;
+            size_t n = (budget && budget < demand ? budget : demand) + 100;
             if (key_at >= 0 && n_lat < 512 && t > 3) /* after the link is measured */
                 lat[n_lat++] = (t - key_at + (l->free_at > t ? l->free_at - t : 0) + l->latency) * 1e3;
             key_at = -1;
@@ -99,7 +99,7 @@ TEST(one_frame_in_flight_and_keys_within_two_frames_on_slow_links)
         {128000, 250000, 160 * 48}, {512000, 1000000, 320 * 90}};
     for (int i = 0; i < 2; i++) {
         struct pace p;
-        pace_init(&p, 60, 0);
+        pace_init(&p, 60, 0, false);
         struct link l = {.rate = links[i].rate, .latency = 0.02, .drop_one = -1};
         struct sim_result r = simulate(&p, &l, 20, links[i].demand, links[i].cells);
         int failures = t->failures;
@@ -120,7 +120,7 @@ TEST(one_frame_in_flight_and_keys_within_two_frames_on_slow_links)
 TEST(a_fast_link_runs_at_the_frame_rate_cap_with_no_budget_pressure)
 {
     struct pace p;
-    pace_init(&p, 60, 0);
+    pace_init(&p, 60, 0, false);
     struct link l = {.rate = 50e6, .latency = 0.0005, .drop_one = -1};
     struct sim_result r = simulate(&p, &l, 5, 100000, 160 * 48);
     CHECK_NEAR(p.period, 1.0 / 60, 1e-9);
@@ -134,7 +134,7 @@ TEST(a_fast_link_runs_at_the_frame_rate_cap_with_no_budget_pressure)
 TEST(a_lost_answer_does_not_stop_pacing)
 {
     struct pace p;
-    pace_init(&p, 60, 0);
+    pace_init(&p, 60, 0, false);
     struct link l = {.rate = 128000, .latency = 0.02, .drop_one = 5};
     struct sim_result r = simulate(&p, &l, 10, 250000, 160 * 48);
     CHECK_EQ_INT(p.lost, 1);
@@ -145,7 +145,7 @@ TEST(a_lost_answer_does_not_stop_pacing)
 TEST(a_terminal_that_never_answers_is_paced_by_time)
 {
     struct pace p;
-    pace_init(&p, 60, 0);
+    pace_init(&p, 60, 0, false);
     struct link l = {.rate = 10e6, .latency = 0.001, .drop_answers = true, .drop_one = -1};
     struct sim_result r = simulate(&p, &l, 20, 250000, 160 * 48);
     CHECK(p.lost >= PACE_LOST_LIMIT);
@@ -156,7 +156,7 @@ TEST(a_terminal_that_never_answers_is_paced_by_time)
 TEST(bandwidth_caps_the_bytes_per_second)
 {
     struct pace p;
-    pace_init(&p, 60, 50000);
+    pace_init(&p, 60, 50000, false);
     struct link l = {.rate = 10e6, .latency = 0.001, .drop_one = -1};
     struct sim_result r = simulate(&p, &l, 10, 250000, 160 * 48);
     CHECK(r.bytes_per_s <= 50000 * 1.1);
@@ -164,14 +164,14 @@ TEST(bandwidth_caps_the_bytes_per_second)
     char hud[64];
     pace_describe(&p, 12, hud, sizeof hud);
     CHECK_STR_CONTAINS(hud, "cap 50KB/s");
-    CHECK_STR_CONTAINS(hud, "8fps");
+    CHECK_STR_CONTAINS(hud, "12fps");
     CHECK_STR_CONTAINS(hud, "tol 12");
 }
 
 TEST(a_very_slow_link_drops_to_256_colours_and_recovers)
 {
     struct pace p;
-    pace_init(&p, 60, 0);
+    pace_init(&p, 60, 0, false);
     struct link l = {.rate = 16000, .latency = 0.02, .drop_one = -1};
     simulate(&p, &l, 10, 250000, 160 * 48); /* 16000 * 0.125 / 7680 = 0.26 byte/cell */
     CHECK(p.use_256);
@@ -183,4 +183,45 @@ TEST(a_very_slow_link_drops_to_256_colours_and_recovers)
     /* a smaller window on the same link: 0.5 byte/cell, back to truecolor */
     pace_sent(&p, 100, 1000, 1000, 4000);
     CHECK(!p.use_256);
+}
+
+TEST(a_terminal_that_answers_no_query_at_start_costs_no_timeout)
+{
+    /* issue 25: a terminal that answered none of the start's queries (tty_query) is paced
+     * by time from the first frame, never waiting for an answer; over a 256 kbit/s link with
+     * a deep queue the guessed rate keeps a key within a few frames */
+    struct pace p;
+    pace_init(&p, 60, 0, false);
+    pace_no_answers(&p);
+    struct link l = {.rate = 32000, .latency = 0.02, .drop_answers = true, .drop_one = -1};
+    struct sim_result r = simulate(&p, &l, 20, 250000, 160 * 48);
+    CHECK_EQ_INT(p.lost, 0);
+    CHECK(r.frames > 20 * 6); /* ~8 fps from the start: no 2-second waits */
+    CHECK(r.median_ms <= 300);
+    CHECK(r.worst_ms <= 800);
+    char hud[64];
+    pace_describe(&p, 9, hud, sizeof hud);
+    CHECK_STR_CONTAINS(hud, "guess 32KB/s");
+    /* an answer after all (a slow link delayed the start's): paced on answers again */
+    pace_answer(&p, 30);
+    CHECK(!p.no_answers);
+}
+
+TEST(a_local_terminal_is_paced_by_its_answers_but_never_budgeted)
+{
+    /* issue 25: a local terminal busy drawing (its answers come at 2 MB/s) is not a narrow
+     * link: one frame in flight still, but every frame whole, truecolor, nothing said */
+    struct pace p;
+    pace_init(&p, 60, 0, true);
+    struct link l = {.rate = 2e6, .latency = 0.0002, .drop_one = -1};
+    simulate(&p, &l, 5, 250000, 320 * 90);
+    CHECK(l.max_queued <= 1);
+    CHECK_EQ_INT((int)pace_budget(&p), 0);
+    CHECK_EQ_INT(pace_mode(&p, PALETTE_TRUECOLOR), PALETTE_TRUECOLOR);
+    char hud[64];
+    pace_describe(&p, 0, hud, sizeof hud);
+    CHECK_EQ_INT(hud[0], '\0');
+    /* --bandwidth is a link the user names: capped and budgeted as before */
+    pace_init(&p, 60, 50000, true);
+    CHECK(!p.local);
 }

@@ -26,7 +26,7 @@ static int face_colour_sky(struct skybox *s, char paths[6][64])
         fclose(out);
         pp[f] = paths[f];
     }
-    return skybox_load(s, pp, NULL);
+    return skybox_load(s, pp, NULL, NULL);
 }
 
 TEST(skybox_direction_picks_gl_face)
@@ -64,7 +64,7 @@ TEST(skybox_no_seams_across_shared_cubemap_edges)
         pp[f] = paths[f];
     }
     struct skybox s;
-    REQUIRE(skybox_load(&s, pp, NULL) == 0);
+    REQUIRE(skybox_load(&s, pp, NULL, NULL) == 0);
     double worst = 0;
     for (int a = 0; a < 3; a++)          /* the axis the edge runs along */
         for (int sgn = 0; sgn < 4; sgn++) /* which of its 4 edges */

@@ -3,6 +3,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "input.h"
 #include "options.h"
 #include "test.h"
 #include "view_hud.h"
@@ -44,7 +45,7 @@ TEST(a_tap_turns_for_tap_s_from_the_press_however_long_the_idle)
     CHECK_NEAR(yaw(&s), VIEW_TURN_DEG_S * (10.2 + VIEW_REPEAT_HOLD_S - 10.0), 1e-6);
 }
 
-TEST(camera_keys_stop_the_spin_for_good_and_space_never_restarts_it)
+TEST(camera_keys_stop_the_spin_and_space_starts_it_again)
 {
     struct view_state s;
     start(&s, true);
@@ -59,9 +60,12 @@ TEST(camera_keys_stop_the_spin_for_good_and_space_never_restarts_it)
     CHECK(!s.spin);
     view_advance(&s, 4, 10);
     CHECK(!view_animating(&s, 10));
-    view_key(&s, IN_PAUSE, 11); /* does not bring it back */
-    CHECK(!view_animating(&s, 11));
-    CHECK_STR_CONTAINS(s.message, "no auto-rotation");
+    view_key(&s, IN_PAUSE, 11); /* Space starts it again (issue 25: not a flag to quit for) */
+    CHECK(view_animating(&s, 11));
+    CHECK(s.spin && !s.paused);
+    CHECK_STR_CONTAINS(s.message, "auto-rotation on");
+    view_key(&s, IN_PAUSE, 12); /* and pauses it */
+    CHECK(!view_animating(&s, 12.1));
     /* fov, reset and the mouse are camera keys too; o, m, f are not */
     static const enum input_cmd stops[] = {IN_FOV_IN, IN_FOV_OUT, IN_RESET};
     for (int i = 0; i < 3; i++) {
@@ -343,4 +347,60 @@ TEST(u_turns_the_model_to_its_next_axis)
     start(&s, true);
     CHECK_EQ_INT(view_key(&s, IN_TURN_UP, 1), VIEW_TURN_UP);
     CHECK(!s.spin); /* a camera key: the framing changes */
+}
+
+/* issue 25: what a new user's status line says about a small untextured model, and "h: help"
+ * at every width a line of essentials fits */
+TEST(the_status_line_tells_an_untextured_model_and_keeps_the_help_key)
+{
+    struct view_state s;
+    start(&s, false);
+    struct frame_stats st = {.tris_in = 36, .tris_full = 36, .lod_min = 0, .lod_max = 0};
+    struct view_hud_info in = {.scene = "cube.obj", .n_scenes = 1, .mode = PALETTE_TRUECOLOR,
+                               .fps = 30, .st = &st};
+    char line[512];
+    view_hud_compose(&s, &in, 300, 0, line, sizeof line);
+    CHECK(strncmp(line, " cube.obj [1/1] | phong | truecolor | 30 fps | h: help |", 56) == 0);
+    CHECK(!strstr(line, "trilinear"));     /* no texture: no filter */
+    CHECK_STR_CONTAINS(line, " 36/36 |");   /* not 0.0k/0.0k */
+    CHECK_STR_CONTAINS(line, "| untextured |");
+    for (int w = 60; w <= 161; w++) {
+        view_hud_compose(&s, &in, w, 0, line, sizeof line);
+        CHECK_STR_CONTAINS(line, "h: help");
+    }
+    in.texture = "MTL"; /* textured: the filter is named */
+    view_hud_compose(&s, &in, 300, 0, line, sizeof line);
+    CHECK_STR_CONTAINS(line, "| textured trilinear |");
+    if (t->failures)
+        fprintf(stderr, "    \"%s\"\n", line);
+}
+
+/* issue 25: at 80x24 (a 80x23 picture) the help box lost its last three lines; every help
+ * line now starts on the screen, and the box fits the picture */
+TEST(the_help_fits_an_80x24_terminal)
+{
+    static const int sizes[][2] = {{80, 23}, {100, 29}, {200, 60}, {60, 20}};
+    for (int k = 0; k < 4; k++) {
+        struct view_hud_rect r = view_hud_help_rect(sizes[k][0], sizes[k][1]);
+        CHECK(r.col + r.cols <= sizes[k][0] && r.row + r.rows <= sizes[k][1]);
+        char all[8192] = "";
+        for (int i = 0; i < r.rows; i++) {
+            char row[512];
+            view_hud_help_text(&r, i, row, sizeof row);
+            CHECK((int)strlen(row) >= r.cols);
+            row[r.cols] = '\0'; /* what the viewer writes: clipped to the box */
+            strcat(all, row);
+            strcat(all, "\n");
+        }
+        for (int i = 0; input_help_line(i); i++) { /* every key, at its line's start */
+            char key[12];
+            snprintf(key, sizeof key, "%.10s", input_help_line(i));
+            CHECK_STR_CONTAINS(all, key);
+        }
+        CHECK_STR_CONTAINS(all, "q Esc      quit");
+        if (t->failures) {
+            fprintf(stderr, "    %dx%d:\n%s", sizes[k][0], sizes[k][1], all);
+            return;
+        }
+    }
 }

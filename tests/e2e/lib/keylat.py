@@ -2,11 +2,13 @@
 """keylat.py: key -> screen latency of the viewer behind a slow link, measured in tmux.
 
   keylat.py --socket NAME --rate BYTES_PER_S --queue BYTES --size COLSxROWS
-            [--presses N] [--warmup S] [--slowlink PATH] -- CMD ARGS...
+            [--presses N] [--warmup S] [--slowlink PATH] [--answers LIST] -- CMD ARGS...
 
 Starts CMD in a detached tmux session of that size, behind ../shared/tools/slowlink.py (its
 output leaves at RATE bytes/s through a QUEUE-byte buffer: a slow SSH link), waits for the
-status line, lets the link reach its steady state (--warmup seconds), then N times: waits a
+status line (RATE 0: no slowlink, the pane itself, a local terminal; else the command runs
+with SSH_CONNECTION set, as over ssh; --answers LIST: behind
+tests/e2e/lib/termfilter.py, a terminal that answers only those queries, e.g. cpr,da1 = st), lets the link reach its steady state (--warmup seconds), then N times: waits a
 random 0.2..0.7 s (so presses land anywhere in a frame), presses `f` and polls the status line
 (`capture-pane`, every ~5 ms) until the texture filter it names has flipped (nearest <->
 bilinear). Prints one line per press and a summary:
@@ -26,6 +28,8 @@ ap.add_argument("--warmup", type=float, default=3.0)
 ap.add_argument("--timeout", type=float, default=20.0)
 ap.add_argument("--slowlink", default=os.path.join(os.environ.get("RASTTY_SHARED", "../shared"),
                                                     "tools", "slowlink.py"))
+ap.add_argument("--answers", default=None,
+                help="the terminal answers only these queries (tests/e2e/lib/termfilter.py)")
 ap.add_argument("--log", default=None, help="file for the pane's output (bytes counted)")
 ap.add_argument("cmd", nargs=argparse.REMAINDER)
 a = ap.parse_args()
@@ -54,8 +58,15 @@ def filt(line):
     return None
 
 
-inner = " ".join(shlex.quote(x) for x in
-                 ["/usr/bin/python3", a.slowlink, str(int(a.rate)), str(a.queue), "--"] + cmd)
+# behind the link the viewer is told it is over ssh, as sshd would (SSH_CONNECTION): a local
+# terminal's answers only pace the frames (pace.h), a link's also size them
+link = ["/usr/bin/python3", a.slowlink, str(int(a.rate)), str(a.queue), "--", "env",
+        "SSH_CONNECTION=127.0.0.1 40000 127.0.0.1 22"] if a.rate > 0 else []
+if a.answers is not None:  # the terminal side of the link answers only some queries
+    here = os.path.dirname(os.path.abspath(__file__))
+    link = ["/usr/bin/python3", os.path.join(here, "termfilter.py"), "--answers", a.answers,
+            "--"] + link
+inner = " ".join(shlex.quote(x) for x in link + cmd)
 tm("new-session", "-d", "-s", S, "-x", str(cols), "-y", str(rows), inner + "; sleep 30")
 log = a.log or "/dev/null"
 try:
