@@ -353,6 +353,66 @@ TEST(object_space_normal_map_lights_the_model)
     rmdir(dir);
 }
 
+TEST(file_cameras_are_the_default_view)
+{
+    /* a glTF with two cameras: the first is the default view; --camera 2 the second; 0
+     * rastty's framing; --eye wins over them */
+    char dir[64], path[128];
+    snprintf(dir, sizeof dir, "/tmp/rastty-cam-%d", (int)getpid());
+    mkdir(dir, 0700);
+    struct gb g = {0};
+    static struct gb_quad q;
+    gb_quad(&q, 0, 1, 1);
+    int a[4];
+    gb_quad_accs(&g, &q, a);
+    char body[2048];
+    snprintf(body, sizeof body,
+             "\"scenes\":[{\"nodes\":[0,1,2]}],\"nodes\":[{\"mesh\":0},{\"camera\":0,"
+             "\"translation\":[0,0,5]},{\"camera\":1,\"translation\":[0,4,0],\"rotation\":"
+             "[-0.7071068,0,0,0.7071068]}],\"cameras\":[{\"type\":\"perspective\",\"perspective\":"
+             "{\"yfov\":0.5,\"znear\":0.1}},{\"type\":\"orthographic\",\"orthographic\":{\"xmag\":2,"
+             "\"ymag\":1.5,\"znear\":0.1,\"zfar\":10}}],\"meshes\":[{\"primitives\":[{\"attributes\":"
+             "{\"POSITION\":%d},\"indices\":%d}]}]",
+             a[0], a[3]);
+    char *j = gb_json(&g, body);
+    snprintf(path, sizeof path, "%s/c.gltf", dir);
+    write_file(path, j, strlen(j));
+    free(j);
+    struct options o;
+    struct err e;
+    char *argv[] = {"rastty", "render", path, "--out", "x.png"};
+    REQUIRE(options_parse(5, argv, &o, &e) == 0);
+    struct scene s;
+    REQUIRE(prepare_scene(&o, path, &s, NULL, 0, &e) == 0);
+    CHECK_EQ_INT(prepare_camera_count(&s), 2);
+    struct camera cam;
+    struct render_opts ro;
+    prepare_camera(&o, &s, 1.6, false, &cam, &ro);
+    CHECK_NEAR(cam.eye.z, 5, 1e-6);
+    CHECK_NEAR(cam.fov_deg, 0.5 * 180 / M_PI, 1e-4);
+    o.file_camera = 2;
+    prepare_camera(&o, &s, 1.6, false, &cam, &ro);
+    CHECK_NEAR(cam.eye.y, 4, 1e-6);
+    CHECK(cam.target.y < cam.eye.y); /* looking down */
+    CHECK_NEAR(cam.ortho_height, 3, 1e-6);
+    o.file_camera = 0;
+    prepare_camera(&o, &s, 1.6, false, &cam, &ro); /* rastty's framing: the quad fills it */
+    CHECK(cam.eye.z > 0 && cam.eye.z < 5);
+    o.file_camera = -1;
+    o.camera_set = true;
+    o.camera.eye = v3(7, 0, 0);
+    prepare_camera(&o, &s, 1.6, false, &cam, &ro);
+    CHECK_NEAR(cam.eye.x, 7, 0);
+    /* past the file's cameras: an error */
+    o.file_camera = 3;
+    o.camera_set = false;
+    scene_free(&s);
+    CHECK_EQ_INT(prepare_scene(&o, path, &s, NULL, 0, &e), -1);
+    CHECK_STR_CONTAINS(e.msg, "--camera 3: the model has 2 cameras");
+    unlink(path);
+    rmdir(dir);
+}
+
 TEST(a_texture_in_a_textures_folder_is_found)
 {
     /* map_Kd wood.png (and an exporter's C:\art\wood.png) with the image in textures/ beside
@@ -393,4 +453,19 @@ TEST(a_texture_in_a_textures_folder_is_found)
     unlink(path);
     rmdir(sub);
     rmdir(dir);
+}
+
+TEST(allow_outside_and_normal_map_flags_reach_the_loader)
+{
+    struct options o;
+    struct err e;
+    char *argv[] = {"rastty", "render", "m.gltf", "--allow-outside", "--normal-map", "n.png",
+                    "--camera", "2", "--out", "x.png"};
+    REQUIRE(options_parse(10, argv, &o, &e) == 0);
+    CHECK(o.model.any_path);
+    CHECK(o.normal_map && strcmp(o.normal_map, "n.png") == 0);
+    CHECK_EQ_INT(o.file_camera, 2);
+    char *bad[] = {"rastty", "render", "m.gltf", "--camera", "65", "--out", "x.png"};
+    CHECK_EQ_INT(options_parse(7, bad, &o, &e), -1);
+    CHECK_STR_CONTAINS(e.msg, "camera number");
 }

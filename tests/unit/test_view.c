@@ -309,3 +309,12 @@ TEST(u_turns_the_model_to_its_next_axis)
     CHECK_EQ_INT(view_key(&s, IN_TURN_UP, 1), VIEW_TURN_UP);
     CHECK(!s.spin); /* a camera key: the framing changes */
 }
+
+TEST(shift_c_cycles_the_model_files_cameras)
+{
+    struct view_state s;
+    start(&s, true);
+    CHECK_EQ_INT(input_command('C'), IN_NEXT_CAMERA);
+    CHECK_EQ_INT(view_key(&s, IN_NEXT_CAMERA, 1), VIEW_NEXT_CAMERA);
+    CHECK(!s.spin); /* a camera key: the view changes */
+}
