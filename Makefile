@@ -19,6 +19,13 @@ CXXFLAGS += -std=c++17 -Wall -Wextra -Werror -D_DEFAULT_SOURCE $(OPT) $(shell pk
 # `make V=1` shows full command lines
 Q       := $(if $(V),,@)
 
+# One job per core unless the command line says -j (make -j1: one at a time); `make test`
+# then builds the plain and the sanitizer trees side by side. Only the top make sets it: the
+# sub-makes (asan-build, floor-build) share its job slots.
+ifeq ($(MAKELEVEL)$(filter -j%,$(MAKEFLAGS)),0)
+MAKEFLAGS += -j$(shell nproc 2>/dev/null || echo 1)
+endif
+
 # Layers (README, "The map"): src/LAYER/*.c with its headers in include/LAYER/. A file
 # includes its own layer and the layers below it, never above and never a sibling:
 #     main.c -> {cmd, viewer, bench} -> cli -> term -> render -> scene -> base
@@ -56,7 +63,7 @@ UNITOBJ := $(patsubst tests/unit/%.c,$(BUILD)/tests/%.o,$(UNITSRC))
 # end-to-end tests, ncurses-term (xterm-direct terminfo), python3 (asset checks)
 DEBIAN_PKGS := build-essential pkg-config libncurses-dev libstb-dev libpng-dev \
                libjpeg62-turbo-dev libassimp-dev libmeshoptimizer-dev libdraco-dev libosmesa6-dev \
-               chafa tmux ncurses-term procps python3
+               chafa tmux ncurses-term procps python3 groff-base
 
 .PHONY: all layers test unit check-asan asan-build floor-build bench chart deps install uninstall clean help fuzz
 

@@ -2,7 +2,8 @@
  * state and the numbers of the last frame; view.c writes them to the terminal.
  *
  * The status line is a list of fields, most important first: the scene, shading and texture
- * filter, colour mode, frame rate; then what the pacing did to the picture (pace.h), a
+ * filter, colour mode, frame rate, and "#N" once the picture stands still (N: frames written
+ * in full so far; see view_hud_info.frames); then what the pacing did to the picture (pace.h), a
  * debug view, fly mode, the camera (`i`), the texture file ("untextured" when none), the
  * light and the methods (rasterizer, interpolation, depth buffer), the level of detail (mode,
  * level drawn, triangles submitted of the full count: "lod auto L1 149.6k/300.6k", "..."
@@ -31,10 +32,16 @@ struct view_hud_info {
     const struct frame_stats *st;
     const char *pacing;         /* pace_describe(): "" when the link keeps up */
     bool lod_building;          /* the scene's levels of detail are still being built */
+    /* Frames written to the terminal in full, shown as "#N" (also after a message) when the
+     * picture stands still: nothing moving, nothing left to draw or refine. The viewer writes
+     * that status line after the frame, so once "#N" is on the screen the whole frame is:
+     * the end-to-end tests wait for it. 0 = not shown (the picture is moving). */
+    unsigned long frames;
 };
 
 /* The status line for a terminal `width` columns wide (at most width - 1 characters: the
- * last cell of the screen is never written), or the current message while there is one. */
+ * last cell of the screen is never written), or the current message while there is one
+ * (" message | #N " when the frame count is shown). */
 void view_hud_compose(const struct view_state *s, const struct view_hud_info *in, int width,
                       double now, char *out, size_t n);
 

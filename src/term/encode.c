@@ -89,7 +89,8 @@ struct emitter {
     int newline;       /* bytes to go down a row and back to column 0: 2 (CR LF) or 1 (LF) */
     bool capped;       /* a cell was left because the limit was reached */
     double lambda2;    /* a second, lower price for cells lambda leaves (0 = none), when the
-                        * bytes still owed to lambda's cells (reserve) leave room */
+                        * bytes still owed to lambda's cells (reserve) leave room; < 0: the
+                        * cells it leaves are drawn as they come (their targets) */
     long reserve;
     /* the glyph set */
     const struct encode_glyph *glyph; /* UTF-8 per pattern */
@@ -722,6 +723,10 @@ HOT void emit_rows(struct encode_screen *s, struct emitter *em, const uint8_t *r
                         draw = rd_choose(s, em, mode, r, c, tgt[c], d_skip, px, n_px, lambda, &shown);
                     }
                     bool owed = draw;
+                    if (!draw && em->lambda2 < 0) {
+                        shown = tgt[c];
+                        draw = true;
+                    }
                     if (!draw && em->lambda2 > 0 &&
                         rd_choose(s, em, mode, r, c, tgt[c], d_skip, px, n_px, em->lambda2, &shown)) {
                         long cost = move_len(em, r, c) + draw_len(em, mode, shown, half);
@@ -887,6 +892,15 @@ static size_t encode_budget(struct encode_screen *s, const uint8_t *rgb, int h,
         *st = first;
         n = encode_pass(s, rgb, h, o, tol, false, home_rd, hi > 0 ? hi : HUGE_VAL,
                         hi_fills ? 0 : lo, (long)hi_n, st, start_out, NULL);
+    }
+    if (st->cells_drawn == 0 && st->cells_pending > 0) {
+        /* No price draws a cell: each one left shows, as it is, as little error as its
+         * target would (a palette's rounding, an approximation drawn earlier), yet the
+         * changes do not fit in one frame. Drawn as they come, to their targets, within the
+         * budget: a still picture still becomes exact, in a few frames, instead of never. */
+        memcpy(s->cells, s->saved, n_cells * sizeof *s->cells);
+        *st = first;
+        n = encode_pass(s, rgb, h, o, tol, false, home_rd, HUGE_VAL, -1, 0, st, start_out, NULL);
     }
     st->demand = demand;
     st->lambda = best;

@@ -63,6 +63,7 @@ struct view {
     struct frame_stats st;
     struct encode_stats est;
     double encode_ms, fps, last_frame_at, next_hud_at;
+    unsigned long frames;   /* frames written in full: the status line's "#N" (view_hud.h) */
     char hud_text[512];
     /* everything for one update (status line, overlay, frame, DSR) goes out in one write */
     char *out;
@@ -183,6 +184,13 @@ static int resize(struct view *v, struct err *e)
     return 0;
 }
 
+/* Does the picture stand still at t: the last frame written in full, nothing moving (a held
+ * key, the spin), no levels of detail still to come? Then the status line shows "#N". */
+static bool still(struct view *v, double t)
+{
+    return !v->s.dirty && !v->lod_pending && !view_animating(&v->s, t);
+}
+
 static void hud_draw(struct view *v, double t)
 {
     if (v->o->no_hud || v->tty.rows < 1)
@@ -192,7 +200,8 @@ static void hud_draw(struct view *v, double t)
         .scene = v->scenes[v->cur]->name, .scene_i = v->cur, .n_scenes = v->n_scenes,
         .texture = v->texture[v->cur][0] ? v->texture[v->cur] : NULL, .mode = v->eo.mode,
         .fps = v->fps, .render_ms = v->st.render_ms, .encode_ms = v->encode_ms,
-        .bytes = v->est.bytes, .st = &v->st, .lod_building = v->lod_pending};
+        .bytes = v->est.bytes, .st = &v->st, .lod_building = v->lod_pending,
+        .frames = still(v, t) ? v->frames : 0};
     char pacing[96];
     pace_describe(&v->pace, v->est.max_err, pacing, sizeof pacing);
     in.pacing = pacing;
@@ -241,6 +250,7 @@ static int draw_frame(struct view *v, double t, struct err *e)
     if (v->fb_cols == 0) { /* no room for a picture (one row and a HUD): only the HUD */
         v->s.dirty = false;
         v->last_frame_at = t;
+        v->frames++;
         hud_draw(v, t);
         return out_flush(v) ? err_set(e, "rastty: cannot write to the terminal") : 0;
     }
@@ -266,16 +276,23 @@ static int draw_frame(struct view *v, double t, struct err *e)
         v->fps = v->fps > 0 ? 0.8 * v->fps + 0.2 * inst : inst;
     }
     v->last_frame_at = t;
-    /* the status line first: what a key changed shows before the frame has arrived */
-    if (t >= v->next_hud_at || v->s.hud_dirty) {
+    /* a still picture the budget left unfinished is refined by the next frames */
+    v->s.dirty = v->est.cells_pending > 0;
+    if (!v->s.dirty)
+        v->frames++;
+    /* While the picture moves, the status line goes first: what a key changed shows before
+     * the frame has arrived. The frame that leaves the picture standing still has it after
+     * the picture, with the frame count: "#N" on the screen means all of frame N is. */
+    bool rest = still(v, t);
+    if (!rest && (t >= v->next_hud_at || v->s.hud_dirty)) {
         hud_draw(v, t);
         v->next_hud_at = t + HUD_PERIOD_S;
     }
     if (v->s.help && !v->help_drawn)
         help_draw(v);
     out_add(v, bytes, n);
-    /* a still picture the budget left unfinished is refined by the next frames */
-    v->s.dirty = v->est.cells_pending > 0;
+    if (rest)
+        hud_draw(v, t); /* the count changed: always drawn */
     if (v->out_len == 0)
         return 0;
     out_add(v, TTY_SYNC_REQUEST, sizeof TTY_SYNC_REQUEST - 1);
@@ -423,6 +440,10 @@ static int loop(struct view *v, struct err *e)
     while (!quit && !tty_signalled()) {
         double t = timing_now_s();
         pace_tick(&v->pace, t);
+        /* the motion since the last turn first: a tap that ended meanwhile (the loop was late)
+         * still has its last stretch to draw, or it would wait for the next input */
+        view_advance(&v->s, last, t);
+        last = t;
         bool want = v->s.dirty || view_animating(&v->s, t);
         double wait = 0;
         bool ready = pace_ready(&v->pace, t, &wait);

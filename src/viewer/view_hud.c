@@ -40,7 +40,12 @@ void view_hud_compose(const struct view_state *s, const struct view_hud_info *in
                       double now, char *out, size_t n)
 {
     if (s->message_until > now) {
-        snprintf(out, n, " %s ", s->message);
+        char count[32] = "";
+        if (in->frames)
+            snprintf(count, sizeof count, " | #%lu", in->frames);
+        /* a message too long for the line is cut, not the count after it */
+        int room = width - 3 - (int)strlen(count);
+        snprintf(out, n, " %.*s%s ", room > 0 ? room : 0, s->message, count);
         return;
     }
     struct fields f = {0};
@@ -52,6 +57,8 @@ void view_hud_compose(const struct view_state *s, const struct view_hud_info *in
     else
         add(&f, 0, "%s", palette_mode_name(in->mode));
     add(&f, 0, "%.0f fps", in->fps);
+    if (in->frames)
+        add(&f, 0, "#%lu", in->frames);
     if (in->pacing && in->pacing[0])
         add(&f, 1, "%s", in->pacing);
     if (s->ro.view != VIEW_COLOR)

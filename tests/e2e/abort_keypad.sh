@@ -22,7 +22,7 @@ crash_keypad() {
         local before; before=$(tm display -p -t $s '#{keypad_cursor_flag}#{keypad_flag}')
         pkill -$sig -f -- "^$BIN .*$tag"
         wait_for 10 sh -c "! pgrep -f -- '^$BIN .*$tag' > /dev/null"
-        sleep 0.3
+        output_done $s || rc=1                   # what the viewer wrote as it died is all in
         local after; after=$(tm display -p -t $s '#{keypad_cursor_flag}#{keypad_flag}')
         echo "$sig: keypad flags before $before, after $after"
         [ "$before" != 00 ] || { echo "$sig: the viewer never entered keypad mode (test broken)"; rc=1; }

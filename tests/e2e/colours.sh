@@ -51,7 +51,6 @@ if ! have_tmux; then
     skip spin_timeout_stops_streaming "tmux not installed"
     finish
 fi
-hud_has() { tm capture-pane -t "$1" -p | tail -n 1 | grep -q -- "$2"; }
 
 # stock tmux: TERM=tmux-256color, no COLORTERM. Detached (no client): tmux's XTVERSION. With
 # a client attached (a second tmux server's pane): tmux's client_termfeatures.
@@ -84,7 +83,8 @@ spin_timeout() {
     : > $log; tm pipe-pane -o -t sp "cat >> $log"
     # it pauses after a second; the message about it goes; the status line says so
     wait_for 10 hud_has sp "| spin paused |" || { echo "status: $(tm capture-pane -t sp -p | tail -n 1)"; return 1; }
-    sleep 0.5
+    local n; n=$(frame_no sp)
+    wait_for 5 log_ends_with_frame $log "$n" || { echo "the log does not end with frame #$n"; return 1; }
     local s0 s1; s0=$(stat -c %s $log); sleep 1; s1=$(stat -c %s $log)
     echo "bytes before: $s0; in the second after: $((s1 - s0))"
     [ "$s1" -eq "$s0" ] && [ "$s0" -gt 0 ]

@@ -21,7 +21,7 @@ single() {
     tm new-session -d -s d1 -x 100 -y 30 \
         "$(printf '%q ' "$BIN" dump "${MODEL[@]}" --colors truecolor --ppm-dir "$OUT/single"); touch $OUT/single/done; sleep 60"
     wait_for 20 test -f "$OUT/single/done" || return 1
-    sleep 0.2
+    output_done d1 || return 1
     capture d1 "$OUT/single/screen.ans"
     decode "$OUT/single/screen.ans" "$OUT/single/screen.ppm" || return 1
     local want=$OUT/single/frame-0000.ppm
@@ -38,7 +38,7 @@ replay() {
         --diff --out "$OUT/replay/spin.ans" --ppm-dir "$OUT/replay" || return 1
     tm new-session -d -s d2 -x 100 -y 30 "cat $OUT/replay/spin.ans; touch $OUT/replay/done; sleep 60"
     wait_for 20 test -f "$OUT/replay/done" || return 1
-    sleep 0.2
+    output_done d2 || return 1
     capture d2 "$OUT/replay/screen.ans"
     decode "$OUT/replay/screen.ans" "$OUT/replay/screen.ppm" || return 1
     cmp "$OUT/replay/frame-0011.ppm" "$OUT/replay/screen.ppm" || return 1

@@ -14,7 +14,7 @@ HEAD=$SHARED/african_head/african_head.obj
 SETS="half quadrant sextant braille ascii"
 SIL=build/e2e/silhouette
 if [ ! -x $SIL ] || [ tests/e2e/lib/silhouette.c -nt $SIL ]; then
-    mkdir -p build/e2e && cc -O2 -std=c11 -o $SIL tests/e2e/lib/silhouette.c
+    mkdir -p build/e2e && cc -O2 -std=c11 -o $SIL.$$ tests/e2e/lib/silhouette.c && mv -f $SIL.$$ $SIL
 fi
 
 # grid G: pixels per cell, "W H"
@@ -92,9 +92,9 @@ env_mono() {
     local name env
     for env in NO_COLOR=1 TERM=dumb; do
         name=m${env%%=*}
-        tm new-session -d -s $name -x 80 -y 49 "env -u COLORTERM TERM=xterm-256color $env $(printf '%q ' "$BIN") dump $(printf '%q' "$HEAD") --cols 80 --rows 48 --glyphs quadrant --sky procedural; sleep 30"
-        sleep $((1 * SLOW))
-        wait_for 10 sh -c "tmux -L $SOCK capture-pane -t $name -p | grep -q '[▘▝▀▖▌▞▛▗▚▐▜▄▙▟]'" || return 1
+        tm new-session -d -s $name -x 80 -y 49 "env -u COLORTERM TERM=xterm-256color $env $(printf '%q ' "$BIN") dump $(printf '%q' "$HEAD") --cols 80 --rows 48 --glyphs quadrant --sky procedural; touch $OUT/$name.done; sleep 30"
+        wait_for 20 test -f $OUT/$name.done && output_done $name || return 1
+        tm capture-pane -t $name -p | grep -q '[▘▝▀▖▌▞▛▗▚▐▜▄▙▟]' || { echo "$env: no quadrant glyphs on the screen"; return 1; }
         tm capture-pane -t $name -e -N -p | head -n 48 > $OUT/$name.ans
         tm kill-session -t $name
         "$BIN" ansi2ppm $OUT/$name.ans --glyphs quadrant --out $OUT/$name.ppm || return 1

@@ -20,7 +20,7 @@ if [ ! -f "$LINK" ] || [ ! -f "$HEAD/african_head.obj" ]; then
     finish
 fi
 
-hud_has() { tm capture-pane -t "$1" -p | tail -n 1 | grep -q -- "$2"; }
+prompt_shown() { tm capture-pane -t "$1" -p | grep -qE '[#$] ?$'; }
 
 # latency RATE SIZE MEDIAN_MS WORST_MS: median and worst key -> screen within the bounds
 latency() {
@@ -44,7 +44,7 @@ check key_to_screen_at_4_mbit_320x90 latency 512000 320x90 1000 2500
 ctrl_z() {
     local s=cz
     tm new-session -d -s $s -x 100 -y 30 "/usr/bin/python3 $LINK 20000 200000 -- bash --norc --noprofile"
-    sleep 0.5
+    wait_for 10 prompt_shown $s || { echo "no shell prompt"; return 1; }
     tm send-keys -t $s "$(printf '%q ' "$BIN" --colors truecolor --spin "$HEAD/african_head.obj")" Enter
     wait_for 30 hud_has $s " fps" || { echo "viewer did not start"; return 1; }
     sleep 1

@@ -17,35 +17,52 @@ if ! have_tmux; then
 fi
 
 # start the viewer in session $1 (cols $2 rows $3) with arguments; wait for its status line
+# (a model stands still after that: still_after S 0 waits for its first whole picture)
 start() {
     local s=$1 c=$2 r=$3; shift 3
     tm new-session -d -s "$s" -x "$c" -y "$r" \
         "$(printf '%q ' "$BIN" --colors truecolor "$@"); echo EXIT=\$? > $OUT/$s.exit; sleep 120"
     wait_for 15 hud_has "$s" " fps" || { echo "no status line"; tm capture-pane -t "$s" -p | tail -3; return 1; }
 }
-hud_has() { tm capture-pane -t "$1" -p | tail -n 1 | grep -q -- "$2"; }
 # the picture of session $1 (status line dropped) as $OUT/$2.ppm; echo its stats
 picture() {
     local rows; rows=$(tm display -p -t "$1" '#{pane_height}')
     capture "$1" "$OUT/$2.ans" $((rows - 1))
     decode "$OUT/$2.ans" "$OUT/$2.ppm" && ppmstat "$OUT/$2.ppm" "${3:-0,0,0}"
 }
-# wait until the picture stops changing (frames in flight drained)
-settle() {
-    local prev="" cur i
-    for i in $(seq 1 $((30 * SLOW))); do
-        sleep 0.1
-        cur=$(tm capture-pane -t "$1" -e -p | head -n -1 | md5sum)
-        [ "$cur" = "$prev" ] && return 0
-        prev=$cur
-    done
+# the picture's rows of session $1 (status line dropped, colours kept), for comparing
+screen() {
+    local o; o=$(tm capture-pane -t "$1" -e -p; echo .)
+    o=${o%.}; o=${o%$'\n'}; printf '%s' "${o%$'\n'*}"
 }
-keys() { local s=$1; shift; for k in "$@"; do tm send-keys -t "$s" "$k"; sleep 0.05; done; }
+# wait until session $1's picture differs from $2 (a screen())
+changes() { wait_for 5 screen_differs "$1" "$2"; }
+screen_differs() { [ "$(screen "$1")" != "$2" ]; }
+# mouse report bytes (send-keys -H) that move the camera, then the still picture they lead to
+mouse_keys() {
+    local s=$1 n; shift
+    n=$(frame_no "$s"); tm send-keys -t "$s" -H "$@"; still_after "$s" "$n"
+}
+# Everything sent to session $1 so far has been taken and drawn, also input that draws
+# nothing or several frames: `i` (the camera on the status line) goes in after it, and a
+# still picture whose status line has the camera field turned over came after all of it.
+# Needs a status line wide enough for the camera field.
+barrier() {
+    local s=$1 want=shown
+    hud_has "$s" "| eye " && want=gone
+    tm send-keys -t "$s" i
+    wait_for 10 camera_field "$s" $want || { echo "barrier: $(status_line "$s")"; return 1; }
+}
+camera_field() { # S shown|gone: on a still picture's status line
+    local l; l=$(status_line "$1")
+    [[ $l =~ \ \#[0-9]+ ]] || return 1
+    if [ "$2" = shown ]; then [[ $l == *"| eye "* ]]; else [[ $l != *"| eye "* ]]; fi
+}
 
 demo() {
     start demo 100 30 || return 1
     tm capture-pane -t demo -p | tail -n 1 | grep -q "demo.rsc" || { echo "status line lacks demo.rsc"; return 1; }
-    keys demo Space; settle demo
+    keys demo Space || return 1
     set -- $(picture demo demo)
     echo "demo picture: $*"
     [ "$1x$2" = 100x58 ] || { echo "size $1x$2, want 100x58"; return 1; }
@@ -55,11 +72,11 @@ demo() {
 check demo_scene_starts_and_fills_window demo
 
 # a lone model on black: area and centroid tell where the camera went
-model_session() { start m 80 25 assets/sphere.obj --background 0,0,0 && settle m; }
+model_session() { start m 80 25 assets/sphere.obj --background 0,0,0 && still_after m 0; }
 zoom() {
     model_session || return 1
     set -- $(picture m before); local a0=$3
-    keys m w w w; settle m
+    keys m w w w || return 1
     set -- $(picture m after); local a1=$3
     echo "area before $a0, after zoom $a1"
     [ "$a1" -gt $((a0 * 5 / 4)) ]
@@ -67,9 +84,9 @@ zoom() {
 check zoom_in_grows_the_model zoom
 
 strafe() {
-    keys m r; settle m
+    keys m r || return 1
     set -- $(picture m s0); local x0=$4
-    keys m d d; settle m
+    keys m d d || return 1
     set -- $(picture m s1); local x1=$4
     echo "centroid x before $x0, after 'd' $x1"
     awk -v a="$x0" -v b="$x1" 'BEGIN { exit !(b < a - 2) }'
@@ -80,20 +97,20 @@ check strafe_right_moves_model_left strafe
 # interpolation and depth methods; the status line names each
 method_keys() {
     start k 100 25 assets/teapot.obj --texture assets/checker.png --background 0,0,0 || return 1
-    settle k
+    still_after k 0 || return 1
     picture k r0 >/dev/null
     local want; want=$(md5sum < "$OUT/r0.ans")
     for r in scanline tiled; do
-        keys k R; settle k
+        keys k R || return 1
         wait_for 3 hud_has k "$r" || { echo "status line lacks $r"; return 1; }
         picture k "r_$r" >/dev/null
         [ "$(md5sum < "$OUT/r_$r.ans")" = "$want" ] || { echo "--raster $r changed the picture"; return 1; }
     done
-    keys k p; settle k
+    keys k p || return 1
     wait_for 3 hud_has k "interpolation: affine" || { echo "p: no affine"; return 1; }
     picture k affine >/dev/null
     [ "$(md5sum < "$OUT/affine.ans")" != "$want" ] || { echo "affine drew the same picture"; return 1; }
-    keys k Z
+    keys k Z || return 1
     wait_for 3 hud_has k "depth buffer: w" || { echo "Z: no w"; return 1; }
 }
 check method_keys_cycle_and_rasterizers_agree method_keys
@@ -103,13 +120,13 @@ check method_keys_cycle_and_rasterizers_agree method_keys
 mouse() {
     local s=wide
     start $s 260 30 assets/cube.obj --background 0,0,0 || return 1
-    settle $s
+    still_after $s 0 || return 1
     set -- $(picture $s m0); local a0=$3 x0=$4
-    tm send-keys -t $s -H 1b 5b 3c 36 34 3b 32 35 30 3b 31 35 4d; settle $s     # ESC[<64;250;15M wheel up
+    mouse_keys $s 1b 5b 3c 36 34 3b 32 35 30 3b 31 35 4d || return 1           # ESC[<64;250;15M wheel up
     set -- $(picture $s m1); local a1=$3
     echo "SGR wheel up at column 250: area $a0 -> $a1"
     [ "$a1" -gt $((a0 * 11 / 10)) ] || return 1
-    tm send-keys -t $s -H 1b 5b 4d 61 3a 2f; settle $s                        # ESC[M a : / X10 wheel down at 26,15
+    mouse_keys $s 1b 5b 4d 61 3a 2f || return 1                                # ESC[M a : / X10 wheel down at 26,15
     set -- $(picture $s m2); local a2=$3
     echo "X10 wheel down: area $a1 -> $a2"
     [ "$a2" -lt $((a1 * 10 / 11)) ] || return 1
@@ -117,14 +134,16 @@ mouse() {
     tm send-keys -t $s -H 1b 5b 3c 30 3b 32 33 30 3b 31 35 4d                  # ESC[<0;230;15M
     tm send-keys -t $s -H 1b 5b 3c 33 32 3b 32 34 30 3b 31 35 4d               # ESC[<32;240;15M
     tm send-keys -t $s -H 1b 5b 3c 33 32 3b 32 35 30 3b 31 35 4d               # ESC[<32;250;15M
-    tm send-keys -t $s -H 1b 5b 3c 30 3b 32 35 30 3b 31 35 6d; settle $s       # ESC[<0;250;15m
+    tm send-keys -t $s -H 1b 5b 3c 30 3b 32 35 30 3b 31 35 6d                  # ESC[<0;250;15m
+    barrier $s || return 1
     set -- $(picture $s m3); local x3=$4
     echo "after a 20-column drag: $(cmp -l $OUT/m2.ppm $OUT/m3.ppm | wc -l) bytes differ; centroid x $x0 -> $x3"
     ! cmp -s $OUT/m2.ppm $OUT/m3.ppm || { echo "the drag did not orbit"; return 1; }
     # an orbit turns the cube about its centre: it stays in the middle of the window
     awk -v a="$x0" -v b="$x3" 'BEGIN { d = a - b; exit !(d < 8 && d > -8) }' || { echo "the model moved off centre"; return 1; }
     # a motion report with no button pressed before it does nothing
-    tm send-keys -t $s -H 1b 5b 3c 33 32 3b 31 30 3b 31 30 4d; settle $s       # ESC[<32;10;10M
+    tm send-keys -t $s -H 1b 5b 3c 33 32 3b 31 30 3b 31 30 4d                  # ESC[<32;10;10M
+    barrier $s || return 1
     picture $s m4 >/dev/null
     cmp -s $OUT/m3.ppm $OUT/m4.ppm || { echo "motion without a press moved the camera"; return 1; }
     # malformed or foreign reports (huge numbers, missing fields, other buttons) are ignored
@@ -133,7 +152,8 @@ mouse() {
              '<0;5;5;7M' '<-1;5;5M' '<32;999;999M'; do
         tm send-keys -t $s -l $'\e['"$r"
     done
-    settle $s; picture $s m5 >/dev/null
+    barrier $s || return 1
+    picture $s m5 >/dev/null
     cmp -s $OUT/m4.ppm $OUT/m5.ppm || { echo "a malformed report moved the camera"; return 1; }
     hud_has $s " fps" || { echo "the viewer is gone after malformed reports"; return 1; }
     tm kill-session -t $s
@@ -141,10 +161,10 @@ mouse() {
 check mouse_wheel_zooms_and_drag_orbits mouse
 
 fly_yaw() {
-    keys m r o; settle m            # o: fly mode
+    keys m r o || return 1          # o: fly mode
     tm capture-pane -t m -p | tail -n 1 | grep -qE "\| fly( |$)" || { echo "status line does not say fly"; return 1; }
     set -- $(picture m y0); local x0=$4
-    keys m Left; settle m
+    keys m Left || return 1
     set -- $(picture m y1); local x1=$4
     echo "centroid x before $x0, after Left (turn left) $x1"
     awk -v a="$x0" -v b="$x1" 'BEGIN { exit !(b > a + 2) }'
@@ -155,19 +175,21 @@ check fly_yaw_left_moves_model_right fly_yaw
 # counted from the key press, not from the last frame)
 tap_after_idle() {
     local idle x=()
-    for idle in 0.2 $((3 * SLOW)); do
-        keys m r; settle m; sleep "$idle"
-        keys m Left; settle m
+    for idle in 0.2 3; do
+        keys m r || return 1
+        sleep "$idle"
+        keys m Left || return 1
         set -- $(picture m tap-$idle); x+=("$4")
     done
-    echo "centroid x after a tap: ${x[0]} (idle 0.2 s), ${x[1]} (idle $((3 * SLOW)) s)"
+    echo "centroid x after a tap: ${x[0]} (idle 0.2 s), ${x[1]} (idle 3 s)"
     awk -v a="${x[0]}" -v b="${x[1]}" 'BEGIN { d = a - b; exit !(a > 41 && d < 1 && d > -1) }'
 }
 check tap_moves_the_same_after_idle tap_after_idle
 
 resize() {
+    local n; n=$(frame_no demo)        # the demo stands still (Space)
     tm resize-window -t demo -x 70 -y 20
-    sleep 0.3; settle demo
+    still_after demo "$n" || return 1
     set -- $(picture demo resized)
     echo "after resize to 70x20: $*"
     [ "$1x$2" = 70x38 ] || return 1
@@ -180,13 +202,15 @@ idle() {
     local log=$OUT/pane.log
     : > "$log"
     tm pipe-pane -o -t m "cat >> $log"
-    keys m Left Left Left                                # move a while, then nothing
-    settle m; sleep 0.3
+    keys m Left Left Left || return 1                    # move a while, then nothing
+    local n; n=$(frame_no m)
+    wait_for 5 log_ends_with_frame "$log" "$n" || { echo "frame #$n is not all in the log"; return 1; }
     local s0 s1 s2
     s0=$(stat -c %s "$log"); sleep 1; s1=$(stat -c %s "$log")
     echo "bytes written while idle for 1 s: $((s1 - s0))"
     [ "$s1" -eq "$s0" ] || return 1
-    keys m w; sleep 0.5
+    keys m w || return 1
+    wait_for 5 log_ends_with_frame "$log" "$(frame_no m)"
     s2=$(stat -c %s "$log")
     echo "bytes after a key: $((s2 - s1))"
     [ "$s2" -gt "$s1" ]
@@ -195,11 +219,12 @@ check idle_viewer_writes_nothing idle
 
 extremes() {
     tm new-session -d -s tiny -x 10 -y 3 "$(printf '%q ' "$BIN" --colors truecolor); echo EXIT=\$? > $OUT/tiny.exit; sleep 60"
-    sleep $((1 * SLOW)); keys tiny q
+    wait_for 15 hud_has tiny " demo" || { echo "no status line at 10x3: $(status_line tiny)"; return 1; }
+    tm send-keys -t tiny q
     wait_for 10 test -s "$OUT/tiny.exit" || return 1
     grep -q EXIT=0 "$OUT/tiny.exit" || { cat "$OUT/tiny.exit"; return 1; }
     start huge 300 100 || return 1
-    keys huge Space; settle huge
+    keys huge Space || return 1
     set -- $(picture huge huge)
     echo "300x100 terminal: $*"
     [ "$1x$2" = 300x198 ] && [ "$3" -eq $((300 * 198)) ]
@@ -212,19 +237,19 @@ suspend_resume() {
     tm new-session -d -s $s -x 80 -y 24 bash --norc --noprofile
     tm send-keys -t $s "$(printf '%q ' "$BIN" --colors truecolor --background 40,40,40 assets/sphere.obj)" Enter
     wait_for 15 hud_has $s " fps" || { echo "viewer did not start"; return 1; }
-    settle $s
+    still_after $s 0 || return 1
+    local n; n=$(frame_no $s)
     tm send-keys -t $s C-z
     wait_for 10 sh -c "tmux -L $SOCK capture-pane -t $s -p | grep -q Stopped" || { echo "not stopped"; return 1; }
     tm send-keys -t $s "stty -a > $f" Enter
     wait_for 10 test -s $f || return 1
     grep -qE '(^| )icanon( |$)' $f && grep -qE '(^| )echo( |$)' $f || { echo "suspended with a raw terminal"; return 1; }
     tm send-keys -t $s "clear; fg" Enter
-    wait_for 10 hud_has $s " fps" || { echo "no status line after fg"; return 1; }
-    settle $s
+    still_after $s "$n" || { echo "no repaint after fg"; return 1; }
     set -- $(picture $s resumed 40,40,40)
     echo "after fg: $*"
     [ "$1x$2" = 80x46 ] && [ "$3" -gt 200 ] || { echo "not repainted"; return 1; }
-    keys $s q
+    tm send-keys -t $s q
 }
 check suspend_and_resume_repaints suspend_resume
 
@@ -277,21 +302,33 @@ quit_ways() {
 check quit_restores_terminal quit_ways
 
 # The help overlay is drawn once, not with every frame, and q/Esc close it (not the viewer).
+dsr_count() { LC_ALL=C grep -ao $'\e\[5n' "$1" | wc -l; }
+dsr_past() { [ "$(dsr_count "$1")" -ge "$2" ]; }
 help_overlay() {
     local s=hp log=$OUT/help.log
     start $s 100 40 --spin || return 1          # the demo, spinning: a frame every 1/60 s
     : > $log; tm pipe-pane -o -t $s "cat >> $log"
-    keys $s h; sleep $((2 * SLOW))
+    tm send-keys -t $s h
+    wait_for 5 grep -aq "shading: wire flat" $log || { echo "no help drawn"; return 1; }
+    # 60 more frames of spinning under the help (each frame ends with a DSR request)
+    local f0; f0=$(dsr_count $log)
+    wait_for 10 dsr_past $log $((f0 + 60)) || { echo "fewer than 60 frames: $(dsr_count $log)"; return 1; }
     local n; n=$(grep -ac "shading: wire flat" $log)
-    echo "help text sent $n times in 2 s of spinning"
+    echo "help text sent $n times in $(( $(dsr_count $log) - f0 )) frames of spinning"
     [ "$n" -eq 1 ] || return 1
     tm capture-pane -t $s -p | grep -q "shading: wire flat" || { echo "help not on screen"; return 1; }
-    keys $s q; sleep 0.5
+    # q closes the help; Space pauses the spin, and the still picture after it says the viewer
+    # took both keys
+    tm send-keys -t $s q
+    keys $s Space || { echo "q quit the viewer instead of closing the help"; return 1; }
     tm capture-pane -t $s -p | grep -q "shading: wire flat" && { echo "q did not close the help"; return 1; }
     hud_has $s " fps" || { echo "q quit the viewer instead of closing the help"; return 1; }
-    keys $s h Escape; sleep 0.5
+    keys $s h || return 1
+    tm capture-pane -t $s -p | grep -q "shading: wire flat" || { echo "help not on screen"; return 1; }
+    keys $s Escape || { echo "Esc quit the viewer instead of closing the help"; return 1; }
+    tm capture-pane -t $s -p | grep -q "shading: wire flat" && { echo "Esc did not close the help"; return 1; }
     hud_has $s " fps" || { echo "Esc quit the viewer instead of closing the help"; return 1; }
-    keys $s q
+    tm send-keys -t $s q
     wait_for 5 test -s $OUT/$s.exit && grep -q EXIT=0 $OUT/$s.exit
 }
 check help_overlay_drawn_once_and_closed_by_q help_overlay
@@ -322,23 +359,25 @@ check status_line_names_the_texture texture_named
 spin_rules() {
     local a b
     start sd 80 24 || return 1
-    settle sd; a=$(tm capture-pane -t sd -e -p | head -n -1 | md5sum); sleep 0.5
-    b=$(tm capture-pane -t sd -e -p | head -n -1 | md5sum)
-    [ "$a" != "$b" ] || { echo "the demo does not spin"; return 1; }
-    keys sd Left; settle sd; a=$(tm capture-pane -t sd -e -p | head -n -1 | md5sum); sleep 0.5
-    b=$(tm capture-pane -t sd -e -p | head -n -1 | md5sum)
+    a=$(screen sd)
+    changes sd "$a" || { echo "the demo does not spin"; return 1; }
+    keys sd Left || { echo "a camera key did not stop the spin (no still picture)"; return 1; }
+    a=$(screen sd); sleep 0.5
+    b=$(screen sd)
     [ "$a" = "$b" ] || { echo "a camera key did not stop the spin"; return 1; }
-    keys sd Space; sleep 0.5
-    b=$(tm capture-pane -t sd -e -p | head -n -1 | md5sum)
+    keys sd Space || { echo "Space restarted a spin a camera key stopped (no still picture)"; return 1; }
+    sleep 0.5
+    b=$(screen sd)
     [ "$a" = "$b" ] || { echo "Space restarted a spin a camera key stopped"; return 1; }
     start sm 80 24 --spin assets/cube.obj || return 1
-    sleep 0.3; a=$(tm capture-pane -t sm -e -p | head -n -1 | md5sum); sleep 0.5
-    b=$(tm capture-pane -t sm -e -p | head -n -1 | md5sum)
-    [ "$a" != "$b" ] || { echo "--spin does not spin a model"; return 1; }
+    a=$(screen sm)
+    changes sm "$a" || { echo "--spin does not spin a model"; return 1; }
     start sn 80 24 --no-spin || return 1
-    settle sn; a=$(tm capture-pane -t sn -e -p | head -n -1 | md5sum); sleep 0.5
-    b=$(tm capture-pane -t sn -e -p | head -n -1 | md5sum)
+    still_after sn 0 || { echo "--no-spin: the demo spins (no still picture)"; return 1; }
+    a=$(screen sn); sleep 0.5
+    b=$(screen sn)
     [ "$a" = "$b" ] || { echo "--no-spin: the demo spins"; return 1; }
+    tm kill-session -t sd; tm kill-session -t sm; tm kill-session -t sn # sm spins on
 }
 check spin_rules spin_rules
 
@@ -349,10 +388,11 @@ screenshot() {
     tm new-session -d -s sh -x 90 -y 30 -c $d \
         "$(printf '%q ' "$bin" --colors truecolor "$PWD/assets/demo.rsc"); sleep 60"
     wait_for 15 hud_has sh " fps" || return 1
-    keys sh Left Up i c; settle sh; keys sh S
+    keys sh Left Up i c S || return 1
     wait_for 5 test -s $d/rastty-001.png || { echo "no PNG"; return 1; }
     test -s $d/rastty-001.ans || { echo "no ANSI"; return 1; }
-    keys sh q; sleep 0.5
+    tm send-keys -t sh q
+    wait_for 5 sh -c "tmux -L $SOCK capture-pane -t sh -p -J | grep -q '^screenshot: '"
     local cmd; cmd=$(tm capture-pane -t sh -p -J | grep '^screenshot: ' | sed 's/^screenshot: //')
     echo "printed: $cmd"
     [ -n "$cmd" ] || return 1

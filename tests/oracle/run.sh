@@ -20,7 +20,8 @@
 #   --rastty P    the binary to test (default ./rastty, or $RASTTY)
 #   --only S      run only scenes whose name contains S
 #   --list N      print up to N mismatching pixels per scene (stderr)
-# Environment: RASTTY_SHARED overrides ../shared (the shared models live in its models/).
+# Environment: RASTTY_SHARED overrides ../shared (the shared models live in its models/);
+# ORACLE_JOBS scenes run at a time (default one per core), their lines printed in order.
 set -u
 
 root=$(cd "$(dirname "$0")/../.." && pwd)
@@ -101,18 +102,18 @@ else
     echo "oracle: $rastty render against Mesa ${GALLIUM_DRIVER:-llvmpipe}"
 fi
 
-for l in "${lines[@]}"; do
+# One scene (a line of scenes.txt): its lines on stdout; 0 passed, 1 failed, 2 skipped.
+scene() {
+    local l=$1
+    local name checks args refargv testargv cmpflags refmodel sz i ref test raster_bad flags r
     read -r name checks args <<<"$l"
-    [[ -n $only && $name != *"$only"* ]] && continue
     if [[ $args == *'$SHARED'* && ! -d $shared ]]; then
         echo "$name SKIP (no shared models at $shared)"
-        skipped=$((skipped + 1))
-        continue
+        return 2
     fi
     if [[ $args == *'$GEN'* && $have_gen = 0 ]]; then
         echo "$name SKIP (generated models unavailable)"
-        skipped=$((skipped + 1))
-        continue
+        return 2
     fi
     args=${args//\$SHARED/$shared}
     args=${args//\$GEN/$gen}
@@ -151,30 +152,26 @@ for l in "${lines[@]}"; do
     rm -f "$ref".* "$test".* "$out/$name.diff.png"
     if ! "$glref" "${refargv[@]}" --out "$ref.ppm" --depth-out "$ref.pfm" 2>"$ref.err"; then
         echo "$name FAIL (reference renderer: $(head -n 1 "$ref.err"))"
-        failed=$((failed + 1))
-        continue
+        return 1
     fi
     if [ "$mode" = calibrate ]; then
         test=$out/$name.softpipe
         if ! GALLIUM_DRIVER=softpipe "$glref" "${refargv[@]}" --out "$test.ppm" \
             --depth-out "$test.pfm" 2>"$test.err"; then
             echo "$name FAIL (softpipe: $(head -n 1 "$test.err"))"
-            failed=$((failed + 1))
-            continue
+            return 1
         fi
     elif [ "$mode" = calibrate-clip ]; then
         test=$out/$name.glclip
         if ! "$glref" "${refargv[@]}" --gl-clip --out "$test.ppm" --depth-out "$test.pfm" \
             2>"$test.err"; then
             echo "$name FAIL (glref --gl-clip: $(head -n 1 "$test.err"))"
-            failed=$((failed + 1))
-            continue
+            return 1
         fi
     elif ! "$rastty" render "${testargv[@]}" --out "$test.ppm" --depth-out "$test.pfm" \
         2>"$test.err" >/dev/null; then
         echo "$name FAIL (rastty render exited non-zero: $(head -n 1 "$test.err"))"
-        failed=$((failed + 1))
-        continue
+        return 1
     fi
     # every rasterizer must write the same bytes (colour and depth) as the default one
     raster_bad=
@@ -193,14 +190,48 @@ for l in "${lines[@]}"; do
     [[ $checks == *magenta* ]] && flags+=(--magenta)
     [[ $checks == *exact* ]] && flags+=(--exact)
     [ "$mode" = rastty ] && flags+=("${cmpflags[@]}")
-    if "$compare" --name "$name" "${flags[@]}" --list "$list" --diff "$out/$name.diff.png" \
-        "$test.ppm" "$test.pfm" "$ref.ppm" "$ref.pfm" && [ -z "$raster_bad" ]; then
-        passed=$((passed + 1))
-    else
+    local verdict=0
+    if ! "$compare" --name "$name" "${flags[@]}" --list "$list" --diff "$out/$name.diff.png" \
+        "$test.ppm" "$test.pfm" "$ref.ppm" "$ref.pfm" || [ -n "$raster_bad" ]; then
         [ -n "$raster_bad" ] && echo "$name FAIL (--raster$raster_bad: bytes differ from --raster edge: $test.*.ppm)"
         [ -f "$out/$name.diff.png" ] && echo "    diff image: $out/$name.diff.png"
-        failed=$((failed + 1))
+        verdict=1
     fi
     rm -f "$ref.err" "$test.err"
+    return $verdict
+}
+
+# The scenes run ORACLE_JOBS at a time (default one per core: each is a chain of short
+# processes, and tests/run.sh runs other suites beside this one); their lines come out whole
+# and in order, as each scene before them is done.
+jobs=${ORACLE_JOBS:-$(nproc 2>/dev/null || echo 1)}
+tmpd=$(mktemp -d "${TMPDIR:-/tmp}/rastty-oracle.XXXXXX")
+trap 'rm -rf "$tmpd"' EXIT
+todo=()
+for l in "${lines[@]}"; do
+    read -r name _ <<<"$l"
+    [[ -n $only && $name != *"$only"* ]] || todo+=("$l")
 done
+next=0
+flush() {
+    while [ "$next" -lt "${#todo[@]}" ] && [ -e "$tmpd/$next.rc" ]; do
+        cat "$tmpd/$next.out"
+        case $(cat "$tmpd/$next.rc") in
+        0) passed=$((passed + 1)) ;;
+        2) skipped=$((skipped + 1)) ;;
+        *) failed=$((failed + 1)) ;;
+        esac
+        next=$((next + 1))
+    done
+}
+done_count() { local f=("$tmpd"/*.rc); [ -e "${f[0]}" ] && echo ${#f[@]} || echo 0; }
+for i in "${!todo[@]}"; do
+    while [ $((i - $(done_count))) -ge "$jobs" ]; do
+        wait -n 2>/dev/null || sleep 0.1
+        flush
+    done
+    ( scene "${todo[i]}" > "$tmpd/$i.out" 2>&1; echo $? > "$tmpd/$i.rc.new"; mv "$tmpd/$i.rc.new" "$tmpd/$i.rc" ) &
+done
+wait
+flush
 summary

@@ -828,6 +828,51 @@ TEST(budgeted_frames_fit_and_a_still_picture_converges_to_exact)
     }
 }
 
+/* A budgeted still picture in 256 colours whose last changes are cells that show, as they are,
+ * as little error as their targets would (approximations an earlier frame drew, the palette's
+ * rounding): no price draws them, yet together they pass the budget. They must still be
+ * drawn, a budget's worth a frame, until nothing is pending: before, every frame drew
+ * nothing and left them pending for ever (the viewer then redrew a still picture at its
+ * full frame rate without end). 80x24 grey noise, panned for 20 frames then held. */
+TEST(a_budgeted_still_picture_never_stops_short_of_exact)
+{
+    enum { C = 80, R = 24, B = 1500 };
+    static uint8_t rgb[C * 2 * R * 3];
+    struct encode_screen s;
+    REQUIRE(encode_screen_init(&s, C, R, NULL) == 0);
+    struct encode_opts o = {.mode = PALETTE_256, .diff = true, .budget = B};
+    int converged = -1, stuck = 0;
+    for (int f = 0; f < 400 && converged < 0; f++) {
+        int shift = f < 20 ? 3 * f : 60;
+        for (int y = 0; y < 2 * R; y++)
+            for (int x = 0; x < C; x++) {
+                unsigned u = (unsigned)(x + shift), h = u * 73856093u ^ (unsigned)y * 19349663u;
+                h ^= h >> 13;
+                h *= 0x5bd1e995u;
+                h ^= h >> 15;
+                set_px(rgb, C, x, y, (h & 0xff) * 0x010101u + ((u * 3) & 0x3f));
+            }
+        size_t n;
+        struct encode_stats st;
+        encode_frame(&s, rgb, C, 2 * R, &o, &n, &st);
+        CHECK(n <= B);
+        if (f >= 20 && st.cells_pending == 0)
+            converged = f - 19;
+        stuck += f >= 20 && st.cells_pending > 0 && st.cells_drawn == 0;
+    }
+    CHECK_EQ_INT(stuck, 0);
+    CHECK(converged > 0);
+    /* and the screen is the picture's targets: an unbudgeted diff has nothing to send */
+    size_t n;
+    struct encode_opts exact = {.mode = PALETTE_256, .diff = true};
+    encode_frame(&s, rgb, C, 2 * R, &exact, &n, NULL);
+    CHECK_EQ_INT(n, 0);
+    if (t->failures)
+        fprintf(stderr, "    converged after %d still frames; %d frames drew nothing\n", converged,
+                stuck);
+    encode_screen_free(&s);
+}
+
 TEST(a_budget_the_frame_fits_changes_nothing)
 {
     enum { C = 20, R = 6 };

@@ -545,8 +545,11 @@ TEST(lod_background_build_makes_the_same_levels)
     for (int k = 1; k < lod_level_count(&c); k++)
         CHECK(lod_level(&c, k)->n_tris > 0);
     CHECK(lod_done(NULL));
+    lod_free(&c); /* mesh_free leaves the levels to lod_free (scene_free calls both) */
     mesh_free(&c);
+    lod_free(&ms[0]);
     mesh_free(&ms[0]);
+    lod_free(&ms[1]);
     mesh_free(&ms[1]);
     lod_free(&ref);
     mesh_free(&ref);

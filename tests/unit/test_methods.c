@@ -526,6 +526,9 @@ static int make_features(struct scene1 *s)
     m->n_materials = 3;
     mtl_default(&mats[1], "cutout");
     mtl_default(&mats[2], "glass");
+    for (uint32_t k = 0; k < m->n_textures; k++) /* (the OBJ's own: none, but its array) */
+        texture_free(&m->textures[k]);
+    free(m->textures);
     m->textures = calloc(2, sizeof *m->textures);
     if (!m->textures)
         return -1;

@@ -200,15 +200,22 @@ TEST(l_switches_between_the_headlight_and_the_world_lights)
     CHECK(ro.ambient_sky.x == 0.1 && ro.ambient_ground.x == 0.1);
 }
 
-static void hud(const struct view_state *s, int width, char *out, size_t n)
+static void hud_frames(const struct view_state *s, int width, unsigned long frames, char *out,
+                       size_t n)
 {
     struct frame_stats st = {.tris_drawn = 2464, .tris_clipped = 3, .tris_culled = 7,
                              .tris_in = 1246, .tris_full = 2492, .lod_min = 1, .lod_max = 1};
     struct view_hud_info in = {.scene = "african_head.obj", .scene_i = 0, .n_scenes = 1,
                                .texture = "african_head_diffuse.tga", .mode = PALETTE_TRUECOLOR,
                                .fps = 59.6, .render_ms = 2.1, .encode_ms = 0.12, .bytes = 10240,
-                               .st = &st, .pacing = "link 125KB/s: 8fps tol 14"};
+                               .st = &st, .pacing = "link 125KB/s: 8fps tol 14",
+                               .frames = frames};
     view_hud_compose(s, &in, width, 0, out, n);
+}
+
+static void hud(const struct view_state *s, int width, char *out, size_t n)
+{
+    hud_frames(s, width, 0, out, n);
 }
 
 TEST(the_status_line_keeps_the_essentials_first_at_80_columns)
@@ -245,6 +252,34 @@ TEST(the_status_line_keeps_the_essentials_first_at_80_columns)
     view_message(&s, "hello", 0);
     hud(&s, 250, line, sizeof line);
     CHECK_STR_CONTAINS(line, " hello ");
+}
+
+/* "#N" (frames written in full) once the picture stands still: right after the frame rate,
+ * kept at 80 columns, and after a message too; nothing while it moves (frames 0) */
+TEST(the_status_line_counts_frames_when_the_picture_stands_still)
+{
+    struct view_state s;
+    start(&s, false);
+    char line[512];
+    hud_frames(&s, 80, 1234567, line, sizeof line);
+    CHECK((int)strlen(line) <= 79);
+    const char *want = " african_head.obj [1/1] | textured trilinear | truecolor | 60 fps | #1234567";
+    CHECK(strncmp(line, want, strlen(want)) == 0);
+    hud_frames(&s, 300, 7, line, sizeof line);
+    CHECK_STR_CONTAINS(line, "| 60 fps | #7 | link 125KB/s");
+    hud(&s, 300, line, sizeof line);
+    CHECK(!strchr(line, '#'));
+    view_message(&s, "hello", 0);
+    hud_frames(&s, 80, 8, line, sizeof line);
+    CHECK(strcmp(line, " hello | #8 ") == 0);
+    hud(&s, 80, line, sizeof line);
+    CHECK(strcmp(line, " hello ") == 0);
+    /* a message too long for the line gives way to the count */
+    view_message(&s, "saved rastty-001.png and rastty-001.ans", 0);
+    hud_frames(&s, 30, 12, line, sizeof line);
+    CHECK(strcmp(line, " saved rastty-001.png  | #12 ") == 0); /* 29 characters */
+    if (t->failures)
+        fprintf(stderr, "    \"%s\"\n", line);
 }
 
 TEST(the_screenshot_command_reproduces_the_camera_and_methods_exactly)

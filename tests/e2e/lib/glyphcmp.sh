@@ -12,7 +12,7 @@
 # picture too).
 PSNR=build/e2e/psnr
 if [ ! -x $PSNR ] || [ tests/e2e/lib/psnr.c -nt $PSNR ]; then
-    mkdir -p build/e2e && cc -O2 -std=c11 -o $PSNR tests/e2e/lib/psnr.c -lm
+    mkdir -p build/e2e && cc -O2 -std=c11 -o $PSNR.$$ tests/e2e/lib/psnr.c -lm && mv -f $PSNR.$$ $PSNR
 fi
 
 chafa_symbols() {
