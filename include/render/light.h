@@ -154,10 +154,14 @@ static inline void light_terms(const struct light_env *env, const float n[3], co
 /* The features path's light sums (phong, shade.h): light_terms over every channel, with
  * the ambient scaled by occ (glTF's occlusion texture) and the direct diffuse by kdiff
  * (1 - metallic: a metal's colour is in its highlight and its surroundings, not in its
- * diffuse). */
+ * diffuse). pbr (a glTF material): each light's highlight is also weighted by max(0, N.L),
+ * as a microfacet BRDF's radiance is (f * N.L): a rough metal's broad lobe (ns 1) would
+ * otherwise light faces turned from the light as brightly as those facing it (glTF's
+ * default material, metallic 1 and roughness 1, drew a red box at 255 on every face; the
+ * sample viewer shows 147, 123 and 70). */
 static inline void light_terms_rich(const struct light_env *env, const float n[3],
                                     const float v[3], float ns, float occ, float kdiff,
-                                    float d_out[3], float s_out[3])
+                                    bool pbr, float d_out[3], float s_out[3])
 {
     float d[3] = {0, 0, 0}, s[3] = {0, 0, 0};
     for (int i = 0; i < env->n; i++) {
@@ -169,6 +173,8 @@ static inline void light_terms_rich(const struct light_env *env, const float n[3
         float ndh = (n[0] * h[0] + n[1] * h[1] + n[2] * h[2]) * ih;
         float dd = ndl > 0 ? ndl : 0;
         float ss = light_pow(ndh > 0 ? ndh : 0, ns);
+        if (pbr)
+            ss *= dd;
         for (int k = 0; k < 3; k++) {
             d[k] += dd * col[k];
             s[k] += ss * col[k];

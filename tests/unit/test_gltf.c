@@ -796,3 +796,23 @@ TEST(gltf_glb_and_cameras)
     mesh_free(&m);
     free(glb);
 }
+
+TEST(gltf_rough_metal_highlight_is_weighted_by_n_dot_l)
+{
+    /* glTF's default material (metallic 1, roughness 1: Blinn-Phong ns 1) in red, facing
+     * the camera (+z, orthographic), light toward (1,1,1): no diffuse (a metal), the ambient
+     * 0.1, and the highlight ks N.H = 0.888 weighted by N.L = 0.577 as a BRDF's radiance
+     * is: 0.1 + 0.512 -> 156. Without the weight it was 252 (and 255 on every face of a
+     * box, where the sample viewer shows 147, 123, 70). */
+    struct gb g = {0};
+    char *j = quad_gltf(&g, "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[1,0,0,1]}}", 1,
+                        "", "");
+    struct mesh m;
+    REQUIRE(load(j, &m, NULL) == 0);
+    CHECK(m.features); /* a physically based material: the features path */
+    uint8_t c[3];
+    REQUIRE(centre(&m, SHADE_PHONG, c) == 0);
+    CHECK(c[0] >= 155 && c[0] <= 157 && c[1] == 0 && c[2] == 0);
+    mesh_free(&m);
+    free(j);
+}
