@@ -8,8 +8,9 @@
  * the file name; an option the format does not define, such as -colorspace sRGB, is skipped
  * with one value and a warning; the rest of the line is the file name, spaces included).
  * Ke (emission) is not drawn: the conventions' OBJ lighting has none (the Mesa oracle's
- * Cornell box carries a Ke), so a non-zero Ke is a warning. Other statements (illum, Ni,
- * Tf, map_Ks, ...) are accepted and ignored.
+ * Cornell box carries a Ke), so a non-zero Ke is a warning. map_Ks, map_Ns,
+ * map_Ke, refl, disp and decal change the picture and are not drawn: a warning each, once
+ * per file. Other statements (illum, Ni, Tf, ...) are accepted and ignored.
  * Ka is ignored, unchecked: the ambient term is fixed at 0.1 * albedo by the conventions,
  * and real files carry typos there (sportsCar.mtl:336 "Ka 0.0000 0.0000 0.0000c") that
  * must not stop a model from loading. Kd, Ks and Ns are used, so bad numbers there are

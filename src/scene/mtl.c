@@ -27,6 +27,7 @@ struct mparse {
     struct warnings *w;
     bool has_d;        /* the material being read said d (Tr then does not count) */
     bool warned_ke;    /* a non-zero Ke was warned about */
+    unsigned warned_maps; /* the maps not drawn that were warned about (bits) */
 };
 
 static int fail_text(struct mparse *P, const char *what, const char *t, const char *te)
@@ -319,6 +320,15 @@ static int parse_line(struct mparse *P, const char *p, const char *end)
         P->has_d |= lex_tok_is(kw, kwe, "d");
         return 0;
     }
+    static const char *const unseen[] = {"map_Ks", "map_Ns", "map_Ke", "refl",
+                                         "disp", "decal"};
+    for (int k = 0; k < (int)(sizeof unseen / sizeof unseen[0]); k++)
+        if (lex_tok_is(kw, kwe, unseen[k]) && !(P->warned_maps & 1u << k)) {
+            warn_add(P->w, "%s:%lu: %s is not drawn (rastty draws map_Kd, map_d and the bump "
+                           "and normal maps); drawn without it",
+                     P->where, P->line, unseen[k]);
+            P->warned_maps |= 1u << k;
+        }
     if (lex_tok_is(kw, kwe, "Ke") && !P->warned_ke) {
         float ke[3] = {0, 0, 0};
         if (parse_colour(P, "Ke", p, end, ke) == 0 && (ke[0] > 0 || ke[1] > 0 || ke[2] > 0)) {
