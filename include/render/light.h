@@ -26,7 +26,21 @@
  * Names: a function ending in _v is the vector twin of the one without (simd.h: every lane
  * gives exactly the scalar result; the reference kernel uses the scalar ones); _k means it
  * takes k = light_pow_int(ns), computed once for many points; _channels that it computes
- * the first nc colour channels (1 with grey lights) and copies channel 0 to the rest. */
+ * the first nc colour channels (1 with grey lights) and copies channel 0 to the rest.
+ *
+ * glTF's colour spaces and materials (the man page's SHADING says it for users): the formula
+ * above works on display values (sRGB-encoded), as the conventions' OBJ scenes and the Mesa
+ * oracle define it, and OBJ, STL and PLY are drawn exactly so. glTF's colour factors and
+ * vertex colours are linear and its colour textures sRGB: gltf.c encodes the factors and
+ * vertex colours to display values at load (material_srgb_encode: 0.8 -> 231) and colour
+ * textures are used as stored, so albedo = display(factor) x texel. Metallic-roughness and
+ * specular-glossiness become Blinn-Phong (material_pbr_highlight): ns = 2 / a^2 - 2 with
+ * a = roughness^2; ks = the reflectance f0 (0.04, or _ior/_specular's; a metal's base
+ * colour) x (ns + 8) / 8, scaled under 1 and encoded. On the features path (shade.h) a
+ * metal's diffuse is multiplied by 1 - metallic, the highlight of a pbr material by
+ * max(0, N.L) (light_terms_rich), the ambient by the occlusion texture; the encoded
+ * emissive colour is added after. No environment light: a smooth metal shows only its
+ * highlight. */
 #ifndef RASTTY_LIGHT_H
 #define RASTTY_LIGHT_H
 
