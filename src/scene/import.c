@@ -518,6 +518,26 @@ int import_build(const uint8_t *reply, size_t n, const struct model_ctx *ctx,
     memcpy(anrm, nrm, (size_t)n_pos * 12);
     memcpy(auv, uv, (size_t)n_pos * 8);
     memcpy(ac, corners, (size_t)n_tris * 36);
+    /* a file the importer took for its format without being one (random bytes named .ase
+     * give 8 triangles all at the origin): no triangle with an area is no model */
+    bool any_area = false;
+    for (uint32_t t = 0; t < n_tris && !any_area; t++) {
+        const struct mesh_corner *c = &ac[3 * t];
+        if (c[0].pos >= n_pos || c[1].pos >= n_pos || c[2].pos >= n_pos)
+            continue;
+        const float *a = apos + 3 * c[0].pos, *b = apos + 3 * c[1].pos, *d = apos + 3 * c[2].pos;
+        float u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+        float v[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+        float x = u[1] * v[2] - u[2] * v[1], y = u[2] * v[0] - u[0] * v[2],
+              z = u[0] * v[1] - u[1] * v[0];
+        any_area = x != 0 || y != 0 || z != 0;
+    }
+    if (!any_area) {
+        err_set(e, "%s: none of its %u triangles has an area: not a model the importer could "
+                   "read",
+                where, n_tris);
+        goto done;
+    }
     for (uint32_t t = 0; t < n_tris; t++) {
         uint32_t m;
         memcpy(&m, &tmat[t], 4);

@@ -452,3 +452,21 @@ TEST(assimp_formats_name_what_they_do_not_draw)
     CHECK(cam && light);
     mesh_free(&m);
 }
+
+TEST(random_bytes_named_ase_are_an_error_naming_the_file)
+{
+    /* assimp's ASE reader takes any bytes and gives 8 triangles at the origin: a blank
+     * picture with exit 0 before; now an error naming the file */
+    static char junk[3000];
+    uint32_t x = 12345;
+    for (size_t i = 0; i < sizeof junk; i++) {
+        x = x * 1103515245u + 12345u;
+        junk[i] = (char)(x >> 24);
+    }
+    struct mesh m;
+    struct err e;
+    struct model_ctx ctx = {.path = "r.ase"};
+    CHECK_EQ_INT(model_parse(junk, sizeof junk, &ctx, &m, &e), -1);
+    CHECK_STR_CONTAINS(e.msg, "r.ase");
+    CHECK_STR_CONTAINS(e.msg, "has an area");
+}
