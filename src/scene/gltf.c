@@ -1428,6 +1428,16 @@ static int walk(struct gl *G, uint32_t i, int depth)
                 rc = -1;
                 break;
             }
+            /* the instances' triangles at once: a file instanced past the limit fails
+             * before it is built up to it (120 x 200k triangles took seconds and GBs) */
+            uint64_t all_t = (uint64_t)n_inst * (p.ni / 3), all_v = (uint64_t)n_inst * p.nv;
+            if (n_inst && (G->nt + all_t > GLTF_MAX_TRIS || G->nv + all_v > GLTF_MAX_VERTS)) {
+                rc = gfail(G, NULL, "node %u: %u instances of %llu triangles make more than %u "
+                                    "triangles or vertices: too large to draw",
+                           i, n_inst, (unsigned long long)(p.ni / 3), GLTF_MAX_TRIS);
+                prim_free(&p);
+                break;
+            }
             if (n_inst) {
                 for (uint32_t t = 0; rc == 0 && t < n_inst; t++) {
                     m4d x = mat_mul(&w, &inst[t]);
