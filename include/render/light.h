@@ -37,8 +37,9 @@
  * specular-glossiness become Blinn-Phong (material_pbr_highlight): ns = 2 / a^2 - 2 with
  * a = roughness^2; ks = the reflectance f0 (0.04, or _ior/_specular's; a metal's base
  * colour) x (ns + 8) / 8, scaled under 1 and encoded. On the features path (shade.h) a
- * metal's diffuse is multiplied by 1 - metallic, the highlight of a pbr material by
- * max(0, N.L) (light_terms_rich), the ambient by the occlusion texture; the encoded
+ * metal's diffuse is multiplied by 1 - metallic, a metal's highlight by max(0, N.L)
+ * (light_terms_rich; a dielectric keeps the conventions' highlight, as the oracle's
+ * globe.glb is drawn), the ambient by the occlusion texture; the encoded
  * emissive colour is added after. No environment light: a smooth metal shows only its
  * highlight. */
 #ifndef RASTTY_LIGHT_H
@@ -168,7 +169,8 @@ static inline void light_terms(const struct light_env *env, const float n[3], co
 /* The features path's light sums (phong, shade.h): light_terms over every channel, with
  * the ambient scaled by occ (glTF's occlusion texture) and the direct diffuse by kdiff
  * (1 - metallic: a metal's colour is in its highlight and its surroundings, not in its
- * diffuse). pbr (a glTF material): each light's highlight is also weighted by max(0, N.L),
+ * diffuse). pbr (a glTF metal, metallic > 0): each light's highlight is also weighted by
+ * max(0, N.L),
  * as a microfacet BRDF's radiance is (f * N.L): a rough metal's broad lobe (ns 1) would
  * otherwise light faces turned from the light as brightly as those facing it (glTF's
  * default material, metallic 1 and roughness 1, drew a red box at 255 on every face; the

@@ -1786,10 +1786,11 @@ static void material(struct gl *G, struct mesh *out, struct images *I, uint32_t 
     m->alpha_cutoff = (float)(cut < 0 ? 0 : cut);
     m->sides = json_bool(json_get(mj, "doubleSided"), false) ? MAT_TWO_SIDED : MAT_ONE_SIDED;
     m->unlit = json_get(ext, "KHR_materials_unlit") != NULL;
-    /* drawn by the features path: a physically based material's highlight is weighted by
-     * N.L and a metal has no diffuse (light.h), which the conventions' path has not */
+    /* drawn by the features path: a metal has no diffuse and its highlight is weighted by
+     * N.L (light.h), which the conventions' path has not; a dielectric without textures
+     * draws as the conventions' Blinn-Phong (the Mesa oracle's globe.glb) */
     bool em_on = m->emissive[0] > 0 || m->emissive[1] > 0 || m->emissive[2] > 0;
-    m->features = m->pbr || m->unlit || em_on || m->normal_map.tex >= 0 || m->occlusion_map.tex >= 0 ||
+    m->features = (m->pbr && m->metallic > 0) || m->unlit || em_on || m->normal_map.tex >= 0 || m->occlusion_map.tex >= 0 ||
                   m->spec_map.tex >= 0 || m->alpha_mode != MAT_OPAQUE ||
                   m->sides == MAT_TWO_SIDED || (m->base.tex >= 0 && !slot_default(&m->base));
 }

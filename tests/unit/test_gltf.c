@@ -809,7 +809,7 @@ TEST(gltf_rough_metal_highlight_is_weighted_by_n_dot_l)
                         "", "");
     struct mesh m;
     REQUIRE(load(j, &m, NULL) == 0);
-    CHECK(m.features); /* a physically based material: the features path */
+    CHECK(m.features); /* a metal: the features path */
     uint8_t c[3];
     REQUIRE(centre(&m, SHADE_PHONG, c) == 0);
     CHECK(c[0] >= 155 && c[0] <= 157 && c[1] == 0 && c[2] == 0);
