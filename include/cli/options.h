@@ -41,6 +41,9 @@ struct options {
     bool lod_set;             /* --lod given (the viewer's default is auto, the others' off) */
     const char *texture;      /* --texture */
     struct model_opts model;  /* how models are read: --crease, --up-axis, --allow-outside */
+    const char *normal_map;   /* --normal-map */
+    int file_camera;          /* --camera N: the file's camera N (1-based), 0 rastty's framing,
+                                 -1 not given (the file's first, if any) */
     const char *out;          /* --out */
     const char *depth_out;    /* --depth-out */
     bool stats;               /* --stats: print frame statistics to stderr */

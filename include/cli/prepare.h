@@ -18,6 +18,13 @@
  * --eye/--target/--up/--fov override it). */
 void prepare_camera(const struct options *o, const struct scene *s, double aspect, bool frame,
                     struct camera *cam_out, struct render_opts *ro_out);
+/* The cameras the scene's model file defines (glTF): how many, and camera k (1-based) as a
+ * struct camera in the world (its target where its view passes the scene's centre, a far
+ * plane past the scene when the file has none); -1 when there is no such camera. The
+ * default view uses the first (--camera N another, 0 rastty's framing; the viewer's C key
+ * cycles them). */
+int prepare_camera_count(const struct scene *s);
+int prepare_file_camera(const struct scene *s, int k, struct camera *out);
 void prepare_print_stats(const struct frame_stats *st);
 /* A built-in asset (demo.rsc, floor.obj, ...) by name into out: $RASTTY_ASSETS, else
  * assets/ next to the binary (a build tree), else ../share/rastty from the binary (an

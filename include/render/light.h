@@ -26,7 +26,22 @@
  * Names: a function ending in _v is the vector twin of the one without (simd.h: every lane
  * gives exactly the scalar result; the reference kernel uses the scalar ones); _k means it
  * takes k = light_pow_int(ns), computed once for many points; _channels that it computes
- * the first nc colour channels (1 with grey lights) and copies channel 0 to the rest. */
+ * the first nc colour channels (1 with grey lights) and copies channel 0 to the rest.
+ *
+ * glTF's colour spaces and materials (the man page's SHADING says it for users): the formula
+ * above works on display values (sRGB-encoded), as the conventions' OBJ scenes and the Mesa
+ * oracle define it, and OBJ, STL and PLY are drawn exactly so. glTF's colour factors and
+ * vertex colours are linear and its colour textures sRGB: gltf.c encodes the factors and
+ * vertex colours to display values at load (material_srgb_encode: 0.8 -> 231) and colour
+ * textures are used as stored, so albedo = display(factor) x texel. Metallic-roughness and
+ * specular-glossiness become Blinn-Phong (material_pbr_highlight): ns = 2 / a^2 - 2 with
+ * a = roughness^2; ks = the reflectance f0 (0.04, or _ior/_specular's; a metal's base
+ * colour) x (ns + 8) / 8, scaled under 1 and encoded. On the features path (shade.h) a
+ * metal's diffuse is multiplied by 1 - metallic, a metal's highlight by max(0, N.L)
+ * (light_terms_rich; a dielectric keeps the conventions' highlight, as the oracle's
+ * globe.glb is drawn), the ambient by the occlusion texture; the encoded
+ * emissive colour is added after. No environment light: a smooth metal shows only its
+ * highlight. */
 #ifndef RASTTY_LIGHT_H
 #define RASTTY_LIGHT_H
 
@@ -154,10 +169,15 @@ static inline void light_terms(const struct light_env *env, const float n[3], co
 /* The features path's light sums (phong, shade.h): light_terms over every channel, with
  * the ambient scaled by occ (glTF's occlusion texture) and the direct diffuse by kdiff
  * (1 - metallic: a metal's colour is in its highlight and its surroundings, not in its
- * diffuse). */
+ * diffuse). pbr (a glTF metal, metallic > 0): each light's highlight is also weighted by
+ * max(0, N.L),
+ * as a microfacet BRDF's radiance is (f * N.L): a rough metal's broad lobe (ns 1) would
+ * otherwise light faces turned from the light as brightly as those facing it (glTF's
+ * default material, metallic 1 and roughness 1, drew a red box at 255 on every face; the
+ * sample viewer shows 147, 123 and 70). */
 static inline void light_terms_rich(const struct light_env *env, const float n[3],
                                     const float v[3], float ns, float occ, float kdiff,
-                                    float d_out[3], float s_out[3])
+                                    bool pbr, float d_out[3], float s_out[3])
 {
     float d[3] = {0, 0, 0}, s[3] = {0, 0, 0};
     for (int i = 0; i < env->n; i++) {
@@ -169,6 +189,8 @@ static inline void light_terms_rich(const struct light_env *env, const float n[3
         float ndh = (n[0] * h[0] + n[1] * h[1] + n[2] * h[2]) * ih;
         float dd = ndl > 0 ? ndl : 0;
         float ss = light_pow(ndh > 0 ? ndh : 0, ns);
+        if (pbr)
+            ss *= dd;
         for (int k = 0; k < 3; k++) {
             d[k] += dd * col[k];
             s[k] += ss * col[k];

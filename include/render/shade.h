@@ -329,7 +329,7 @@ static inline int shade_rich(const struct shade_ctx *c, enum shade_mode mode,
             v[0] = c->eye[0] - all[0], v[1] = c->eye[1] - all[1], v[2] = c->eye[2] - all[2];
             light_normalize(v);
         }
-        light_terms_rich(&c->lights, n, v, ns, occ, kdiff, d, s);
+        light_terms_rich(&c->lights, n, v, ns, occ, kdiff, metal > 0, d, s);
     }
     for (int k = 0; k < 3; k++)
         rgb_out[k] = albedo[k] * d[k] + ks[k] * s[k] + e[k];

@@ -10,7 +10,9 @@
  * warning naming where it was asked for ("lib.mtl:7: cannot open texture 'x.png': No such
  * file or directory; drawn without it"), and the material keeps its Kd. A name that is not
  * found as written is tried once more with '\' read as '/' (Windows exporters write
- * "map_Kd .\tex\wood.jpg"). Only running out of memory is an error. */
+ * "map_Kd .\tex\wood.jpg"), then by its last part in a textures/ (or Textures/) folder
+ * beside the referring file (3DS and FBX exports keep their images there). Only running
+ * out of memory is an error. */
 #ifndef RASTTY_MATERIAL_H
 #define RASTTY_MATERIAL_H
 
@@ -38,6 +40,20 @@ int material_image_file(struct mesh *m, const char *path, const char *where, uns
                         const struct model_ctx *ctx);
 int material_image_bytes(struct mesh *m, const uint8_t *data, size_t len, const char *name,
                          const struct model_ctx *ctx);
+/* What an image given as a normal map holds, told apart by its texels: a tangent-space
+ * normal map (blue: z = b above 100/255 nearly everywhere, a mean blue above 200), an
+ * object-space one (normals in every direction: over 1% of the texels below 100 in blue),
+ * or a bump map (grey: a height; tinyrenderer's and many MTL files' bump). */
+enum material_map_kind { MATERIAL_MAP_TANGENT, MATERIAL_MAP_OBJECT, MATERIAL_MAP_HEIGHT };
+enum material_map_kind material_normal_kind(const struct texture *t);
+/* Material mat's normal map from the file path (MTL norm, map_Bump and bump; --normal-map):
+ * classified (material_normal_kind); a height map becomes a tangent-space normal map (its
+ * slopes times `strength`, the MTL's -bm, owned by the mesh); a normal map's xy scaled by
+ * strength. A file that cannot be used is a warning (as map_Kd's). m->textures needs room
+ * for one more. 0, or -1 when out of memory. */
+int material_normal_map(struct mesh *m, uint32_t mat, const char *path, const char *where,
+                        unsigned long line, float strength, const struct model_ctx *ctx,
+                        struct err *e);
 /* Blinn-Phong's highlight for a physically based material (glTF; light.h documents the
  * mapping): ns from the roughness (rounded, 1..1024), ks (display values) from the
  * dielectric specular colour f0 (linear: 0.04 unless the file says) and the base colour

@@ -1,10 +1,16 @@
 /* mtl.h: Wavefront MTL material library.
  *
- * newmtl, Kd, Ka, Ks, Ns, map_Kd (the format's options -blendu -blendv -boost -mm -o -s -t
- * -texres -clamp -bm -imfchan -type -cc may precede the file name; an option the format
- * does not define, such as -colorspace sRGB, is skipped with one value and a warning; the
- * rest of the line is the file name, spaces included). Other
- * statements (illum, d, Tr, Ni, Ke, Tf, map_Ks, map_Bump, ...) are accepted and ignored.
+ * newmtl, Kd, Ka, Ks, Ns, d (opacity: below 1 the material blends) or Tr (1 - d; d wins),
+ * map_Kd, map_d (an opacity map: the material cuts out below 0.5, or blends when d < 1 too),
+ * map_Bump / bump (a bump map, or a normal map written under that name: told apart by its
+ * texels, material.h) with -bm, norm (a normal map). The maps take the format's options
+ * (-blendu -blendv -boost -mm -o -s -t -texres -clamp -bm -imfchan -type -cc may precede
+ * the file name; an option the format does not define, such as -colorspace sRGB, is skipped
+ * with one value and a warning; the rest of the line is the file name, spaces included).
+ * Ke (emission) is not drawn: the conventions' OBJ lighting has none (the Mesa oracle's
+ * Cornell box carries a Ke), so a non-zero Ke is a warning. map_Ks, map_Ns,
+ * map_Ke, refl, disp and decal change the picture and are not drawn: a warning each, once
+ * per file. Other statements (illum, Ni, Tf, ...) are accepted and ignored.
  * Ka is ignored, unchecked: the ambient term is fixed at 0.1 * albedo by the conventions,
  * and real files carry typos there (sportsCar.mtl:336 "Ka 0.0000 0.0000 0.0000c") that
  * must not stop a model from loading. Kd, Ks and Ns are used, so bad numbers there are
@@ -33,8 +39,16 @@
 #include "model.h"
 #include "strmap.h"
 
+enum { MTL_MAP_D, MTL_MAP_BUMP, MTL_MAP_NORM, MTL_MAP_COUNT };
+struct mtl_maps { /* a material's maps besides map_Kd: resolved paths (or NULL), lines */
+    char *path[MTL_MAP_COUNT];
+    unsigned long line[MTL_MAP_COUNT];
+    float bm; /* the bump map's -bm (1) */
+};
+
 struct mtl_lib {
     struct material *materials; /* texture is always -1 here (see mtl_resolve) */
+    struct mtl_maps *maps;      /* per material */
     char **texture_paths; /* per material: resolved map_Kd path or NULL */
     char **names;         /* per material: full name as written, trimmed; usemtl matches it */
     unsigned long *texture_lines; /* per material: line of its map_Kd statement, 0 if none */

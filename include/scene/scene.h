@@ -83,6 +83,11 @@ int scene_load(const char *path, struct scene *out, struct err *e);
 /* The same, every model read with these options (model.h; NULL: the defaults). */
 int scene_load_with(const char *path, const struct model_opts *opts, struct scene *out,
                     struct err *e);
+/* Give every material of every mesh without one this normal map (--normal-map, or one found
+ * by name beside the model): tangent or object space or a bump map, told apart by its
+ * texels (material.h); the meshes then draw by the features path. Errors: the file cannot
+ * be read or decoded ("path: ..."), out of memory. */
+int scene_set_normal_map(struct scene *s, const char *path, struct err *e);
 /* Turn every item so that the next axis of its model file is up (y -> z -> x -> y, about
  * the scene's centre; the viewer's u key); the new axis. */
 char scene_turn_up(struct scene *s);

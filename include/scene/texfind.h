@@ -18,5 +18,10 @@
 
 /* The path of the first readable candidate in out (size n); 0, or -1 when there is none. */
 int texfind_beside(const char *model_path, char *out, size_t n);
+/* The same for a normal map (tinyrenderer's habit): DIR/P_nm_tangent.EXT, P_nm.EXT,
+ * P_normal.EXT, P_normals.EXT for the same P as above. The caller looks for it only where
+ * it found the diffuse texture by name (a model named on the command line with a --texture
+ * keeps the conventions' look: the Mesa oracle draws the head without its normal map). */
+int texfind_normal_beside(const char *model_path, char *out, size_t n);
 
 #endif

@@ -45,6 +45,7 @@ enum view_action {
     VIEW_HELP_CLOSED,  /* the cells under the overlay must be drawn again */
     VIEW_SCREENSHOT,
     VIEW_TURN_UP,      /* the model's next axis up (scene_turn_up), framed again */
+    VIEW_NEXT_CAMERA,  /* the model file's next camera (then rastty's framing) */
 };
 
 struct view_state {

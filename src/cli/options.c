@@ -30,7 +30,7 @@ enum flag_id {
     F_COLORS, F_TOLERANCE, F_DITHER, F_DIFF, F_PPM_DIR, F_FRAME_INDEX, F_FPS, F_NO_HUD, F_CHART,
     F_SWEEP, F_CSV, F_SVG, F_MODELS, F_HELP, F_VERSION, F_SPIN, F_NO_SPIN, F_BANDWIDTH, F_SKY,
     F_LOD,
-    F_GLYPHS, F_BUDGET, F_CREASE, F_UP_AXIS,
+    F_GLYPHS, F_BUDGET, F_CREASE, F_UP_AXIS, F_NORMAL_MAP, F_CAMERA, F_ALLOW_OUTSIDE,
 };
 
 struct flag {
@@ -65,6 +65,9 @@ static const struct flag flags[] = {
     {"--texture", F_TEXTURE, ARG_VALUE, C_DRAW, "FILE", "diffuse texture replacing the materials' (PNG, JPEG, TGA, BMP, GIF, PSD, PNM, HDR)", NULL, 0},
     {"--crease", F_CREASE, ARG_VALUE, C_DRAW | C_BENCH, "DEG", "a model without normals keeps edges where its faces turn by more than DEG sharp, 0..180 (default: 30; OBJ 180, one smooth normal per position; glTF 0, flat)", NULL, 0},
     {"--up-axis", F_UP_AXIS, ARG_VALUE, C_DRAW | C_BENCH, "x|y|z", "the model's axis that points up, turned to +Y (default: the file's metadata, else its format's convention: STL z, the others y)", NULL, 0},
+    {"--normal-map", F_NORMAL_MAP, ARG_VALUE, C_DRAW, "FILE", "a normal map for every material without one: tangent or object space, or a bump map (told apart by its texels)", NULL, 0},
+    {"--camera", F_CAMERA, ARG_VALUE, C_DRAW, "N", "view through the model file's camera N (1, 2, ...; 0: rastty's own framing); default: the file's first camera, if it has one", NULL, 0},
+    {"--allow-outside", F_ALLOW_OUTSIDE, ARG_NONE, C_DRAW | C_BENCH, NULL, "let a glTF read buffers and images outside its folder (refused by default: a downloaded model must not draw another file of the machine)", NULL, 0},
     {"--no-texture", F_NO_TEXTURE, ARG_NONE, C_DRAW, NULL, "ignore all textures (albedo = Kd)", NULL, 0},
     ENUM_FLAG("--filter", C_DRAW | C_BENCH, "texture filter", render_filter_names, render.filter),
     ENUM_FLAG("--raster", C_DRAW | C_BENCH, "rasterizer", render_raster_names, render.raster),
@@ -246,6 +249,7 @@ static void defaults(struct options *o)
     o->tolerance = -1; /* not given: each subcommand picks its default */
     o->fps = 0;        /* not given: view 60, dump 30 */
     o->spin = -1;
+    o->file_camera = -1;
     o->spin_timeout = -1;
 }
 
@@ -415,6 +419,12 @@ static int apply(struct options *o, const struct flag *f, const char *v, struct 
         o->model.up = (v[0] | 0x20) == 'x' ? MODEL_UP_X : (v[0] | 0x20) == 'y' ? MODEL_UP_Y
                                                                                 : MODEL_UP_Z;
         return 0;
+    case F_NORMAL_MAP: o->normal_map = v; return 0;
+    case F_CAMERA:
+        if (parse_int(v, 0, MESH_MAX_CAMERAS, &o->file_camera))
+            return bad(e, f->name, "expected a camera number 0..64", v);
+        return 0;
+    case F_ALLOW_OUTSIDE: o->model.any_path = true; return 0;
     case F_HELP: o->cmd = CMD_HELP; return 0;
     case F_VERSION: o->cmd = CMD_VERSION; return 0;
     }

@@ -38,6 +38,44 @@ int prepare_find_asset(const char *name, char *out, size_t n)
     return access(out, R_OK);
 }
 
+int prepare_camera_count(const struct scene *s)
+{
+    return s->n_items == 1 && s->items[0].mesh ? (int)s->items[0].mesh->n_cameras : 0;
+}
+
+int prepare_file_camera(const struct scene *s, int k, struct camera *out)
+{
+    if (k < 1 || k > prepare_camera_count(s))
+        return -1;
+    const struct mesh_camera *c = &s->items[0].mesh->cameras[k - 1];
+    mat4 m = s->items[0].model; /* (the u key turns the scene: its cameras turn with it) */
+    vec3 eye = m4_mul_point(m, v3(c->eye[0], c->eye[1], c->eye[2]));
+    vec3 fwd = v3_norm(m4_mul_dir(m, v3(c->forward[0], c->forward[1], c->forward[2])));
+    vec3 up = v3_norm(m4_mul_dir(m, v3(c->up[0], c->up[1], c->up[2])));
+    /* the target: where the view passes the scene's centre (orbiting turns about it) */
+    vec3 centre = v3_scale(v3_add(s->bound_lo, s->bound_hi), 0.5);
+    double ext = v3_len(v3_sub(s->bound_hi, s->bound_lo));
+    double d = v3_dot(v3_sub(centre, eye), fwd);
+    d = d > 1e-3 * ext ? d : ext > 0 ? ext : 1;
+    camera_default(out);
+    out->eye = eye;
+    out->target = v3_add(eye, v3_scale(fwd, d));
+    out->up = up;
+    if (c->yfov_deg > 0)
+        out->fov_deg = c->yfov_deg;
+    else
+        out->ortho_height = c->ortho_height;
+    out->near = c->znear;
+    /* no far plane (glTF's infinite projection): past the scene's farthest corner */
+    double far = c->zfar > c->znear ? c->zfar : 0;
+    if (!(far > 0))
+        far = 2 * (v3_len(v3_sub(centre, eye)) + ext) + out->near;
+    out->far = far;
+    if (v3_len(v3_cross(fwd, up)) < 1e-9) /* (a degenerate camera: rastty's framing instead) */
+        return -1;
+    return 0;
+}
+
 void prepare_camera(const struct options *o, const struct scene *s, double aspect, bool frame,
                     struct camera *cam, struct render_opts *ro)
 {
@@ -46,7 +84,10 @@ void prepare_camera(const struct options *o, const struct scene *s, double aspec
     if (s->has_camera && !o->camera_set) {
         *cam = s->camera;
         cam->ortho_height = o->camera.ortho_height;
-    } else if (frame) {
+    } else if (!o->camera_set && o->file_camera != 0 &&
+               prepare_file_camera(s, o->file_camera < 0 ? 1 : o->file_camera, cam) == 0) {
+        /* the model's own camera: the author's view */
+    } else if (frame || (!o->camera_set && o->file_camera == 0)) {
         camera_frame_box(cam, s->bound_lo, s->bound_hi, aspect);
     }
     if (o->near_far_set) { /* --near/--far win over the scene's and the framing's */
@@ -82,6 +123,18 @@ int prepare_scene(const struct options *o, const char *path, struct scene *s, ch
         scene_free(s);
         return -1;
     }
+    if (o->normal_map && scene_set_normal_map(s, o->normal_map, e)) {
+        scene_free(s);
+        return -1;
+    }
+    if (o->file_camera > 0 && o->file_camera > prepare_camera_count(s)) {
+        char q[200];
+        err_quote(path, strlen(path), 160, q, sizeof q);
+        err_set(e, "%s: --camera %d: the model has %d camera%s", q, o->file_camera,
+                prepare_camera_count(s), prepare_camera_count(s) == 1 ? "" : "s");
+        scene_free(s);
+        return -1;
+    }
     /* the model still draws: say what was wrong with it, and go on */
     for (int i = 0; i < s->warnings.n; i++)
         fprintf(stderr, "warning: %s\n", s->warnings.msg[i]);
@@ -98,6 +151,10 @@ int prepare_scene(const struct options *o, const char *path, struct scene *s, ch
             fprintf(stderr, "warning: %s (found beside the model; drawn untextured)\n", why.msg);
         else if (found_out)
             snprintf(found_out, n, "%s", found);
+        /* and its normal map, by the same habit (tinyrenderer's head: african_head_nm.tga) */
+        if (!o->normal_map && texfind_normal_beside(path, found, sizeof found) == 0 &&
+            scene_set_normal_map(s, found, &why))
+            fprintf(stderr, "warning: %s (found beside the model; drawn without it)\n", why.msg);
     }
     /* levels of detail when they may be drawn: the viewer builds them in the background
      * (its first frames draw the meshes in full), the others before the first frame */

@@ -1428,6 +1428,16 @@ static int walk(struct gl *G, uint32_t i, int depth)
                 rc = -1;
                 break;
             }
+            /* the instances' triangles at once: a file instanced past the limit fails
+             * before it is built up to it (120 x 200k triangles took seconds and GBs) */
+            uint64_t all_t = (uint64_t)n_inst * (p.ni / 3), all_v = (uint64_t)n_inst * p.nv;
+            if (n_inst && (G->nt + all_t > GLTF_MAX_TRIS || G->nv + all_v > GLTF_MAX_VERTS)) {
+                rc = gfail(G, NULL, "node %u: %u instances of %llu triangles make more than %u "
+                                    "triangles or vertices: too large to draw",
+                           i, n_inst, (unsigned long long)(p.ni / 3), GLTF_MAX_TRIS);
+                prim_free(&p);
+                break;
+            }
             if (n_inst) {
                 for (uint32_t t = 0; rc == 0 && t < n_inst; t++) {
                     m4d x = mat_mul(&w, &inst[t]);
@@ -1776,9 +1786,11 @@ static void material(struct gl *G, struct mesh *out, struct images *I, uint32_t 
     m->alpha_cutoff = (float)(cut < 0 ? 0 : cut);
     m->sides = json_bool(json_get(mj, "doubleSided"), false) ? MAT_TWO_SIDED : MAT_ONE_SIDED;
     m->unlit = json_get(ext, "KHR_materials_unlit") != NULL;
-    /* drawn by the features path unless it is plain Blinn-Phong with one base texture */
+    /* drawn by the features path: a metal has no diffuse and its highlight is weighted by
+     * N.L (light.h), which the conventions' path has not; a dielectric without textures
+     * draws as the conventions' Blinn-Phong (the Mesa oracle's globe.glb) */
     bool em_on = m->emissive[0] > 0 || m->emissive[1] > 0 || m->emissive[2] > 0;
-    m->features = m->unlit || em_on || m->normal_map.tex >= 0 || m->occlusion_map.tex >= 0 ||
+    m->features = (m->pbr && m->metallic > 0) || m->unlit || em_on || m->normal_map.tex >= 0 || m->occlusion_map.tex >= 0 ||
                   m->spec_map.tex >= 0 || m->alpha_mode != MAT_OPAQUE ||
                   m->sides == MAT_TWO_SIDED || (m->base.tex >= 0 && !slot_default(&m->base));
 }

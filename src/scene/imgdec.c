@@ -276,6 +276,7 @@ struct jpeg_ctx {
     struct jpeg_progress_mgr progress;
     jmp_buf jb;
     char msg[JMSG_LENGTH_MAX];
+    char warning[160]; /* libjpeg's first warning (a corrupt or truncated file), quoted */
     uint8_t *row;
     struct shrink sh;
 };
@@ -291,7 +292,13 @@ static void jpeg_on_error(j_common_ptr cinfo)
 
 static void jpeg_on_output(j_common_ptr cinfo)
 {
-    (void)cinfo; /* libjpeg would print warnings to stderr */
+    /* libjpeg would print its warnings to stderr: the first is kept, said as ours */
+    struct jpeg_ctx *c = (struct jpeg_ctx *)cinfo->err;
+    if (!c->warning[0]) {
+        char buf[JMSG_LENGTH_MAX];
+        cinfo->err->format_message(cinfo, buf);
+        err_quote(buf, strlen(buf), 120, c->warning, sizeof c->warning);
+    }
 }
 
 static void jpeg_on_progress(j_common_ptr cinfo)
@@ -370,6 +377,10 @@ static int decode_jpeg(const uint8_t *data, size_t len, const char *name, int ma
         goto done;
     }
     jpeg_finish_decompress(d);
+    /* a truncated or damaged file decodes with a grey remainder: said, not silent */
+    if (c->err.num_warnings > 0)
+        warn_add(w, "%s: damaged or truncated JPEG (%s): part of the image is grey", name,
+                 c->warning[0] ? c->warning : "libjpeg warned");
     shrink_finish(&c->sh, out, name, iw, ih, max_side, w);
     rc = 0;
 done:
@@ -634,6 +645,9 @@ static int decode_stb(const uint8_t *d, size_t len, const char *kind, const char
     int iw, ih, n;
     if (!stbi_info_from_memory(d, (int)len, &iw, &ih, &n))
         return err_set(e, "%s: not a readable image (%s)", name, stbi_failure_reason());
+    if (ih < 0 && strcmp(kind, "BMP") == 0)
+        ih = -ih; /* a top-down BMP (rows stored top first): stb's info gives its height
+                     negative, as the file stores it, and decodes it upright */
     if (whole_image_checks(d, len, kind, name, iw, ih, e))
         return -1;
     /* stb "removes the white matte" of PSDs with 4+ channels by dividing by alpha and

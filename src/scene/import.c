@@ -21,7 +21,8 @@
  * normals outward and reverses the winding), FBX's axis settings, per material the base
  * colour factor or diffuse colour as Kd and the base colour / diffuse texture (a file
  * beside the model or in a textures/ folder there, or an image embedded in it) through
- * material.h. Cameras, lights, animations and skins are ignored. uv: assimp flips v so
+ * material.h. Cameras, lights, animations and skins are not drawn: each is a warning naming
+ * how many the file has. uv: assimp flips v so
  * that v = 0 is the bottom row, as in OBJ. */
 #include <errno.h>
 #include <math.h>
@@ -409,6 +410,12 @@ int import_flatten(const char *data, size_t len, const char *name, bool others,
     walk_node(&W, sc->mRootNode, id, 0);
     struct sandbox_blob mats = {0};
     put_materials(&mats, sc);
+    /* what the file has that is not drawn: animations, cameras, lights, skinned meshes */
+    uint32_t skinned = 0;
+    for (uint32_t i = 0; i < sc->mNumMeshes; i++)
+        skinned += sc->mMeshes[i] && sc->mMeshes[i]->mNumBones > 0;
+    uint32_t ignored[4] = {sc->mNumAnimations, sc->mNumCameras, sc->mNumLights, skinned};
+    put(&mats, ignored, sizeof ignored);
     aiReleaseImport(sc);
     int rc = 0;
     if (W.too_big) {
@@ -511,6 +518,26 @@ int import_build(const uint8_t *reply, size_t n, const struct model_ctx *ctx,
     memcpy(anrm, nrm, (size_t)n_pos * 12);
     memcpy(auv, uv, (size_t)n_pos * 8);
     memcpy(ac, corners, (size_t)n_tris * 36);
+    /* a file the importer took for its format without being one (random bytes named .ase
+     * give 8 triangles all at the origin): no triangle with an area is no model */
+    bool any_area = false;
+    for (uint32_t t = 0; t < n_tris && !any_area; t++) {
+        const struct mesh_corner *c = &ac[3 * t];
+        if (c[0].pos >= n_pos || c[1].pos >= n_pos || c[2].pos >= n_pos)
+            continue;
+        const float *a = apos + 3 * c[0].pos, *b = apos + 3 * c[1].pos, *d = apos + 3 * c[2].pos;
+        float u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+        float v[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+        float x = u[1] * v[2] - u[2] * v[1], y = u[2] * v[0] - u[0] * v[2],
+              z = u[0] * v[1] - u[1] * v[0];
+        any_area = x != 0 || y != 0 || z != 0;
+    }
+    if (!any_area) {
+        err_set(e, "%s: none of its %u triangles has an area: not a model the importer could "
+                   "read",
+                where, n_tris);
+        goto done;
+    }
     for (uint32_t t = 0; t < n_tris; t++) {
         uint32_t m;
         memcpy(&m, &tmat[t], 4);
@@ -545,11 +572,23 @@ int import_build(const uint8_t *reply, size_t n, const struct model_ctx *ctx,
             if (!(m->kd[k] >= 0 && m->kd[k] <= 1))
                 m->kd[k] = 1;
     }
+    uint32_t ign[4];
+    for (int k = 0; k < 4; k++)
+        ign[k] = take_u32(&R);
     if (R.bad) {
         free(refs);
         err_set(e, "%s: bad reply from the importer", where);
         goto done;
     }
+    /* what changes the picture and is not drawn: said, once each */
+    static const char *const ign_what[4] = {
+        "animations are not played: drawn in the file's rest pose",
+        "cameras are ignored: rastty frames the model itself",
+        "lights are ignored: drawn in rastty's light",
+        "skinned meshes are drawn in their bind pose (skins are not applied)"};
+    for (int k = 0; k < 4; k++)
+        if (ign[k])
+            warn_add(ctx->warn, "%s: %u %s", where, ign[k], ign_what[k]);
     struct mesh_source src = {.pos = apos, .nrm = any_nrm ? anrm : NULL,
                               .uv = any_uv ? auv : NULL, .n_pos = n_pos,
                               .n_nrm = any_nrm ? n_pos : 0, .n_uv = any_uv ? n_pos : 0,

@@ -3,6 +3,7 @@
 
 #include <errno.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -112,6 +113,29 @@ static const struct texture *load_file(const char *path, const char *where, unsi
         if (alt && stat(alt, &st) == 0)
             path = alt;
     }
+    if (path != alt && stat(path, &st) != 0 && errno == ENOENT) {
+        /* DIR/x.jpg missing: DIR/textures/x.jpg (3DS and FBX exports keep their images in
+         * a textures folder beside the model); a name carrying the exporter's own folders
+         * (C:\art\x.jpg) is tried by its last part there and beside the model */
+        const char *s = strrchr(path, '/');
+        size_t dir_len = s ? (size_t)(s + 1 - path) : 0;
+        const char *base = path + dir_len;
+        for (const char *c = base; *c; c++)
+            if (*c == '\\')
+                base = c + 1;
+        static const char *const folders[] = {"", "textures/", "Textures/"};
+        for (int k = base > path + dir_len ? 0 : 1; k < 3 && *base; k++) {
+            free(alt);
+            size_t n = dir_len + strlen(folders[k]) + strlen(base) + 1;
+            if (!(alt = malloc(n)))
+                break;
+            snprintf(alt, n, "%.*s%s%s", (int)dir_len, path, folders[k], base);
+            if (stat(alt, &st) == 0) {
+                path = alt;
+                break;
+            }
+        }
+    }
     const struct texture *t;
     struct err te;
     if (texture_cache_load(ctx->cache, path, &t, ctx->warn, &te)) {
@@ -139,6 +163,84 @@ int material_texture_file(struct mesh *m, uint32_t mat, const char *path, const 
     const struct texture *t = load_file(path, where, line, ctx);
     if (t)
         attach(m, mat, t);
+    return 0;
+}
+
+enum material_map_kind material_normal_kind(const struct texture *t)
+{
+    size_t n = (size_t)t->w * (size_t)t->h, low = 0, grey = 0;
+    double blue = 0;
+    for (size_t i = 0; i < n; i++) {
+        const uint8_t *p = t->rgba + 4 * i;
+        low += p[2] < 100;
+        blue += p[2];
+        int d1 = p[0] - p[1], d2 = p[1] - p[2];
+        grey += d1 > -4 && d1 < 4 && d2 > -4 && d2 < 4;
+    }
+    if (n && grey * 10 >= n * 9)
+        return MATERIAL_MAP_HEIGHT;
+    if (n && low * 100 <= n && blue / (double)n > 200)
+        return MATERIAL_MAP_TANGENT;
+    return low * 100 > n ? MATERIAL_MAP_OBJECT : MATERIAL_MAP_TANGENT;
+}
+
+/* a tangent-space normal map from a height map: central differences of the height (red,
+ * 0..1, wrapping) per texel, times strength */
+static int height_to_normal(const struct texture *h, float strength, struct texture *out,
+                            struct err *e)
+{
+    int w = h->w, hh = h->h;
+    uint8_t *px = malloc((size_t)w * (size_t)hh * 4);
+    if (!px)
+        return err_set(e, "out of memory");
+    for (int y = 0; y < hh; y++)
+        for (int x = 0; x < w; x++) {
+            const uint8_t *l = texture_texel(&(struct texture_level){w, hh, h->rgba}, (x + w - 1) % w, y);
+            const uint8_t *r = texture_texel(&(struct texture_level){w, hh, h->rgba}, (x + 1) % w, y);
+            const uint8_t *d = texture_texel(&(struct texture_level){w, hh, h->rgba}, x, (y + hh - 1) % hh);
+            const uint8_t *u = texture_texel(&(struct texture_level){w, hh, h->rgba}, x, (y + 1) % hh);
+            /* heights 0..1 over a texel: the slopes in texels, scaled */
+            float dx = (r[0] - l[0]) / 255.0f * 0.5f * strength * 8;
+            float dy = (u[0] - d[0]) / 255.0f * 0.5f * strength * 8;
+            float nx = -dx, ny = -dy, nz = 1, len = sqrtf(nx * nx + ny * ny + nz * nz);
+            uint8_t *o = px + 4 * ((size_t)(hh - 1 - y) * (size_t)w + (size_t)x);
+            o[0] = (uint8_t)((nx / len * 0.5f + 0.5f) * 255 + 0.5f);
+            o[1] = (uint8_t)((ny / len * 0.5f + 0.5f) * 255 + 0.5f);
+            o[2] = (uint8_t)((nz / len * 0.5f + 0.5f) * 255 + 0.5f);
+            o[3] = 255;
+        }
+    int rc = texture_from_rgba(w, hh, px, out, e);
+    free(px);
+    if (rc == 0 && texture_build_mips(out, e) < 0) {
+        texture_free(out);
+        return -1;
+    }
+    return rc;
+}
+
+int material_normal_map(struct mesh *m, uint32_t mat, const char *path, const char *where,
+                        unsigned long line, float strength, const struct model_ctx *ctx,
+                        struct err *e)
+{
+    const struct texture *t = load_file(path, where, line, ctx);
+    if (!t)
+        return 0;
+    struct material *mt = &m->materials[mat];
+    enum material_map_kind kind = material_normal_kind(t);
+    if (kind == MATERIAL_MAP_HEIGHT) {
+        struct texture nt;
+        if (height_to_normal(t, strength, &nt, e))
+            return -1;
+        m->textures[m->n_textures] = nt; /* (owned: not the cache's) */
+        mt->normal_map = (struct tex_slot){.tex = (int)m->n_textures++};
+        mt->normal_space = MAT_NORMAL_TANGENT;
+        mt->normal_scale = 1;
+    } else {
+        mt->normal_map = (struct tex_slot){.tex = attach_image(m, t)};
+        mt->normal_space = kind == MATERIAL_MAP_OBJECT ? MAT_NORMAL_OBJECT : MAT_NORMAL_TANGENT;
+        mt->normal_scale = strength;
+    }
+    mt->features = true;
     return 0;
 }
 

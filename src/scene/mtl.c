@@ -25,6 +25,9 @@ struct mparse {
     unsigned long line;
     struct err *e;
     struct warnings *w;
+    bool has_d;        /* the material being read said d (Tr then does not count) */
+    bool warned_ke;    /* a non-zero Ke was warned about */
+    unsigned warned_maps; /* the maps not drawn that were warned about (bits) */
 };
 
 static int fail_text(struct mparse *P, const char *what, const char *t, const char *te)
@@ -86,7 +89,10 @@ static int add_material(struct mparse *P, const char *name, size_t len)
         unsigned long *tl = realloc(L->texture_lines, cap * sizeof *tl);
         if (tl)
             L->texture_lines = tl;
-        if (!m || !tp || !nm || !tl)
+        struct mtl_maps *mp = realloc(L->maps, cap * sizeof *mp);
+        if (mp)
+            L->maps = mp;
+        if (!m || !tp || !nm || !tl || !mp)
             return oom(P);
         P->cap = cap;
     }
@@ -99,7 +105,10 @@ static int add_material(struct mparse *P, const char *name, size_t len)
     L->names[L->n] = copy;
     L->texture_paths[L->n] = NULL;
     L->texture_lines[L->n] = 0;
+    memset(&L->maps[L->n], 0, sizeof L->maps[L->n]);
+    L->maps[L->n].bm = 1;
     L->n++;
+    P->has_d = false;
     return 0;
 }
 
@@ -149,8 +158,12 @@ static bool is_number(const char *t, const char *te)
     return lex_float(t, (size_t)(te - t), &f) == LEX_NUM_OK;
 }
 
-static int parse_map(struct mparse *P, const char *p, const char *end)
+/* a map statement (map_Kd; or `which` of MTL_MAP_*, -1 for map_Kd): its options, then the
+ * file name; -bm's value kept for a bump map */
+static int parse_map(struct mparse *P, const char *p, const char *end, int which)
 {
+    const char *kwname = which < 0 ? "map_Kd" : which == MTL_MAP_D ? "map_d"
+                         : which == MTL_MAP_BUMP ? "map_Bump" : "norm";
     for (;;) {
         p = lex_skip_ws(p, end);
         const char *t = p, *te = lex_tok_end(p, end);
@@ -172,12 +185,12 @@ static int parse_map(struct mparse *P, const char *p, const char *end)
                 break;
             }
             if (lex_skip_ws(ve, end) < end) {
-                warn_add(P->w, "%s:%lu: unknown map_Kd option '%s' skipped with its value",
-                         P->where, P->line, q);
+                warn_add(P->w, "%s:%lu: unknown %s option '%s' skipped with its value",
+                         P->where, P->line, kwname, q);
                 p = ve;
             } else {
-                warn_add(P->w, "%s:%lu: unknown map_Kd option '%s' skipped", P->where, P->line,
-                         q);
+                warn_add(P->w, "%s:%lu: unknown %s option '%s' skipped", P->where, P->line,
+                         kwname, q);
             }
             continue;
         }
@@ -185,28 +198,56 @@ static int parse_map(struct mparse *P, const char *p, const char *end)
             const char *q = lex_skip_ws(p, end), *qe = lex_tok_end(q, end);
             if (q == end) {
                 if (a < map_options[k].min)
-                    return err_set(P->e, "%s:%lu: map_Kd option '%s' needs a value", P->where,
-                                   P->line, map_options[k].name);
+                    return err_set(P->e, "%s:%lu: %s option '%s' needs a value", P->where,
+                                   P->line, kwname, map_options[k].name);
                 break;
             }
             if (a >= map_options[k].min && !is_number(q, qe))
                 break;
+            float bm;
+            if (which >= 0 && a == 0 && lex_tok_is(t, te, "-bm") &&
+                lex_float(q, (size_t)(qe - q), &bm) == LEX_NUM_OK && bm == bm)
+                P->lib->maps[P->lib->n - 1].bm = bm;
             p = qe;
         }
     }
     p = lex_skip_ws(p, end);
     if (p == end)
-        return err_set(P->e, "%s:%lu: map_Kd needs a file name", P->where, P->line);
+        return err_set(P->e, "%s:%lu: %s needs a file name", P->where, P->line, kwname);
     if (memchr(p, '\0', (size_t)(end - p)))
-        return err_set(P->e, "%s:%lu: map_Kd file name contains a NUL byte", P->where, P->line);
+        return err_set(P->e, "%s:%lu: %s file name contains a NUL byte", P->where, P->line,
+                       kwname);
     struct mtl_lib *L = P->lib;
     /* relative names are relative to the MTL file's directory */
     char *full = material_path_beside(P->path, p, (size_t)(end - p));
     if (!full)
         return oom(P);
+    if (which >= 0) {
+        struct mtl_maps *mp = &L->maps[L->n - 1];
+        free(mp->path[which]);
+        mp->path[which] = full;
+        mp->line[which] = P->line;
+        return 0;
+    }
     free(L->texture_paths[L->n - 1]);
     L->texture_paths[L->n - 1] = full;
     L->texture_lines[L->n - 1] = P->line;
+    return 0;
+}
+
+/* one number (d, Tr) */
+static int parse_number(struct mparse *P, const char *kw, const char *p, const char *end,
+                        float *out)
+{
+    p = lex_skip_ws(p, end);
+    const char *te = lex_tok_end(p, end);
+    if (lex_tok_is(p, te, "-halo")) /* "d -halo 0.5": the halo form, read as d */
+        p = lex_skip_ws(te, end), te = lex_tok_end(p, end);
+    if (p == end)
+        return err_set(P->e, "%s:%lu: '%s' needs a number", P->where, P->line, kw);
+    int rc = lex_float(p, (size_t)(te - p), out);
+    if (rc)
+        return fail_text(P, lex_num_problem(rc), p, te);
     return 0;
 }
 
@@ -216,7 +257,10 @@ static int parse_line(struct mparse *P, const char *p, const char *end)
     if (!kw)
         return 0; /* blank or comment */
     p = kwe;
-    bool named = lex_tok_is(kw, kwe, "newmtl") || lex_tok_is(kw, kwe, "map_Kd");
+    bool named = lex_tok_is(kw, kwe, "newmtl") || lex_tok_is(kw, kwe, "map_Kd") ||
+                 lex_tok_is(kw, kwe, "map_d") || lex_tok_is(kw, kwe, "map_Bump") ||
+                 lex_tok_is(kw, kwe, "map_bump") || lex_tok_is(kw, kwe, "bump") ||
+                 lex_tok_is(kw, kwe, "norm");
     /* names keep a '#' inside a word; lines of numbers end at any '#' */
     if (named) {
         end = lex_comment_start(p, end);
@@ -252,7 +296,49 @@ static int parse_line(struct mparse *P, const char *p, const char *end)
         return 0;
     }
     if (lex_tok_is(kw, kwe, "map_Kd"))
-        return parse_map(P, p, end);
+        return parse_map(P, p, end, -1);
+    if (lex_tok_is(kw, kwe, "map_d"))
+        return parse_map(P, p, end, MTL_MAP_D);
+    if (lex_tok_is(kw, kwe, "map_Bump") || lex_tok_is(kw, kwe, "map_bump") ||
+        lex_tok_is(kw, kwe, "bump"))
+        return parse_map(P, p, end, MTL_MAP_BUMP);
+    if (lex_tok_is(kw, kwe, "norm"))
+        return parse_map(P, p, end, MTL_MAP_NORM);
+    if (lex_tok_is(kw, kwe, "d") || (lex_tok_is(kw, kwe, "Tr") && !P->has_d)) {
+        float v;
+        if (parse_number(P, lex_tok_is(kw, kwe, "d") ? "d" : "Tr", p, end, &v))
+            return -1;
+        bool tr = !lex_tok_is(kw, kwe, "d");
+        v = tr ? 1 - v : v;
+        if (tr && !(v > 0)) { /* "Tr 1": exporters that write it mean opaque */
+            warn_add(P->w, "%s:%lu: Tr 1 (fully transparent) read as opaque, as the exporters "
+                           "that write it mean",
+                     P->where, P->line);
+            v = 1;
+        }
+        m->alpha = v == v ? (v < 0 ? 0 : v > 1 ? 1 : v) : 1;
+        P->has_d |= lex_tok_is(kw, kwe, "d");
+        return 0;
+    }
+    static const char *const unseen[] = {"map_Ks", "map_Ns", "map_Ke", "refl",
+                                         "disp", "decal"};
+    for (int k = 0; k < (int)(sizeof unseen / sizeof unseen[0]); k++)
+        if (lex_tok_is(kw, kwe, unseen[k]) && !(P->warned_maps & 1u << k)) {
+            warn_add(P->w, "%s:%lu: %s is not drawn (rastty draws map_Kd, map_d and the bump "
+                           "and normal maps); drawn without it",
+                     P->where, P->line, unseen[k]);
+            P->warned_maps |= 1u << k;
+        }
+    if (lex_tok_is(kw, kwe, "Ke") && !P->warned_ke) {
+        float ke[3] = {0, 0, 0};
+        if (parse_colour(P, "Ke", p, end, ke) == 0 && (ke[0] > 0 || ke[1] > 0 || ke[2] > 0)) {
+            warn_add(P->w, "%s:%lu: Ke (emission) is not drawn: OBJ follows the conventions' "
+                           "Blinn-Phong, which has none",
+                     P->where, P->line);
+            P->warned_ke = true;
+        }
+        return 0;
+    }
     return 0;
 }
 
@@ -299,7 +385,10 @@ void mtl_free(struct mtl_lib *lib)
     for (uint32_t i = 0; i < lib->n; i++) {
         free(lib->texture_paths[i]);
         free(lib->names[i]);
+        for (int k = 0; k < MTL_MAP_COUNT; k++)
+            free(lib->maps[i].path[k]);
     }
+    free(lib->maps);
     free(lib->materials);
     free(lib->texture_paths);
     free(lib->names);
@@ -365,18 +454,33 @@ int mtl_resolve(const struct mtl_lib *libs, size_t n_libs, const struct strmap_k
         out->materials[out->n_materials] = libs[refs[id].lib].materials[refs[id].idx];
         slot_mat[s] = (uint16_t)out->n_materials++;
     }
-    if (material_reserve_textures(out, e))
+    if (material_reserve_n(out, (MTL_MAP_COUNT + 1) * out->n_materials, e))
         goto done;
     for (uint32_t m = 1; m < out->n_materials; m++) {
         const struct mtl_lib *L = &libs[chosen[m].lib];
+        const struct mtl_maps *mp = &L->maps[chosen[m].idx];
         const char *tp = L->texture_paths[chosen[m].idx];
-        if (!tp)
-            continue;
         char lw[MTL_QUOTE_PATH + 8];
         err_quote(L->path ? L->path : "<memory>", strlen(L->path ? L->path : "<memory>"),
                   MTL_QUOTE_PATH, lw, sizeof lw);
-        if (material_texture_file(out, m, tp, lw, L->texture_lines[chosen[m].idx], ctx, e))
+        if (tp && material_texture_file(out, m, tp, lw, L->texture_lines[chosen[m].idx], ctx, e))
             goto done;
+        struct material *mat = &out->materials[m];
+        if (mp->path[MTL_MAP_D]) {
+            mat->alpha_map.tex = material_image_file(out, mp->path[MTL_MAP_D], lw,
+                                                     mp->line[MTL_MAP_D], ctx);
+            mat->alpha_map.uv = 0;
+        }
+        for (int k = MTL_MAP_BUMP; k <= MTL_MAP_NORM; k++) /* norm wins over bump */
+            if (mp->path[k] && material_normal_map(out, m, mp->path[k], lw, mp->line[k],
+                                                   k == MTL_MAP_BUMP ? mp->bm : 1, ctx, e))
+                goto done;
+        /* opacity below 1: blended; an opacity map alone: cut out below 0.5 */
+        if (mat->alpha < 1)
+            mat->alpha_mode = MAT_BLEND;
+        else if (mat->alpha_map.tex >= 0)
+            mat->alpha_mode = MAT_MASK;
+        mat->features = mat->alpha_mode != MAT_OPAQUE || mat->normal_map.tex >= 0;
     }
     rc = 0;
 done:

@@ -10,6 +10,7 @@
 #include "file.h"
 #include "lex.h"
 #include "lod.h"
+#include "material.h"
 #include "model.h"
 
 #define MAX_TOKENS 32
@@ -112,6 +113,44 @@ int scene_set_texture(struct scene *s, const char *path, struct err *e)
         return -1;
     for (int i = 0; i < s->n_items; i++)
         s->items[i].texture_override = t;
+    return 0;
+}
+
+int scene_set_normal_map(struct scene *s, const char *path, struct err *e)
+{
+    const struct texture *t;
+    if (texture_cache_load(&s->textures, path, &t, &s->warnings, e))
+        return -1;
+    for (int i = 0; i < s->n_meshes; i++) {
+        struct mesh *m = &s->meshes[i];
+        struct texture *nt = realloc(m->textures, (m->n_textures + 1) * sizeof *nt);
+        if (!nt)
+            return err_set(e, "out of memory");
+        m->textures = nt;
+        struct model_ctx ctx = {.path = path, .cache = &s->textures, .warn = &s->warnings};
+        int first = -1;
+        for (uint32_t k = 0; k < m->n_materials; k++) {
+            struct material *mt = &m->materials[k];
+            if (mt->normal_map.tex >= 0)
+                continue;
+            if (first < 0) {
+                if (material_normal_map(m, k, path, path, 0, 1, &ctx, e))
+                    return -1;
+                first = (int)k;
+            } else {
+                mt->normal_map = m->materials[first].normal_map;
+                mt->normal_space = m->materials[first].normal_space;
+                mt->normal_scale = m->materials[first].normal_scale;
+                mt->features = true;
+            }
+        }
+        if (first >= 0 && m->materials[first].normal_map.tex >= 0) {
+            m->features = true;
+            if (m->materials[first].normal_space == MAT_NORMAL_TANGENT && !m->tangents &&
+                mesh_tangents(m, false))
+                return err_set(e, "out of memory making tangents");
+        }
+    }
     return 0;
 }
 

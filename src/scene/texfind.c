@@ -42,3 +42,24 @@ int texfind_beside(const char *model_path, char *out, size_t n)
         out[0] = '\0';
     return -1;
 }
+
+int texfind_normal_beside(const char *model_path, char *out, size_t n)
+{
+    const char *slash = strrchr(model_path, '/');
+    const char *base = slash ? slash + 1 : model_path;
+    int dir_len = (int)(base - model_path);
+    const char *dot = strrchr(base, '.');
+    int stem_len = dot && dot != base ? (int)(dot - base) : (int)strlen(base);
+    for (int len = stem_len; len > 0;) {
+        if (try_name(model_path, dir_len, base, len, "_nm_tangent", out, n) == 0 ||
+            try_name(model_path, dir_len, base, len, "_nm", out, n) == 0 ||
+            try_name(model_path, dir_len, base, len, "_normal", out, n) == 0 ||
+            try_name(model_path, dir_len, base, len, "_normals", out, n) == 0)
+            return 0;
+        while (--len > 0 && base[len] != '_')
+            ;
+    }
+    if (n)
+        out[0] = '\0';
+    return -1;
+}

@@ -14,7 +14,7 @@ static const struct input_binding bindings[] = {
     {KEY_BTAB, IN_PREV_SCENE}, {'m', IN_SHADE},  {'f', IN_FILTER},      {'c', IN_CULL},
     {'l', IN_LIGHT},       {'v', IN_VIEW},       {'p', IN_PERSPECTIVE}, {' ', IN_PAUSE},
     {'R', IN_RASTER},      {'i', IN_INFO},       {'S', IN_SCREENSHOT},  {'L', IN_LOD},
-    {'g', IN_GLYPHS},      {'u', IN_TURN_UP},
+    {'g', IN_GLYPHS},      {'u', IN_TURN_UP},    {'C', IN_NEXT_CAMERA},
     {'h', IN_HELP},        {'?', IN_HELP},       {'q', IN_QUIT},        {27, IN_QUIT},
 };
 
@@ -29,6 +29,7 @@ static const char *const help[] = {
     "[ ]        slower / faster movement",
     "r          reset camera",
     "u          turn the model: its next axis up (y z x)",
+    "C          the model file's cameras, then rastty's framing",
     "Tab S-Tab  next / previous scene",
     "m          shading: wire flat gouraud phong textured",
     "f          texture filter nearest / bilinear / trilinear",

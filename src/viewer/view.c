@@ -71,6 +71,8 @@ struct view {
     size_t out_len, out_cap;
     char shots[MAX_SHOTS][VIEW_SHOT_MAX];
     int n_shots;
+    int camera_k[VIEW_MAX_SCENES]; /* the C key's choice: the file's camera k, 0 rastty's
+                                      framing, -1 as the command line says */
 };
 
 static int ms(double s)
@@ -133,8 +135,14 @@ static void enter_scene(struct view *v)
     double aspect = v->fb.w > 0 ? fb_aspect(&v->fb) : 2.0;
     struct camera cam;
     struct render_opts ro;
-    /* a model alone is framed, unless the command line placed the camera */
+    /* a model alone is framed, unless the command line placed the camera (or the C key
+     * chose a camera of the file, or rastty's framing) */
     prepare_camera(v->o, s, aspect, !v->o->camera_set, &cam, &ro);
+    int k = v->camera_k[v->cur];
+    if (k > 0)
+        prepare_file_camera(s, k, &cam);
+    else if (k == 0)
+        camera_frame_box(&cam, s->bound_lo, s->bound_hi, aspect);
     view_state_scene(&v->s, &cam, &ro, v3_len(v3_sub(s->bound_hi, s->bound_lo)));
     v->lod_pending = !scene_lod_done(s);
     skybox_free(&v->default_sky); /* its sun follows the scene's first light */
@@ -394,6 +402,25 @@ static int act(struct view *v, enum view_action a, double t, bool *quit, struct 
         break;
     }
     case VIEW_SCREENSHOT: screenshot(v, t); break;
+    case VIEW_NEXT_CAMERA: {
+        const struct scene *sc = v->scenes[v->cur];
+        int n = prepare_camera_count(sc), *k = &v->camera_k[v->cur];
+        char msg[128];
+        if (n == 0) {
+            view_message(&v->s, "the model has no cameras of its own", t);
+            break;
+        }
+        int cur = *k >= 0 ? *k : v->o->file_camera >= 0 ? v->o->file_camera : 1;
+        *k = (cur + 1) % (n + 1);
+        enter_scene(v);
+        if (*k)
+            snprintf(msg, sizeof msg, "the model's camera %d of %d %.40s (C: next)", *k, n,
+                     sc->items[0].mesh->cameras[*k - 1].name);
+        else
+            snprintf(msg, sizeof msg, "rastty's framing (C: the model's cameras)");
+        view_message(&v->s, msg, t);
+        break;
+    }
     case VIEW_TURN_UP: {
         char up = scene_turn_up(v->scenes[v->cur]);
         enter_scene(v);
@@ -604,6 +631,8 @@ int view_run(const struct options *o, struct err *e)
     if (!v)
         return err_set(e, "out of memory"), 1;
     v->o = o;
+    for (int i = 0; i < VIEW_MAX_SCENES; i++)
+        v->camera_k[i] = -1;
     int rc = 2;
     if (load_scenes(v, e))
         goto out;

@@ -195,6 +195,9 @@ enum view_action view_key(struct view_state *s, enum input_cmd c, double t)
     case IN_TURN_UP:
         camera_touched(s);
         return VIEW_TURN_UP;
+    case IN_NEXT_CAMERA:
+        camera_touched(s);
+        return VIEW_NEXT_CAMERA;
     default: break;
     }
     return VIEW_NONE;

@@ -33,15 +33,21 @@ convention() {
 }
 check textures_found_beside_a_model convention
 
+# found by name: the diffuse texture and, by the same habit, the normal map beside it
+# (african_head_nm.tga, object space); a --texture alone draws without the normal map
 shared_head() {
     "$BIN" render "$HEAD/african_head.obj" --out $OUT/head_conv.ppm &&
         "$BIN" render "$HEAD/african_head.obj" --texture "$HEAD/african_head_diffuse.tga" \
-            --out $OUT/head_given.ppm && cmp $OUT/head_conv.ppm $OUT/head_given.ppm
+            --normal-map "$HEAD/african_head_nm.tga" --out $OUT/head_given.ppm &&
+        cmp $OUT/head_conv.ppm $OUT/head_given.ppm || return 1
+    "$BIN" render "$HEAD/african_head.obj" --texture "$HEAD/african_head_diffuse.tga" \
+        --out $OUT/head_plain.ppm || return 1
+    if cmp -s $OUT/head_conv.ppm $OUT/head_plain.ppm; then echo "the normal map changed nothing"; return 1; fi
 }
 if [ -f "$HEAD/african_head_diffuse.tga" ]; then
-    check shared_head_finds_its_diffuse_texture shared_head
+    check shared_head_finds_its_diffuse_texture_and_normal_map shared_head
 else
-    skip shared_head_finds_its_diffuse_texture "no shared african_head (../shared absent)"
+    skip shared_head_finds_its_diffuse_texture_and_normal_map "no shared african_head (../shared absent)"
 fi
 
 # dump to a file or a pipe: truecolor whatever TERM says (unless --colors), plain LF lines

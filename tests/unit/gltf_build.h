@@ -203,7 +203,8 @@ static inline uint32_t gb_crc(const uint8_t *d, size_t n, uint32_t c)
     return ~c;
 }
 
-static inline char *gb_png_uri(int w, int h, const uint8_t *rgba)
+/* the PNG file's bytes (malloc'd), *len_out long */
+static inline uint8_t *gb_png(int w, int h, const uint8_t *rgba, size_t *len_out)
 {
     size_t raw_n = (size_t)h * (1 + 4 * (size_t)w);
     uint8_t *raw = malloc(raw_n);
@@ -248,13 +249,21 @@ static inline char *gb_png_uri(int w, int h, const uint8_t *rgba)
         p[3] = (uint8_t)crc;
         p += 4;
     }
-    char *b64 = gb_base64(png, (size_t)(p - png));
+    free(z);
+    free(raw);
+    *len_out = (size_t)(p - png);
+    return png;
+}
+
+static inline char *gb_png_uri(int w, int h, const uint8_t *rgba)
+{
+    size_t n;
+    uint8_t *png = gb_png(w, h, rgba, &n);
+    char *b64 = gb_base64(png, n);
     char *uri = malloc(strlen(b64) + 32);
     sprintf(uri, "data:image/png;base64,%s", b64);
     free(b64);
     free(png);
-    free(z);
-    free(raw);
     return uri;
 }
 

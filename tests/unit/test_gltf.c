@@ -796,3 +796,53 @@ TEST(gltf_glb_and_cameras)
     mesh_free(&m);
     free(glb);
 }
+
+TEST(gltf_rough_metal_highlight_is_weighted_by_n_dot_l)
+{
+    /* glTF's default material (metallic 1, roughness 1: Blinn-Phong ns 1) in red, facing
+     * the camera (+z, orthographic), light toward (1,1,1): no diffuse (a metal), the ambient
+     * 0.1, and the highlight ks N.H = 0.888 weighted by N.L = 0.577 as a BRDF's radiance
+     * is: 0.1 + 0.512 -> 156. Without the weight it was 252 (and 255 on every face of a
+     * box, where the sample viewer shows 147, 123, 70). */
+    struct gb g = {0};
+    char *j = quad_gltf(&g, "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[1,0,0,1]}}", 1,
+                        "", "");
+    struct mesh m;
+    REQUIRE(load(j, &m, NULL) == 0);
+    CHECK(m.features); /* a metal: the features path */
+    uint8_t c[3];
+    REQUIRE(centre(&m, SHADE_PHONG, c) == 0);
+    CHECK(c[0] >= 155 && c[0] <= 157 && c[1] == 0 && c[2] == 0);
+    mesh_free(&m);
+    free(j);
+}
+
+TEST(gltf_instanced_past_the_limit_fails_with_a_reason_at_once)
+{
+    /* a mesh of 1M triangles (indices without a buffer view: zeros) instanced 20 times by
+     * EXT_mesh_gpu_instancing: 20M triangles, past GLTF_MAX_TRIS; the reason is given
+     * before anything is built (assimp said 'glb_instanced_120.glb: ' and nothing more) */
+    struct gb g = {0};
+    static struct gb_quad q;
+    gb_quad(&q, 0, 1, 1);
+    int a[4];
+    gb_quad_accs(&g, &q, a);
+    size_t l = strlen(g.accs);
+    snprintf(g.accs + l, sizeof g.accs - l,
+             ",{\"componentType\":5125,\"count\":3000000,\"type\":\"SCALAR\"},"
+             "{\"componentType\":5126,\"count\":20,\"type\":\"VEC3\"}");
+    int ii = g.n_accs++, ti = g.n_accs++;
+    char body[1024];
+    snprintf(body, sizeof body,
+             "\"extensionsUsed\":[\"EXT_mesh_gpu_instancing\"],\"scenes\":[{\"nodes\":[0]}],"
+             "\"nodes\":[{\"mesh\":0,\"extensions\":{\"EXT_mesh_gpu_instancing\":{\"attributes\":"
+             "{\"TRANSLATION\":%d}}}}],\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":"
+             "%d},\"indices\":%d}]}]",
+             ti, a[0], ii);
+    char *j = gb_json(&g, body);
+    struct mesh m;
+    struct err e;
+    CHECK_EQ_INT(gb_load(j, strlen(j), NULL, &m, NULL, &e), -1);
+    CHECK_STR_CONTAINS(e.msg, "20 instances of 1000000 triangles make more than 16777216");
+    free(j);
+}

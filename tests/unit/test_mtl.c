@@ -271,3 +271,18 @@ TEST(sports_car_mtl_loads)
     CHECK_STR(L.names[1], "RearLights");
     mtl_free(&L);
 }
+
+TEST(maps_not_drawn_are_named_once)
+{
+    /* holodeck.mtl's map_Ks and map_Ke: each a warning naming it, once per file */
+    struct mtl_lib L;
+    struct err e;
+    struct warnings w;
+    REQUIRE(parse_warn("newmtl a\nmap_Ks s.png\nmap_Ke e.png\nnewmtl b\nmap_Ks s.png\n"
+                       "illum 2\nNi 1.5\n",
+                       "h.mtl", &L, &w, &e) == 0);
+    CHECK_EQ_INT(w.n, 2);
+    CHECK(w.n == 2 && strstr(w.msg[0], "h.mtl:2: map_Ks is not drawn") &&
+          strstr(w.msg[1], "h.mtl:3: map_Ke is not drawn"));
+    mtl_free(&L);
+}

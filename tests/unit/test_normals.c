@@ -415,3 +415,58 @@ TEST(gltf_without_normals_is_flat)
     CHECK_EQ_INT(corners_flat(&m), 0);
     mesh_free(&m);
 }
+
+TEST(assimp_formats_name_what_they_do_not_draw)
+{
+    /* a COLLADA file with a camera and a light beside its triangle: drawn, and each thing
+     * rastty does not draw is a warning naming it (they were dropped silently) */
+    static const char dae[] =
+        "<?xml version=\"1.0\"?>\n<COLLADA xmlns=\"http://www.collada.org/2005/11/"
+        "COLLADASchema\" version=\"1.4.1\"><asset><up_axis>Y_UP</up_axis></asset>"
+        "<library_cameras><camera id=\"c\"><optics><technique_common><perspective><yfov>45"
+        "</yfov><znear>0.1</znear><zfar>100</zfar></perspective></technique_common></optics>"
+        "</camera></library_cameras><library_lights><light id=\"l\"><technique_common>"
+        "<point><color>1 1 1</color></point></technique_common></light></library_lights>"
+        "<library_geometries><geometry id=\"g\"><mesh><source id=\"p\"><float_array id=\"pa\" "
+        "count=\"9\">0 0 0 1 0 0 0 2 3</float_array><technique_common><accessor source=\"#pa\" "
+        "count=\"3\" stride=\"3\"><param name=\"X\" type=\"float\"/><param name=\"Y\" "
+        "type=\"float\"/><param name=\"Z\" type=\"float\"/></accessor></technique_common>"
+        "</source><vertices id=\"v\"><input semantic=\"POSITION\" source=\"#p\"/></vertices>"
+        "<triangles count=\"1\"><input semantic=\"VERTEX\" source=\"#v\" offset=\"0\"/><p>0 1 2"
+        "</p></triangles></mesh></geometry></library_geometries><library_visual_scenes>"
+        "<visual_scene id=\"s\"><node id=\"n\"><instance_geometry url=\"#g\"/></node>"
+        "<node id=\"cn\"><instance_camera url=\"#c\"/></node><node id=\"ln\">"
+        "<instance_light url=\"#l\"/></node></visual_scene></library_visual_scenes><scene>"
+        "<instance_visual_scene url=\"#s\"/></scene></COLLADA>\n";
+    struct mesh m;
+    struct err e;
+    struct warnings w = {0};
+    struct model_ctx ctx = {.path = "cam.dae", .warn = &w};
+    REQUIRE(model_parse(dae, strlen(dae), &ctx, &m, &e) == 0);
+    CHECK_EQ_INT(m.n_tris, 1);
+    bool cam = false, light = false;
+    for (int i = 0; i < w.n; i++) {
+        cam |= strstr(w.msg[i], "cam.dae: 1 cameras are ignored") != NULL;
+        light |= strstr(w.msg[i], "cam.dae: 1 lights are ignored") != NULL;
+    }
+    CHECK(cam && light);
+    mesh_free(&m);
+}
+
+TEST(random_bytes_named_ase_are_an_error_naming_the_file)
+{
+    /* assimp's ASE reader takes any bytes and gives 8 triangles at the origin: a blank
+     * picture with exit 0 before; now an error naming the file */
+    static char junk[3000];
+    uint32_t x = 12345;
+    for (size_t i = 0; i < sizeof junk; i++) {
+        x = x * 1103515245u + 12345u;
+        junk[i] = (char)(x >> 24);
+    }
+    struct mesh m;
+    struct err e;
+    struct model_ctx ctx = {.path = "r.ase"};
+    CHECK_EQ_INT(model_parse(junk, sizeof junk, &ctx, &m, &e), -1);
+    CHECK_STR_CONTAINS(e.msg, "r.ase");
+    CHECK_STR_CONTAINS(e.msg, "has an area");
+}

@@ -860,7 +860,8 @@ TEST(lost_empire_loads)
     CHECK_EQ_INT(m.n_tris, 224998);
     CHECK_EQ_INT(m.n_verts, 449992);
     CHECK_EQ_INT(m.n_materials, 46);
-    CHECK_EQ_INT(m.n_textures, 2);
+    CHECK_EQ_INT(m.n_textures, 3); /* RGB, RGBA and the map_d cut-outs' Alpha */
+    CHECK(m.features); /* 14 materials cut out by their map_d */
     CHECK_VEC3(m.bbox_min, -37, 0, -82);
     CHECK_VEC3(m.bbox_max, 38, 49, 83);
     mesh_free(&m);

@@ -72,3 +72,39 @@ TEST(textures_are_found_beside_a_model_by_name_in_order)
         rm(names[i]);
     rmdir(dir);
 }
+
+/* the normal map texfind_normal_beside picks for DIR/model, or "" */
+static const char *found_nm(const char *model)
+{
+    static char out[512];
+    char p[256];
+    snprintf(p, sizeof p, "%s/%s", dir, model);
+    if (texfind_normal_beside(p, out, sizeof out))
+        return "";
+    const char *slash = strrchr(out, '/');
+    return slash ? slash + 1 : out;
+}
+
+TEST(normal_maps_are_found_beside_a_model_by_name_in_order)
+{
+    snprintf(dir, sizeof dir, "/tmp/rastty-texfind-XXXXXX");
+    REQUIRE(mkdtemp(dir));
+    touch("african_head_diffuse.tga");
+    CHECK(strcmp(found_nm("african_head.obj"), "") == 0); /* a diffuse map is not one */
+    touch("african_head_normals.png");
+    CHECK(strcmp(found_nm("african_head.obj"), "african_head_normals.png") == 0);
+    touch("african_head_normal.jpg");
+    CHECK(strcmp(found_nm("african_head.obj"), "african_head_normal.jpg") == 0);
+    touch("african_head_nm.tga"); /* tinyrenderer's name */
+    CHECK(strcmp(found_nm("african_head.obj"), "african_head_nm.tga") == 0);
+    touch("african_head_nm_tangent.tga");
+    CHECK(strcmp(found_nm("african_head.obj"), "african_head_nm_tangent.tga") == 0);
+    /* the stem cut at '_': the eyes' model finds the head's map */
+    CHECK(strcmp(found_nm("african_head_eye_inner.obj"), "african_head_nm_tangent.tga") == 0);
+    static const char *const names[] = {"african_head_diffuse.tga", "african_head_normals.png",
+                                        "african_head_normal.jpg", "african_head_nm.tga",
+                                        "african_head_nm_tangent.tga"};
+    for (unsigned i = 0; i < sizeof names / sizeof names[0]; i++)
+        rm(names[i]);
+    rmdir(dir);
+}

@@ -549,3 +549,70 @@ TEST(png_chunk_lengths_checked_against_the_file)
     CHECK(strcmp(e.msg, "t: byte 49: PNG chunk of 1950220325 bytes, 8 left in the file: "
                         "truncated") == 0);
 }
+
+/* issue 25, item 17: a valid top-down BMP (negative height: rows stored top first) was
+ * refused as "image is 2x-2" */
+TEST(top_down_bmp_is_decoded_upright)
+{
+    /* 2x2, 24-bit, height -2: the first stored row (red, green) is the top row */
+    uint8_t bmp[54 + 16] = {'B', 'M'};
+    uint32_t fsize = sizeof bmp;
+    memcpy(bmp + 2, &fsize, 4);
+    bmp[10] = 54;
+    bmp[14] = 40;
+    int32_t wd = 2, ht = -2;
+    memcpy(bmp + 18, &wd, 4);
+    memcpy(bmp + 22, &ht, 4);
+    bmp[26] = 1;
+    bmp[28] = 24;
+    static const uint8_t rows[16] = {0, 0, 255, 0, 255, 0, 0, 0, /* BGR red, green, pad */
+                                     255, 0, 0, 255, 255, 255, 0, 0}; /* blue, white, pad */
+    memcpy(bmp + 54, rows, sizeof rows);
+    struct texture tx;
+    struct err e;
+    if (decode(bmp, sizeof bmp, &tx, NULL, &e)) {
+        test_fail(t, __FILE__, __LINE__, "%s", e.msg);
+        return;
+    }
+    CHECK(tx.w == 2 && tx.h == 2);
+    CHECK(tx.rgba[0] == 255 && tx.rgba[1] == 0 && tx.rgba[2] == 0);        /* top left red */
+    CHECK(tx.rgba[8] == 0 && tx.rgba[9] == 0 && tx.rgba[10] == 255);       /* bottom left blue */
+    free(tx.rgba);
+}
+
+#include <jpeglib.h>
+
+/* issue 25, item 16: a truncated JPEG drew a grey remainder with no word */
+TEST(truncated_jpeg_is_a_warning)
+{
+    /* a 64x64 baseline JPEG written here, cut at half its length */
+    struct jpeg_compress_struct c;
+    struct jpeg_error_mgr jerr;
+    c.err = jpeg_std_error(&jerr);
+    jpeg_create_compress(&c);
+    unsigned char *buf = NULL;
+    unsigned long n = 0;
+    jpeg_mem_dest(&c, &buf, &n);
+    c.image_width = 64, c.image_height = 64, c.input_components = 3, c.in_color_space = JCS_RGB;
+    jpeg_set_defaults(&c);
+    jpeg_start_compress(&c, TRUE);
+    uint8_t row[64 * 3];
+    for (int y = 0; y < 64; y++) {
+        for (int x = 0; x < 64 * 3; x++)
+            row[x] = (uint8_t)(x * 7 + y * 13);
+        JSAMPROW r = row;
+        jpeg_write_scanlines(&c, &r, 1);
+    }
+    jpeg_finish_compress(&c);
+    jpeg_destroy_compress(&c);
+    struct texture tx;
+    struct err e;
+    struct warnings w;
+    REQUIRE(decode(buf, n, &tx, &w, &e) == 0); /* whole: no warning */
+    CHECK_EQ_INT(w.n, 0);
+    free(tx.rgba);
+    REQUIRE(decode(buf, n / 2, &tx, &w, &e) == 0); /* cut: drawn, and said */
+    CHECK(w.n == 1 && strstr(w.msg[0], "t: damaged or truncated JPEG (Premature end of JPEG"));
+    free(tx.rgba);
+    free(buf);
+}

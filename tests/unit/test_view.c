@@ -403,4 +403,12 @@ TEST(the_help_fits_an_80x24_terminal)
             return;
         }
     }
+
+TEST(shift_c_cycles_the_model_files_cameras)
+{
+    struct view_state s;
+    start(&s, true);
+    CHECK_EQ_INT(input_command('C'), IN_NEXT_CAMERA);
+    CHECK_EQ_INT(view_key(&s, IN_NEXT_CAMERA, 1), VIEW_NEXT_CAMERA);
+    CHECK(!s.spin); /* a camera key: the view changes */
 }
