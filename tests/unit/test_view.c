@@ -403,6 +403,7 @@ TEST(the_help_fits_an_80x24_terminal)
             return;
         }
     }
+}
 
 TEST(shift_c_cycles_the_model_files_cameras)
 {
