@@ -10,9 +10,10 @@
 # (median_ms) with --lod off (every triangle of the file: what must not change a pixel),
 # with --lod auto (the levels of detail: its PSNR against --lod off, by
 # build/oracle/compare), and — where this build has the switch — --lod off
-# --cluster-cull off (the clusters not used: their speed-up is off/that, and the pictures
-# must be the same bytes: "same" or "DIFFER"). load_ms is render's, rss_MB the peak
-# resident memory of the --lod off run (/usr/bin/time), tris the triangles drawn. The
+# --cluster-cull on (cluster_ms; speedup = off_ms / cluster_ms; the clusters culled of
+# those tested; the pictures must be the same bytes: "same" or "DIFFER"). load_ms is
+# render's, rss_MB the peak resident memory of the --lod off run (/usr/bin/time), tris the
+# triangles drawn. The
 # sphere's files are made once in build/bench/scale (never in the repository). Numbers,
 # never verdicts.
 set -u
@@ -53,9 +54,9 @@ TIME=
 [ -x /usr/bin/time ] && TIME="/usr/bin/time -f rss_kb=%M"
 ms_of() { sed -n 's/.*median_ms=\([0-9.]*\).*/\1/p' | tail -n 1; }
 echo "-- scale: median ms of $repeat frames, eye 0.5,0.364,0.8 framed; auto's PSNR against --lod off"
-printf '  %-20s %-8s %2s %9s %9s %9s %8s %9s %6s %8s %7s %9s\n' model size th load_ms rss_MB \
-    off_ms tris auto_ms PSNR nocull_ms speedup nocull_eq
-[ -n "$csv" ] && echo "model,size,threads,load_ms,rss_mb,off_ms,tris,auto_ms,auto_psnr,nocull_ms,speedup,nocull_same" > "$csv"
+printf '  %-20s %-8s %2s %9s %9s %9s %8s %9s %6s %9s %7s %15s %5s\n' model size th load_ms rss_MB \
+    off_ms tris auto_ms PSNR cluster_ms speedup culled/tested bytes
+[ -n "$csv" ] && echo "model,size,threads,load_ms,rss_mb,off_ms,tris,auto_ms,auto_psnr,cluster_ms,speedup,culled_tested,same_bytes" > "$csv"
 for m in "${models[@]}"; do
     name=$(basename "$m"); name=${name%.*}
     for size in 160x96 640x480; do
@@ -75,18 +76,19 @@ for m in "${models[@]}"; do
             psnr=-
             [ -x "$CMP" ] && psnr=$("$CMP" "$o.auto.ppm" "$o.auto.pfm" "$o.off.ppm" "$o.off.pfm" |
                 sed -n 's/.*psnr=\([0-9.inf]*\).*/\1/p')
-            nc=- sp=- eq=-
+            nc=- sp=- eq=- cl=-
             if [ $cull = 1 ]; then
-                st=$("$BIN" render "$m" "${cam[@]}" --lod off --cluster-cull off \
+                st=$("$BIN" render "$m" "${cam[@]}" --lod off --cluster-cull on \
                     --out "$o.nc.ppm" --depth-out "$o.nc.pfm" 2>&1)
                 nc=$(ms_of <<<"$st")
-                sp=$(awk -v a="$nc" -v b="$off" 'BEGIN { printf "%.2fx", a / b }')
+                sp=$(awk -v a="$off" -v b="$nc" 'BEGIN { printf "%.2fx", a / b }')
+                cl=$(sed -n 's/^clusters: tested \([0-9]*\), culled \([0-9]*\).*/\2\/\1/p' <<<"$st")
                 eq=same
                 cmp -s "$o.nc.ppm" "$o.off.ppm" && cmp -s "$o.nc.pfm" "$o.off.pfm" || eq=DIFFER
             fi
-            printf '  %-20s %-8s %2s %9s %9s %9s %8s %9s %6s %8s %7s %9s\n' "$name" "$size" \
-                "$th" "$load" "$rss" "$off" "$tris" "$auto" "$psnr" "$nc" "$sp" "$eq"
-            [ -n "$csv" ] && echo "$name,$size,$th,$load,$rss,$off,$tris,$auto,$psnr,$nc,$sp,$eq" >> "$csv"
+            printf '  %-20s %-8s %2s %9s %9s %9s %8s %9s %6s %9s %7s %15s %5s\n' "$name" "$size" \
+                "$th" "$load" "$rss" "$off" "$tris" "$auto" "$psnr" "$nc" "$sp" "$cl" "$eq"
+            [ -n "$csv" ] && echo "$name,$size,$th,$load,$rss,$off,$tris,$auto,$psnr,$nc,$sp,$cl,$eq" >> "$csv"
         done
     done
 done
