@@ -908,7 +908,7 @@ static int read_prim(struct gl *G, const struct json *pj, const double *weights,
         return -1;
     /* skins: JOINTS_n with WEIGHTS_n */
     for (int set = 0; set < 2; set++) {
-        char jn[24], wn[24]; /* (room for any int: -Wformat-truncation under the sanitizers) */
+        char jn[24], wn[24]; /* (room for any int: the sanitizer build checks it) */
         snprintf(jn, sizeof jn, "JOINTS_%d", set);
         snprintf(wn, sizeof wn, "WEIGHTS_%d", set);
         int64_t ji = attr_index(G, attrs, jn, &rc), wi = attr_index(G, attrs, wn, &rc);
