@@ -144,7 +144,7 @@ build/asan/rastty: $(BUILD)/librastty.a $(MAINOBJ)
 	@echo "  LD      $@"
 	$(Q)$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $(MAINOBJ) $(BUILD)/librastty.a $(LDLIBS)
 
-bench: rastty assets oracle-build build/bench/reorder floor-build
+bench: rastty assets oracle-build build/bench/reorder build/bench/gensphere floor-build
 	@tests/bench.sh
 
 # Measuring builds for tests/bench_floor.sh (never installed): the same sources with the
@@ -165,6 +165,11 @@ $(FLOORS:%=build/floor-%/rastty): $(BUILD)/librastty.a $(MAINOBJ)
 build/bench/reorder: tests/bench/reorder.c $(BUILD)/librastty.a
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) $(CFLAGS) $(ALL_INC) -o $@ $< $(BUILD)/librastty.a $(LDLIBS)
+
+# the scale benchmark's displaced sphere at any triangle count (tests/bench_scale.sh)
+build/bench/gensphere: tests/bench/gensphere.c
+	@mkdir -p $(dir $@)
+	$(Q)$(CC) $(CFLAGS) -o $@ $< -lm
 
 # The README's chart: every method on the scene set at 160x96 and 640x480 (several minutes;
 # run it on a quiet machine). Shared models from ../shared/models (or RASTTY_SHARED).

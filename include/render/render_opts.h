@@ -72,6 +72,11 @@ enum debug_view { VIEW_COLOR, VIEW_DEPTH, VIEW_NORMALS, VIEW_OVERDRAW, VIEW_WIRE
  *   SPLIT_AUTO    slices when the frame holds at least one triangle (after culling of
  *                 whole meshes) for every PIPELINE_SLICE_PIXELS pixels, else tiles; tiles
  *                 always for wireframe, the wireframe overlay and the overdraw count. */
+/* Cluster culling (--cluster-cull; cluster_cull.h): whole clusters of a mesh's triangles
+ * dropped before the vertex stage when they cannot reach a pixel. Never changes a picture.
+ * Off by default: measured, it does not pay yet (README, "Cost against triangles"). */
+enum cluster_cull { CLUSTER_CULL_OFF, CLUSTER_CULL_ON, CLUSTER_CULL_COUNT };
+
 enum thread_split { SPLIT_AUTO, SPLIT_TILES, SPLIT_SLICES, SPLIT_COUNT };
 
 /* Which instruction set's kernels draw (--kernel; kernel.h): auto is AVX2 where the CPU has
@@ -95,6 +100,7 @@ struct render_opts {
     float lod_ratio;            /* LOD_RATIO: fraction of the triangles kept, (0, 1] */
     float lod_px;               /* LOD_AUTO: largest error on screen, in pixels (> 0) */
     enum cull_mode cull;
+    enum cluster_cull cluster_cull; /* --cluster-cull: the picture never depends on it */
     enum debug_view view;
     bool textures;       /* sample material / override textures (else albedo = kd) */
     bool hidden_lines;   /* wire: hide edges behind the model's surfaces (depth pre-pass) */
@@ -131,7 +137,8 @@ struct render_enum {
 };
 extern const struct render_enum render_shade_names, render_cull_names, render_filter_names,
     render_view_names, render_raster_names, render_persp_names, render_depth_names,
-    render_ssaa_names, render_lod_names, render_split_names, render_kernel_names;
+    render_ssaa_names, render_lod_names, render_split_names, render_kernel_names,
+    render_cluster_cull_names;
 
 const char *render_shade_name(enum shade_mode m);
 const char *render_cull_name(enum cull_mode m);

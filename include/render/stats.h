@@ -23,6 +23,13 @@ struct frame_stats {
     uint64_t pixels_shaded; /* fragments that passed the depth test */
     uint64_t meshes_culled; /* whole meshes outside the frustum (bounding sphere) */
     uint64_t tris_full;     /* what tris_in would be at full detail (--lod off) */
+    /* clusters (cluster_cull.h): tested, dropped whole (outside a frustum plane, facing away
+     * under culling, no pixel centre in their screen box), and drawn triangle by triangle;
+     * tested = frustum + facing + no_centre + drawn. With slices, a cluster two slices
+     * hold triangles of is counted by both. Their triangles count as tris_culled, tris_rejected
+     * and tris_no_centre. */
+    uint64_t clusters_tested, clusters_frustum, clusters_facing, clusters_no_centre,
+        clusters_drawn;
     int lod_min, lod_max;   /* levels of detail drawn (0 = full), over the drawn items; -1 none */
     const char *kernel;     /* the kernels that drew it (kernel.h: "avx2", "sse2", "ref", ...) */
     int threads;            /* threads that drew the frame */

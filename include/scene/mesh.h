@@ -103,6 +103,36 @@ struct mesh_camera {
 };
 #define MESH_MAX_CAMERAS 64
 
+/* A cluster: a spatially compact set of a mesh's triangles with its bounds, or a node of
+ * the tree over them (cluster.h builds them and says what they hold). */
+struct mesh_cluster {
+    float center[3];     /* box, object space: center + sum of s_i half[i] axis[i], |s_i| <= 1 */
+    float axis[3][3];    /* its axes: unit, orthogonal (to rounding; half[] allows for it) */
+    float half[3];
+    float cone_axis[3];  /* unit */
+    float cone_cos;      /* every face normal n: dot(n, cone_axis) >= cone_cos */
+    uint32_t tri_first;  /* its triangles: tri_first .. + n_tris - 1 (the file's order) */
+    uint32_t tri_lo, tri_hi; /* the lowest and highest of them (a node: of its subtree's) */
+    uint32_t skip;       /* the next node after its subtree (a cluster: its own index + 1) */
+    uint32_t n_sub;      /* triangles in its subtree */
+    uint32_t n_leaves;   /* clusters in its subtree (a cluster: 1) */
+    uint32_t range_first; /* its vertices: ranges[range_first .. + n_ranges) */
+    uint16_t n_ranges;
+    uint8_t n_tris;      /* 1 .. CLUSTER_MAX_TRIS; 0: a node */
+    uint8_t flags;       /* CLUSTER_NO_BOUNDS, CLUSTER_NO_CONE, CLUSTER_ONE_SIDED */
+};
+enum { CLUSTER_NO_BOUNDS = 1, CLUSTER_NO_CONE = 2, CLUSTER_ONE_SIDED = 4 };
+
+struct mesh_clusters {
+    struct mesh_cluster *c; /* the tree in depth-first order, c[0] the root */
+    uint32_t n;
+    uint32_t n_leaves;
+    uint32_t *leaf;        /* the clusters in the file's order: leaf[k] is the node of
+                              triangles k * CLUSTER_MAX_TRIS on */
+    uint32_t (*ranges)[2]; /* vertex ranges [first, end) */
+    uint32_t n_ranges;
+};
+
 struct mesh {
     struct mesh_vertex *verts;
     uint32_t n_verts;
@@ -136,6 +166,8 @@ struct mesh {
     float bbox_min[3], bbox_max[3]; /* over the positions used by triangles */
     float center[3], radius;        /* bounding sphere: bbox centre, farthest used vertex */
     struct mesh_lod *lod; /* simplified levels (lod.h), or NULL; a level's own is NULL */
+    struct mesh_clusters *clusters; /* its opaque triangles in runs with bounds (cluster.h),
+                                       or NULL: drawn triangle by triangle */
 };
 
 enum { MESH_SIDES_NONE, MESH_SIDES_ALL, MESH_SIDES_SOME };
@@ -197,5 +229,7 @@ void mesh_turn_up(struct mesh *m, char axis);
 /* Frees everything the mesh owns (its textures) and zeroes it; a zeroed mesh is fine. Its
  * levels of detail, if any were built, are lod_free's (scene_free calls both). */
 void mesh_free(struct mesh *m);
+/* Frees the mesh's clusters (cluster.h) alone; mesh_free does it too. */
+void mesh_free_clusters(struct mesh *m);
 
 #endif

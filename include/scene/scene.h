@@ -97,6 +97,8 @@ int scene_set_texture(struct scene *s, const char *path, struct err *e);
  * thread (the viewer: the first frames draw the meshes in full, then the levels arrive).
  * Again: nothing. -1 only when out of memory. */
 int scene_build_lod(struct scene *s, bool wait, struct err *e);
+/* Every mesh's clusters (cluster.h; --cluster-cull on), now: -1 out of memory. */
+int scene_build_clusters(struct scene *s, struct err *e);
 /* Are the levels built (or none asked for)? */
 bool scene_lod_done(const struct scene *s);
 /* Stops a background build first. */

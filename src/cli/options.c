@@ -81,6 +81,7 @@ static const struct flag flags[] = {
     {"--background", F_BACKGROUND, ARG_VALUE, C_DRAW, "R,G,B", "background colour, 0..255 each (default 0,0,0)", NULL, 0},
     {"--sky", F_SKY, ARG_VALUE, C_DRAW, "procedural", "the generated sky behind the scene (the viewer's default)", NULL, 0},
     ENUM_FLAG("--cull", C_DRAW | C_BENCH, "face culling", render_cull_names, render.cull),
+    ENUM_FLAG("--cluster-cull", C_DRAW | C_BENCH, "drop whole clusters of triangles that cannot reach a pixel (outside the view, facing away when culled, between pixel centres) before their vertices are transformed; never changes a picture (default off: it does not pay yet)", render_cluster_cull_names, render.cluster_cull),
     {"--hidden-lines", F_HIDDEN_LINES, ARG_NONE, C_DRAW, NULL, "wire: hide edges behind the model's surfaces", NULL, 0},
     ENUM_FLAG("--view", C_DRAW, "what the picture shows", render_view_names, render.view),
     {"--out", F_OUT, ARG_VALUE, C_RENDER | C_DUMP | C_A2P, "FILE", "output file (.ppm/.png; dump: .ans)", NULL, 0},

@@ -163,6 +163,11 @@ int prepare_scene(const struct options *o, const char *path, struct scene *s, ch
         scene_free(s);
         return -1;
     }
+    /* clusters only when they are used (--cluster-cull on): they do not pay yet (README) */
+    if (o->render.cluster_cull == CLUSTER_CULL_ON && scene_build_clusters(s, e)) {
+        scene_free(s);
+        return -1;
+    }
     return 0;
 }
 
@@ -193,6 +198,14 @@ void prepare_print_stats(const struct frame_stats *st)
             (unsigned long long)st->verts_lit,
             (unsigned long long)st->pixels_tested,
             (unsigned long long)st->pixels_shaded, st->render_ms);
+    if (st->clusters_tested)
+        fprintf(stderr, "clusters: tested %llu, culled %llu (frustum %llu, facing %llu, no "
+                        "pixel centre %llu), drawn %llu\n",
+                (unsigned long long)st->clusters_tested,
+                (unsigned long long)(st->clusters_frustum + st->clusters_facing +
+                                     st->clusters_no_centre),
+                (unsigned long long)st->clusters_frustum, (unsigned long long)st->clusters_facing,
+                (unsigned long long)st->clusters_no_centre, (unsigned long long)st->clusters_drawn);
     if (st->lod_max < 0)
         fprintf(stderr, "lod: no mesh drawn\n");
     else if (st->lod_min == st->lod_max)

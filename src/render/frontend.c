@@ -6,6 +6,8 @@
 #include <string.h>
 
 #include "clip.h"
+#include "cluster.h"
+#include "cluster_cull.h"
 #include "line.h"
 #include "setup.h"
 
@@ -31,6 +33,8 @@ void frontend_free(struct frontend *fe)
     batch_free(&fe->batch[1]);
     free(fe->vq_idx);
     free(fe->vq_out);
+    free(fe->vdone);
+    free(fe->marks);
     memset(fe, 0, sizeof *fe);
 }
 
@@ -215,28 +219,38 @@ static const struct rich_item *rich_item(struct frame *f, const struct mesh *m)
     return r;
 }
 
-int frontend_triangles(struct frontend *fe, struct frame *f, const struct draw_item *item,
-                       const struct mesh *m, struct vertex_out *vo, bool depth_only,
-                       uint32_t i0, uint32_t i1, uint32_t verts_from, struct err *e)
+/* What the front end keeps for one item's triangles while it walks them (run by run with
+ * clusters): the item, its varyings and culling, the last material's shading record, and
+ * the counts of dropped triangles. */
+struct tri_walk {
+    const struct draw_item *item;
+    const struct mesh *m;
+    struct vertex_out *vo;
+    bool depth_only;
+    int n_var;
+    uint8_t rich;
+    enum cull_mode cull;
+    bool by_material;
+    struct shade_proto proto;
+    uint64_t n_rejected, n_culled, n_no_centre;
+};
+
+/* triangles i0 .. i1-1; the vertex stage runs just ahead of them from verts_done on (none
+ * when it is m->n_verts: the caller ran it) */
+static inline __attribute__((always_inline)) int
+walk(struct frontend *fe, struct frame *f, struct tri_walk *w, uint32_t i0, uint32_t i1,
+     uint32_t verts_done, struct err *e)
 {
-    uint32_t verts_done = verts_from; /* (a slice: the lowest vertex its triangles use) */
-    const struct render_opts *o = f->o;
+    const struct mesh *m = w->m;
+    struct vertex_out *vo = w->vo;
+    const bool depth_only = w->depth_only;
+    const int n_var = w->n_var;
+    const uint8_t rich = w->rich;
+    const enum cull_mode cull = w->cull;
+    const bool by_material = w->by_material;
+    const struct draw_item *item = w->item;
     struct frame_stats *stats = f->stats;
     struct batch *bt = &fe->batch[fe->cur];
-    int n_var = depth_only ? 0 : m->colors ? VARY_COLOR + 3 : vertex_varying_count(o->shade, o->view, f->u.lights.grey);
-    struct shade_proto proto = {.mat = -1};
-    /* a mesh with material features: the features path (its own varyings, shade.h) */
-    f->u.rich = NULL;
-    if (!depth_only && m->features && (proto.rich = rich_item(f, m))) {
-        f->u.rich = &proto.rich->lay;
-        n_var = -proto.rich->lay.n; /* (clip.h: the features path's all[]) */
-    }
-    const uint8_t rich = proto.rich != NULL;
-    /* culling: --cull, or with auto the materials' sides (glTF's single-sided ones) */
-    enum cull_mode cull = o->cull;
-    const bool by_material = cull == CULL_AUTO && m->one_sided == MESH_SIDES_SOME;
-    if (cull == CULL_AUTO)
-        cull = m->one_sided == MESH_SIDES_ALL ? CULL_BACK : CULL_NONE;
     /* counted in locals, added once: through the stats pointer every count would be a
      * memory update the compiler must keep in order with the batch's stores */
     uint64_t n_rejected = 0, n_culled = 0, n_no_centre = 0;
@@ -292,22 +306,163 @@ int frontend_triangles(struct frontend *fe, struct frame *f, const struct draw_i
                 continue;
             }
             shade_vertices(fe, m, f, i, v, false);
-            t->shade = depth_only ? bt->n_shades : add_shade(bt, f, item, m, i, v, &proto);
+            t->shade = depth_only ? bt->n_shades : add_shade(bt, f, item, m, i, v, &w->proto);
             t->rich = rich;
             bt->n_tris++;
             stats->tris_drawn++;
             continue;
         }
         shade_vertices(fe, m, f, i, v, true); /* clipping interpolates the varyings */
-        uint32_t shade = depth_only ? bt->n_shades : add_shade(bt, f, item, m, i, v, &proto);
+        uint32_t shade = depth_only ? bt->n_shades : add_shade(bt, f, item, m, i, v, &w->proto);
         stats->tris_clipped++;
         clip_and_add(fe, f, v, any & VERTEX_NEEDS_CLIP, n_var, shade, rich);
     }
+    w->n_rejected += n_rejected;
+    w->n_culled += n_culled;
+    w->n_no_centre += n_no_centre;
+    return 0;
+}
+
+/* the vertex stage for cluster c's vertices that this walk has not made (a run of
+ * consecutive ones in one call) */
+static void cluster_vertices(struct frontend *fe, const struct frame *f, const struct mesh *m,
+                             struct vertex_out *vo, const struct mesh_cluster *c)
+{
+    const uint32_t(*r)[2] = m->clusters->ranges + c->range_first;
+    uint8_t *done = fe->vdone;
+    for (int i = 0; i < c->n_ranges; i++)
+        for (uint32_t v = r[i][0]; v < r[i][1];) {
+            if (done[v]) {
+                v++;
+                continue;
+            }
+            uint32_t to = v;
+            while (to < r[i][1] && !done[to])
+                done[to++] = 1;
+            f->k->vertex_run(m, &f->u, vo, v, to);
+            v = to;
+        }
+}
+
+/* a buffer of at least n bytes, zeroed */
+static int zeroed(uint8_t **buf, size_t *cap, size_t n, struct err *e)
+{
+    if (n > *cap) {
+        uint8_t *g = realloc(*buf, n);
+        if (!g)
+            return err_set(e, "out of memory for the clusters' marks");
+        *buf = g;
+        *cap = n;
+    }
+    memset(*buf, 0, n);
+    return 0;
+}
+
+/* Triangles i0 .. i1-1 by clusters (cluster.h, cluster_cull.h). First the tree of
+ * clusters, depth first: a node that cannot reach a pixel drops its subtree whole, and the
+ * clusters that may draw are marked (only the tree's boxes are read). Then the marked
+ * clusters in the file's order, each one's vertices made and its triangles walked as
+ * without clusters: the drawn triangles keep the file's order, which decides ties of
+ * depth, and memory is read forward. */
+static int walk_clusters(struct frontend *fe, struct frame *f, struct tri_walk *w,
+                         uint32_t i0, uint32_t i1, struct err *e)
+{
+    const struct mesh *m = w->m;
+    const struct mesh_clusters *cs = m->clusters;
+    const size_t words = ((size_t)cs->n_leaves + 63) / 64;
+    if (zeroed(&fe->vdone, &fe->vdone_cap, m->n_verts, e) ||
+        zeroed((uint8_t **)&fe->marks, &fe->marks_cap, words * sizeof *fe->marks, e))
+        return -1;
+    uint64_t *mark = fe->marks;
+    struct cluster_view cv;
+    cluster_view_init(&cv, f->u.model, f->u.mvp, f->u.eye, f->u.ortho, f->u.view_back,
+                      f->fb->w, f->fb->h, w->cull, w->by_material);
+    struct frame_stats *st = f->stats;
+    uint64_t dropped[4] = {0, 0, 0, 0};
+    for (uint32_t k = 0; k < cs->n;) {
+        const struct mesh_cluster *c = &cs->c[k];
+        if (c->tri_hi < i0 || c->tri_lo >= i1) {
+            k = c->skip;
+            continue;
+        }
+        const bool whole = c->tri_lo >= i0 && c->tri_hi < i1;
+        const bool counts = c->tri_lo >= i0; /* (with slices: the one with its first) */
+        enum cluster_verdict cvd = cluster_test(&cv, c);
+        if (cvd != CLUSTER_DRAW && (whole || c->n_tris)) {
+            uint64_t n = c->n_sub;
+            if (!whole) { /* (a cluster partly in this slice) */
+                uint32_t a = c->tri_lo > i0 ? c->tri_lo : i0, b = c->tri_hi + 1;
+                n = (b < i1 ? b : i1) - a;
+            }
+            const uint64_t nl = counts ? c->n_leaves : 0;
+            st->clusters_tested += nl;
+            if (cvd == CLUSTER_FRUSTUM)
+                st->clusters_frustum += nl, dropped[1] += n;
+            else if (cvd == CLUSTER_FACING)
+                st->clusters_facing += nl, dropped[3] += n;
+            else
+                st->clusters_no_centre += nl, dropped[2] += n;
+            k = c->skip;
+            continue;
+        }
+        if (c->n_tris) {
+            st->clusters_tested += counts;
+            st->clusters_drawn += counts;
+            const uint32_t id = c->tri_first / CLUSTER_MAX_TRIS;
+            mark[id >> 6] |= 1ull << (id & 63);
+        }
+        k++;
+    }
+    w->n_rejected += dropped[1];
+    w->n_no_centre += dropped[2];
+    w->n_culled += dropped[3];
+    for (size_t wd = 0; wd < words; wd++)
+        for (uint64_t bits = mark[wd]; bits; bits &= bits - 1) {
+            const uint32_t id = (uint32_t)(wd * 64) + (uint32_t)__builtin_ctzll(bits);
+            const struct mesh_cluster *c = &cs->c[cs->leaf[id]];
+            uint32_t a = c->tri_lo > i0 ? c->tri_lo : i0;
+            uint32_t b = c->tri_hi + 1 < i1 ? c->tri_hi + 1 : i1;
+            cluster_vertices(fe, f, m, w->vo, c);
+            if (walk(fe, f, w, a, b, m->n_verts, e))
+                return -1;
+        }
+    return 0;
+}
+
+int frontend_triangles(struct frontend *fe, struct frame *f, const struct draw_item *item,
+                       const struct mesh *m, struct vertex_out *vo, bool depth_only,
+                       uint32_t i0, uint32_t i1, uint32_t verts_from, struct err *e)
+{
+    const struct render_opts *o = f->o;
+    struct tri_walk w = {.item = item, .m = m, .vo = vo, .depth_only = depth_only,
+                         .proto = {.mat = -1}};
+    w.n_var = depth_only ? 0 : m->colors ? VARY_COLOR + 3 : vertex_varying_count(o->shade, o->view, f->u.lights.grey);
+    /* a mesh with material features: the features path (its own varyings, shade.h) */
+    f->u.rich = NULL;
+    if (!depth_only && m->features && (w.proto.rich = rich_item(f, m))) {
+        f->u.rich = &w.proto.rich->lay;
+        w.n_var = -w.proto.rich->lay.n; /* (clip.h: the features path's all[]) */
+    }
+    w.rich = w.proto.rich != NULL;
+    /* culling: --cull, or with auto the materials' sides (glTF's single-sided ones) */
+    w.cull = o->cull;
+    w.by_material = w.cull == CULL_AUTO && m->one_sided == MESH_SIDES_SOME;
+    if (w.cull == CULL_AUTO)
+        w.cull = m->one_sided == MESH_SIDES_ALL ? CULL_BACK : CULL_NONE;
+    /* clusters: not for wireframe (its pre-pass and the overlay's edges read every vertex) */
+    const bool clusters = m->clusters && o->cluster_cull == CLUSTER_CULL_ON && !depth_only &&
+                          f->span.mode != SHADE_WIRE && o->view != VIEW_WIRE_OVERLAY &&
+                          i1 <= m->n_opaque;
+    int rc = clusters ? walk_clusters(fe, f, &w, i0, i1, e)
+                      : walk(fe, f, &w, i0, i1, verts_from, e);
+    if (rc)
+        return -1;
     shade_queued(fe, f);
+    struct frame_stats *stats = f->stats;
     stats->tris_in += i1 - i0;
-    stats->tris_rejected += n_rejected;
-    stats->tris_culled += n_culled;
-    stats->tris_no_centre += n_no_centre;
+    stats->tris_rejected += w.n_rejected;
+    stats->tris_culled += w.n_culled;
+    stats->tris_no_centre += w.n_no_centre;
     return 0;
 }
 

@@ -87,6 +87,7 @@ int plan_blend_draw(struct frontend *fe, struct span_ctx *ctx, const struct kern
         run.tris = tris;
         run.tri_material = mats;
         run.n_tris = run.n_opaque = (uint32_t)(j - i);
+        run.clusters = NULL; /* (the mesh's are of its own order) */
         frame_item(&f, &items[it], pv);
         rc = frontend_triangles(fe, &f, &items[it], &run, vo[it], false, 0, run.n_tris,
                                 m->n_verts, e);

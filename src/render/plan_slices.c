@@ -161,7 +161,8 @@ static void slice_main(void *arg, int k)
         /* the vertex stage starts at the lowest vertex the slice's triangles use (one flat
          * loop over their indices: the compiler makes it a vector minimum) */
         uint32_t from = 0;
-        if (i0) {
+        if (i0 && !(m->clusters && j->o->cluster_cull == CLUSTER_CULL_ON)) { /* (clusters:
+                                                       the front end makes their vertices) */
             const uint32_t *idx = m->tris[i0];
             from = m->n_verts;
             for (size_t i = 0; i < 3 * (size_t)(i1 - i0); i++)
@@ -255,6 +256,11 @@ int plan_slices_draw(struct plan_slices *s, struct workers *w, const struct kern
         stats->verts_lit += st->verts_lit;
         stats->pixels_tested += st->pixels_tested;
         stats->pixels_shaded += st->pixels_shaded;
+        stats->clusters_tested += st->clusters_tested;
+        stats->clusters_frustum += st->clusters_frustum;
+        stats->clusters_facing += st->clusters_facing;
+        stats->clusters_no_centre += st->clusters_no_centre;
+        stats->clusters_drawn += st->clusters_drawn;
     }
     if (rc)
         return -1;

@@ -237,6 +237,7 @@ void lod_free(struct mesh *m)
         free(l->tri_material);
         free(l->vert_material);
         free(l->colors);
+        mesh_free_clusters(l);
     }
     free(m->lod);
     m->lod = NULL;

@@ -601,8 +601,20 @@ int mesh_tangents(struct mesh *m, bool second)
     return 0;
 }
 
+void mesh_free_clusters(struct mesh *m)
+{
+    if (!m->clusters)
+        return;
+    free(m->clusters->c);
+    free(m->clusters->ranges);
+    free(m->clusters->leaf);
+    free(m->clusters);
+    m->clusters = NULL;
+}
+
 void mesh_free(struct mesh *m)
 {
+    mesh_free_clusters(m);
     drop_geometry(m);
     free(m->materials);
     free(m->cameras);

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cluster.h"
 #include "file.h"
 #include "lex.h"
 #include "lod.h"
@@ -507,6 +508,15 @@ int scene_build_lod(struct scene *s, bool wait, struct err *e)
         lod_finish(s->lod_job, false);
         s->lod_job = NULL;
     }
+    return 0;
+}
+
+int scene_build_clusters(struct scene *s, struct err *e)
+{
+    for (int i = 0; i < s->n_meshes; i++)
+        if (!s->meshes[i].clusters && cluster_build(&s->meshes[i]))
+            return err_set(e, "out of memory for the clusters of %u triangles",
+                           (unsigned)s->meshes[i].n_tris);
     return 0;
 }
 

@@ -1,0 +1,94 @@
+#!/usr/bin/env bash
+# tests/bench_scale.sh: does a frame cost what the screen shows or what the file holds? The
+# same displaced sphere (build/bench/gensphere: 10k, 100k, 1M and 4M triangles, framed: the
+# same size on screen) and the dense shared models (lost_empire, sports car, bunny) at
+# 160x96 and 640x480, one thread and two. `make bench` prints it (issue 24's table).
+#
+#   tests/bench_scale.sh [--repeat N] [--sizes "10000 ..."] [--csv FILE]
+#
+# Per model, size and thread count: `render --eye 0.5,0.364,0.8 --frame --repeat N --stats`
+# (median_ms) with --lod off (every triangle of the file: what must not change a pixel),
+# with --lod auto (the levels of detail: its PSNR against --lod off, by
+# build/oracle/compare), and — where this build has the switch — --lod off
+# --cluster-cull on (cluster_ms; speedup = off_ms / cluster_ms; the clusters culled of
+# those tested; the pictures must be the same bytes: "same" or "DIFFER"). load_ms is
+# render's, rss_MB the peak resident memory of the --lod off run (/usr/bin/time), tris the
+# triangles drawn. The
+# sphere's files are made once in build/bench/scale (never in the repository). Numbers,
+# never verdicts.
+set -u
+cd "$(dirname "$0")/.."
+BIN=${RASTTY_BIN:-./rastty}
+S=${RASTTY_SHARED:-../shared}/models
+GEN=build/bench/gensphere
+CMP=build/oracle/compare
+D=build/bench/scale
+repeat=9 sizes="10000 100000 1000000 4000000" csv=
+while [ $# -gt 0 ]; do
+    case $1 in
+    --repeat) repeat=$2; shift ;;
+    --sizes) sizes=$2; shift ;;
+    --csv) csv=$2; shift ;;
+    *) echo "usage: tests/bench_scale.sh [--repeat N] [--sizes \"N ...\"] [--csv FILE]" >&2
+       exit 2 ;;
+    esac
+    shift
+done
+if [ ! -x "$GEN" ]; then
+    echo "-- scale: skipped ($GEN missing: make build/bench/gensphere)"
+    exit 0
+fi
+mkdir -p "$D"
+models=()
+for n in $sizes; do
+    f=$D/sphere_$n.ply
+    [ -f "$f" ] || "$GEN" "$n" "$f" >/dev/null || { echo "-- scale: $GEN $n failed"; exit 1; }
+    models+=("$f")
+done
+for m in lost_empire/lost_empire.obj sports_car/sportsCar.obj bunny/bunny.obj; do
+    if [ -f "$S/$m" ]; then models+=("$S/$m"); else echo "   (no $S/$m: skipped)"; fi
+done
+cull=0
+"$BIN" --help 2>&1 | grep -q -- --cluster-cull && cull=1
+TIME=
+[ -x /usr/bin/time ] && TIME="/usr/bin/time -f rss_kb=%M"
+ms_of() { sed -n 's/.*median_ms=\([0-9.]*\).*/\1/p' | tail -n 1; }
+echo "-- scale: median ms of $repeat frames, eye 0.5,0.364,0.8 framed; auto's PSNR against --lod off"
+printf '  %-20s %-8s %2s %9s %9s %9s %8s %9s %6s %9s %7s %15s %5s\n' model size th load_ms rss_MB \
+    off_ms tris auto_ms PSNR cluster_ms speedup culled/tested bytes
+[ -n "$csv" ] && echo "model,size,threads,load_ms,rss_mb,off_ms,tris,auto_ms,auto_psnr,cluster_ms,speedup,culled_tested,same_bytes" > "$csv"
+for m in "${models[@]}"; do
+    name=$(basename "$m"); name=${name%.*}
+    for size in 160x96 640x480; do
+        for th in 1 2; do
+            cam=(--eye 0.5,0.364,0.8 --frame --size "$size" --threads "$th" --repeat "$repeat" --stats)
+            o=$D/$name.$size.$th
+            st=$($TIME "$BIN" render "$m" "${cam[@]}" --lod off --out "$o.off.ppm" \
+                --depth-out "$o.off.pfm" 2>&1) || { echo "  $name: render failed"; continue 3; }
+            off=$(ms_of <<<"$st")
+            load=$(sed -n 's/.*load_ms=\([0-9.]*\).*/\1/p' <<<"$st" | tail -n 1)
+            tris=$(sed -n 's/^tris in .* drawn \([0-9]*\).*/\1/p' <<<"$st" | tail -n 1)
+            rss=$(sed -n 's/^rss_kb=\([0-9]*\)/\1/p' <<<"$st")
+            rss=$([ -n "$rss" ] && awk -v k="$rss" 'BEGIN { printf "%.0f", k / 1024 }' || echo -)
+            st=$("$BIN" render "$m" "${cam[@]}" --lod auto --out "$o.auto.ppm" \
+                --depth-out "$o.auto.pfm" 2>&1)
+            auto=$(ms_of <<<"$st")
+            psnr=-
+            [ -x "$CMP" ] && psnr=$("$CMP" "$o.auto.ppm" "$o.auto.pfm" "$o.off.ppm" "$o.off.pfm" |
+                sed -n 's/.*psnr=\([0-9.inf]*\).*/\1/p')
+            nc=- sp=- eq=- cl=-
+            if [ $cull = 1 ]; then
+                st=$("$BIN" render "$m" "${cam[@]}" --lod off --cluster-cull on \
+                    --out "$o.nc.ppm" --depth-out "$o.nc.pfm" 2>&1)
+                nc=$(ms_of <<<"$st")
+                sp=$(awk -v a="$off" -v b="$nc" 'BEGIN { printf "%.2fx", a / b }')
+                cl=$(sed -n 's/^clusters: tested \([0-9]*\), culled \([0-9]*\).*/\2\/\1/p' <<<"$st")
+                eq=same
+                cmp -s "$o.nc.ppm" "$o.off.ppm" && cmp -s "$o.nc.pfm" "$o.off.pfm" || eq=DIFFER
+            fi
+            printf '  %-20s %-8s %2s %9s %9s %9s %8s %9s %6s %9s %7s %15s %5s\n' "$name" "$size" \
+                "$th" "$load" "$rss" "$off" "$tris" "$auto" "$psnr" "$nc" "$sp" "$cl" "$eq"
+            [ -n "$csv" ] && echo "$name,$size,$th,$load,$rss,$off,$tris,$auto,$psnr,$nc,$sp,$cl,$eq" >> "$csv"
+        done
+    done
+done

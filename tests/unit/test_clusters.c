@@ -1,0 +1,224 @@
+/* test_clusters.c: clusters (scene/cluster.h) and their culling (render/cluster_cull.h) —
+ * every cluster's box holds its triangles' corners and its cone their normals, the tree's
+ * nodes hold their children, and a frame drawn with --cluster-cull on is the same bytes as
+ * with it off, from hundreds of random views (inside the model, crossing the near plane,
+ * partly off screen, sub-pixel far away, orthographic, mirrored and stretched), every
+ * culling mode, both thread splits, with coplanar duplicate triangles whose order decides
+ * ties of depth; while clusters are dropped for every reason. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cluster.h"
+#include "pipeline.h"
+#include "test.h"
+
+/* a displaced sphere grid (rows x 2 rows, radius ~1), then its first `dup` triangles again
+ * with material 1 (the same positions: every pixel they cover is a tie of depth, which the
+ * file's order decides); material 0 red, 1 green and one-sided (glTF's rule under --cull
+ * auto: the mesh is MESH_SIDES_SOME) */
+static int bumpy(struct mesh *m, int rows, int dup)
+{
+    const int cols = 2 * rows, n_pos = (rows - 1) * cols + 2;
+    int n_tris = 4 * rows * (rows - 1);
+    float *pos = malloc((size_t)n_pos * 3 * sizeof *pos);
+    struct mesh_corner *c = malloc((size_t)(n_tris + dup) * 3 * sizeof *c);
+    uint16_t *mat = calloc((size_t)(n_tris + dup), sizeof *mat);
+    if (!pos || !c || !mat)
+        return -1;
+    for (int k = 0; k < n_pos; k++) {
+        double lat = k == 0 ? M_PI / 2 : k == n_pos - 1 ? -M_PI / 2
+                                                        : M_PI / 2 - M_PI * (1 + (k - 1) / cols) / rows;
+        double lon = k == 0 || k == n_pos - 1 ? 0 : 2 * M_PI * ((k - 1) % cols) / cols;
+        double r = 1 + 0.1 * sin(5 * lat) * cos(4 * lon) + 0.04 * sin(13 * lat + 1) * sin(11 * lon);
+        pos[3 * k] = (float)(r * cos(lat) * cos(lon));
+        pos[3 * k + 1] = (float)(r * sin(lat));
+        pos[3 * k + 2] = (float)(-r * cos(lat) * sin(lon));
+    }
+#define V(r, s) ((uint32_t)(1 + ((r) - 1) * cols + ((s) % cols)))
+    int t = 0;
+#define TRI(a, b, d)                                                                       \
+    c[3 * t] = (struct mesh_corner){a, MESH_NONE, MESH_NONE},                              \
+    c[3 * t + 1] = (struct mesh_corner){b, MESH_NONE, MESH_NONE},                          \
+    c[3 * t + 2] = (struct mesh_corner){d, MESH_NONE, MESH_NONE}, t++
+    for (int s = 0; s < cols; s++)
+        TRI(0, V(1, s), V(1, s + 1));
+    for (int r = 1; r < rows - 1; r++)
+        for (int s = 0; s < cols; s++) {
+            TRI(V(r, s), V(r + 1, s), V(r + 1, s + 1));
+            TRI(V(r, s), V(r + 1, s + 1), V(r, s + 1));
+        }
+    for (int s = 0; s < cols; s++)
+        TRI(V(rows - 1, s), (uint32_t)(n_pos - 1), V(rows - 1, s + 1));
+#undef TRI
+#undef V
+    for (int k = 0; k < dup; k++) {
+        memcpy(&c[3 * (t + k)], &c[3 * (k * 7 % t)], 3 * sizeof *c);
+        mat[t + k] = 1;
+    }
+    n_tris = t + dup;
+    struct mesh_source src = {.pos = pos, .n_pos = (uint32_t)n_pos, .corners = c,
+                              .tri_material = mat, .n_tris = (uint32_t)n_tris,
+                              .crease_set = true, .crease_deg = 180};
+    memset(m, 0, sizeof *m);
+    int rc = mesh_build(&src, m, NULL);
+    free(pos);
+    free(c);
+    free(mat);
+    if (rc)
+        return -1;
+    m->materials = calloc(2, sizeof *m->materials);
+    if (!m->materials)
+        return -1;
+    m->n_materials = 2;
+    for (int i = 0; i < 2; i++) {
+        m->materials[i].kd[i] = 1;
+        m->materials[i].ks[0] = m->materials[i].ks[1] = m->materials[i].ks[2] = 0.5f;
+        m->materials[i].ns = 32;
+        m->materials[i].texture = -1;
+    }
+    m->materials[1].sides = MAT_ONE_SIDED;
+    m->one_sided = MESH_SIDES_SOME;
+    return 0;
+}
+
+/* is p inside cluster c's box (exactly, in double)? */
+static bool in_box(const struct mesh_cluster *c, const float *p)
+{
+    double d[3] = {(double)p[0] - c->center[0], (double)p[1] - c->center[1],
+                   (double)p[2] - c->center[2]};
+    /* the axes are orthonormal to float rounding: coordinates by dot products, with the
+     * slack half[] was widened by */
+    for (int a = 0; a < 3; a++) {
+        double s = d[0] * c->axis[a][0] + d[1] * c->axis[a][1] + d[2] * c->axis[a][2];
+        if (fabs(s) > (double)c->half[a] * (1 + 1e-5) + 1e-6)
+            return false;
+    }
+    return true;
+}
+
+TEST(clusters_hold_their_triangles_and_the_tree_its_clusters)
+{
+    struct mesh m;
+    REQUIRE(bumpy(&m, 40, 300) == 0);
+    REQUIRE(cluster_build(&m) == 0);
+    const struct mesh_clusters *cs = m.clusters;
+    REQUIRE(cs && cs->n_leaves == (m.n_opaque + CLUSTER_MAX_TRIS - 1) / CLUSTER_MAX_TRIS);
+    CHECK_EQ_INT(cs->n, 2 * cs->n_leaves - 1); /* a binary tree */
+    CHECK_EQ_INT(cs->c[0].n_sub, m.n_opaque);
+    CHECK(cluster_bytes(&m) < (size_t)m.n_tris * 12); /* (less than the index buffer) */
+    uint32_t seen = 0, cones = 0;
+    for (uint32_t k = 0; k < cs->n; k++) {
+        const struct mesh_cluster *c = &cs->c[k];
+        if (!c->n_tris) {
+            CHECK(c->skip > k + 1 && c->skip <= cs->n);
+            continue;
+        }
+        CHECK_EQ_INT(cs->leaf[c->tri_first / CLUSTER_MAX_TRIS], k);
+        seen += c->n_tris;
+        bool vert_ok = true, box_ok = true, cone_ok = true;
+        for (uint32_t ti = c->tri_first; ti < c->tri_first + c->n_tris; ti++) {
+            for (int j = 0; j < 3; j++) {
+                uint32_t v = m.tris[ti][j];
+                bool in = false;
+                for (int r = 0; r < c->n_ranges; r++)
+                    in |= v >= cs->ranges[c->range_first + r][0] &&
+                          v < cs->ranges[c->range_first + r][1];
+                vert_ok &= in;
+                box_ok &= in_box(c, m.verts[v].pos);
+                /* every ancestor's box holds it too */
+                for (uint32_t a = 0; a < k; a++)
+                    if (cs->c[a].skip > k)
+                        box_ok &= in_box(&cs->c[a], m.verts[v].pos);
+            }
+            if (!(c->flags & CLUSTER_NO_CONE)) {
+                const float *p0 = m.verts[m.tris[ti][0]].pos, *p1 = m.verts[m.tris[ti][1]].pos,
+                            *p2 = m.verts[m.tris[ti][2]].pos;
+                vec3 n = v3_norm(v3_cross(v3(p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]),
+                                          v3(p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2])));
+                cone_ok &= v3_dot(n, v3(c->cone_axis[0], c->cone_axis[1], c->cone_axis[2])) >=
+                           c->cone_cos - 1e-6;
+            }
+        }
+        cones += !(c->flags & CLUSTER_NO_CONE);
+        CHECK(vert_ok);
+        CHECK(box_ok);
+        CHECK(cone_ok);
+    }
+    CHECK_EQ_INT(seen, m.n_opaque);
+    CHECK(cones > cs->n_leaves / 2);
+    mesh_free(&m);
+}
+
+static double rnd(unsigned *s, double lo, double hi)
+{
+    *s = *s * 1103515245u + 12345u;
+    return lo + (hi - lo) * ((*s >> 8) & 0xffffff) / 16777216.0;
+}
+
+TEST(cluster_culling_draws_the_same_bytes_from_every_view)
+{
+    struct mesh m;
+    REQUIRE(bumpy(&m, 48, 2000) == 0);
+    REQUIRE(cluster_build(&m) == 0);
+    struct pipeline *p = pipeline_new();
+    REQUIRE(p);
+    struct fb a, b;
+    REQUIRE(fb_init(&a, 80, 48, false, NULL) == 0 && fb_init(&b, 80, 48, false, NULL) == 0);
+    unsigned seed = 24;
+    uint64_t why[4] = {0, 0, 0, 0}, differ = 0, cases = 0, drawn = 0;
+    for (int view = 0; view < 160; view++) {
+        struct camera cam;
+        camera_default(&cam);
+        /* near (inside the bumps, through the near plane) to far (sub-pixel) */
+        double dist = view % 5 == 0 ? rnd(&seed, 0.6, 1.3) : exp(rnd(&seed, log(1.5), log(300)));
+        double th = rnd(&seed, 0, 2 * M_PI), el = rnd(&seed, -1.4, 1.4);
+        cam.eye = v3(dist * cos(el) * cos(th), dist * sin(el), dist * cos(el) * sin(th));
+        /* aimed off the centre: partly off screen */
+        cam.target = v3(rnd(&seed, -1.2, 1.2), rnd(&seed, -1.2, 1.2), rnd(&seed, -1.2, 1.2));
+        cam.fov_deg = rnd(&seed, 10, 90);
+        cam.near = view % 7 == 0 ? rnd(&seed, 0.2, 2) : 0.05;
+        cam.far = view % 11 == 0 ? dist : 1000;
+        if (view % 9 == 0)
+            cam.ortho_height = rnd(&seed, 0.05, 4);
+        struct draw_item item = {.mesh = &m, .model = m4_identity()};
+        if (view % 4 == 1) /* mirrored: every winding turns */
+            item.model = m4_scale(v3(-1, 1, 1));
+        if (view % 4 == 2) /* stretched and turned */
+            item.model = m4_mul(m4_rotate(v3(1, 2, 3), rnd(&seed, 0, 360)),
+                                m4_scale(v3(1, 0.3, 2)));
+        for (int cull = 0; cull < CULL_COUNT; cull++)
+            for (int split = SPLIT_TILES; split <= SPLIT_SLICES; split++) {
+                struct render_opts o;
+                render_opts_default(&o);
+                o.cull = (enum cull_mode)cull;
+                o.split = (enum thread_split)split;
+                o.threads = 2;
+                o.shade = view % 3 == 0 ? SHADE_FLAT : SHADE_PHONG;
+                struct frame_stats st = {0}, st_off = {0};
+                o.cluster_cull = CLUSTER_CULL_OFF;
+                REQUIRE(pipeline_draw(p, &item, 1, NULL, &cam, &o, &a, &st_off, NULL) == 0);
+                o.cluster_cull = CLUSTER_CULL_ON;
+                REQUIRE(pipeline_draw(p, &item, 1, NULL, &cam, &o, &b, &st, NULL) == 0);
+                cases++;
+                differ += memcmp(a.rgb, b.rgb, (size_t)a.w * a.h * 3) != 0 ||
+                          memcmp(a.depth, b.depth, (size_t)a.w * a.h * sizeof *a.depth) != 0;
+                why[1] += st.clusters_frustum, why[2] += st.clusters_facing;
+                why[3] += st.clusters_no_centre;
+                drawn += st.pixels_shaded > 0;
+                /* the triangles' account adds up either way */
+                CHECK_EQ_INT(st.tris_in, st_off.tris_in);
+                CHECK_EQ_INT(st.tris_drawn, st_off.tris_drawn);
+                CHECK_EQ_INT(st.clusters_tested, st.clusters_frustum + st.clusters_facing +
+                                                     st.clusters_no_centre + st.clusters_drawn);
+            }
+    }
+    CHECK_EQ_INT(differ, 0);
+    CHECK(cases == 160 * CULL_COUNT * 2);
+    CHECK(drawn > cases / 2); /* (most views see the model) */
+    CHECK(why[1] > 0 && why[2] > 0 && why[3] > 0); /* every reason dropped clusters */
+    pipeline_destroy(p);
+    fb_free(&a);
+    fb_free(&b);
+    mesh_free(&m);
+}
