@@ -123,6 +123,19 @@ static inline float light_pow(float x, float n)
     return x > 0 || n <= 0 ? powf(x, n) : 0; /* 0^n = 0 exactly (n > 0): skip the call */
 }
 
+/* one light's max(0, N.L) and max(0, N.H)^ns; l, n and v unit length, H = normalize(L+V) */
+static inline void light_one(const float l[3], const float n[3], const float v[3], float ns,
+                             float *dd, float *ss)
+{
+    float h[3] = {l[0] + v[0], l[1] + v[1], l[2] + v[2]};
+    float hl = sqrtf(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+    float ih = hl > 0 ? 1.0f / hl : 0;
+    float ndl = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];
+    float ndh = (n[0] * h[0] + n[1] * h[1] + n[2] * h[2]) * ih;
+    *dd = ndl > 0 ? ndl : 0;
+    *ss = light_pow(ndh > 0 ? ndh : 0, ns);
+}
+
 /* light_terms' sums for the first nc channels (1 with grey lights, else 3); the others
  * copy channel 0 */
 static inline void light_terms_channels(const struct light_env *env, const float n[3],
@@ -131,14 +144,9 @@ static inline void light_terms_channels(const struct light_env *env, const float
 {
     float d[3] = {0, 0, 0}, s[3] = {0, 0, 0};
     for (int i = 0; i < env->n; i++) {
-        const float *l = env->dir[i], *col = env->col[i];
-        float h[3] = {l[0] + v[0], l[1] + v[1], l[2] + v[2]};
-        float hl = sqrtf(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
-        float ih = hl > 0 ? 1.0f / hl : 0;
-        float ndl = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];
-        float ndh = (n[0] * h[0] + n[1] * h[1] + n[2] * h[2]) * ih;
-        float dd = ndl > 0 ? ndl : 0;
-        float ss = light_pow(ndh > 0 ? ndh : 0, ns);
+        const float *col = env->col[i];
+        float dd, ss;
+        light_one(env->dir[i], n, v, ns, &dd, &ss);
         for (int k = 0; k < nc; k++) {
             d[k] += dd * col[k];
             s[k] += ss * col[k];
@@ -181,14 +189,9 @@ static inline void light_terms_rich(const struct light_env *env, const float n[3
 {
     float d[3] = {0, 0, 0}, s[3] = {0, 0, 0};
     for (int i = 0; i < env->n; i++) {
-        const float *l = env->dir[i], *col = env->col[i];
-        float h[3] = {l[0] + v[0], l[1] + v[1], l[2] + v[2]};
-        float hl = sqrtf(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
-        float ih = hl > 0 ? 1.0f / hl : 0;
-        float ndl = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];
-        float ndh = (n[0] * h[0] + n[1] * h[1] + n[2] * h[2]) * ih;
-        float dd = ndl > 0 ? ndl : 0;
-        float ss = light_pow(ndh > 0 ? ndh : 0, ns);
+        const float *col = env->col[i];
+        float dd, ss;
+        light_one(env->dir[i], n, v, ns, &dd, &ss);
         if (pbr)
             ss *= dd;
         for (int k = 0; k < 3; k++) {
