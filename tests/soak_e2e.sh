@@ -13,7 +13,8 @@ if command -v stress >/dev/null; then
 else
     echo "(stress not installed: the runs go without load beside them)"
 fi
-trap '[ -n "$sp" ] && kill "$sp" 2>/dev/null; pkill -P "${sp:-0}" 2>/dev/null' EXIT
+# (its workers first: once the parent is gone they are no longer its children)
+trap '[ -n "$sp" ] && { pkill -P "$sp"; kill "$sp"; } 2>/dev/null' EXIT
 pass=0
 for i in $(seq "$runs"); do
     t0=$(date +%s)
