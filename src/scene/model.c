@@ -255,7 +255,7 @@ int model_parse_as(enum model_format f, const char *data, size_t len,
 {
     /* loaders always load textures through a cache (one decode per file, one budget);
      * without the caller's, a private one whose textures the mesh then owns */
-    struct texture_cache local = {0};
+    struct texture_cache local = {.solo = true};
     struct model_ctx c = *ctx;
     if (!c.cache)
         c.cache = &local;

@@ -3,6 +3,7 @@
 #include "texture.h"
 
 #include <errno.h>
+#include <pthread.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -62,40 +63,153 @@ static size_t texture_bytes(const struct texture *t)
     return n;
 }
 
+/* ---- the process's textures: one budget, each file decoded once ----------------------
+ * Every cache's texels count against one TEXTURE_BUDGET, and a file one cache decoded is
+ * shared with the others (the viewer's scenes): a record per file, counted by the caches
+ * that use it, freed by the last. The store and its byte count are the module's mutable
+ * state, behind one lock (scenes may be loaded from more than one thread). */
+struct texture_shared {
+    unsigned long long dev, ino;
+    long long size, mtime_s, mtime_ns; /* a file rewritten since is another file */
+    struct texture tex;
+    size_t bytes;
+    int refs;
+};
+
+static pthread_mutex_t store_lock = PTHREAD_MUTEX_INITIALIZER;
+static struct texture_shared **store;
+static int store_n, store_cap;
+static size_t store_bytes; /* texel bytes of every cache but solo ones */
+
+size_t texture_process_bytes(void)
+{
+    pthread_mutex_lock(&store_lock);
+    size_t n = store_bytes;
+    pthread_mutex_unlock(&store_lock);
+    return n;
+}
+
+static bool same_file(const struct texture_shared *r, const struct stat *st)
+{
+    return r->ino == (unsigned long long)st->st_ino && r->dev == (unsigned long long)st->st_dev &&
+           r->size == (long long)st->st_size && r->mtime_s == (long long)st->st_mtim.tv_sec &&
+           r->mtime_ns == (long long)st->st_mtim.tv_nsec;
+}
+
+/* the record of the file st names, one more reference to it; NULL when none (lock held) */
+static struct texture_shared *store_find(const struct stat *st)
+{
+    for (int i = 0; i < store_n; i++)
+        if (same_file(store[i], st)) {
+            store[i]->refs++;
+            return store[i];
+        }
+    return NULL;
+}
+
+/* (lock held) */
+static void store_release(struct texture_shared *r)
+{
+    if (--r->refs > 0)
+        return;
+    for (int i = 0; i < store_n; i++)
+        if (store[i] == r) {
+            store[i] = store[--store_n];
+            break;
+        }
+    store_bytes -= r->bytes;
+    texture_free(&r->tex);
+    free(r);
+    if (store_n == 0) {
+        free(store);
+        store = NULL;
+        store_cap = 0;
+    }
+}
+
+/* A new entry of c for t (taken over: freed on failure); shared (st not NULL, c not solo):
+ * recorded in the store for the other caches. Counted against the process's budget. */
 static struct texture_cache_entry *cache_add(struct texture_cache *c, struct texture *t,
-                                             unsigned long long dev, unsigned long long ino,
-                                             const char *name, struct err *e)
+                                             const struct stat *st, const char *name,
+                                             struct err *e)
 {
     size_t budget = c->budget ? c->budget : TEXTURE_BUDGET;
     size_t bytes = texture_bytes(t);
-    if (bytes > budget - c->bytes) {
+    struct texture_cache_entry *en = NULL;
+    struct texture_shared *r = NULL;
+    pthread_mutex_lock(&store_lock);
+    if (st && !c->solo && (r = store_find(st))) { /* decoded meanwhile by another thread */
         texture_free(t);
-        return err_set(e, "%s: texture would pass the %zu MiB texture budget (%zu MiB in use)",
-                       name, budget >> 20, c->bytes >> 20),
-               NULL;
+        bytes = r->bytes;
+    } else {
+        size_t used = store_bytes + (c->solo ? c->bytes : 0);
+        if (bytes > budget || used > budget - bytes) {
+            pthread_mutex_unlock(&store_lock);
+            texture_free(t);
+            return err_set(e, "%s: texture would pass the %zu MiB texture budget (%zu MiB in "
+                              "use)",
+                           name, budget >> 20, used >> 20),
+                   NULL;
+        }
     }
     if (c->n == c->cap) {
         int cap = c->cap ? c->cap * 2 : 8;
         struct texture_cache_entry **ne = realloc(c->entries, (size_t)cap * sizeof *ne);
-        if (!ne) {
-            texture_free(t);
-            return err_set(e, "%s: out of memory", name), NULL;
-        }
+        if (!ne)
+            goto oom;
         c->entries = ne;
         c->cap = cap;
     }
-    struct texture_cache_entry *en = malloc(sizeof *en);
-    if (!en) {
-        texture_free(t);
-        return err_set(e, "%s: out of memory", name), NULL;
+    if (!(en = malloc(sizeof *en)))
+        goto oom;
+    if (st && !c->solo && !r) {
+        if (store_n == store_cap) {
+            int cap = store_cap ? store_cap * 2 : 8;
+            struct texture_shared **ns = realloc(store, (size_t)cap * sizeof *ns);
+            if (!ns)
+                goto oom;
+            store = ns;
+            store_cap = cap;
+        }
+        if (!(r = malloc(sizeof *r)))
+            goto oom;
+        *r = (struct texture_shared){(unsigned long long)st->st_dev,
+                                     (unsigned long long)st->st_ino,
+                                     (long long)st->st_size,
+                                     (long long)st->st_mtim.tv_sec,
+                                     (long long)st->st_mtim.tv_nsec,
+                                     *t,
+                                     bytes,
+                                     1};
+        r->tex.borrowed = false;
+        store[store_n++] = r;
+        store_bytes += bytes;
+    } else if (!r && !c->solo) {
+        store_bytes += bytes; /* an embedded image: this cache's alone, counted */
     }
-    en->dev = dev;
-    en->ino = ino;
-    en->tex = *t;
-    en->tex.borrowed = false;
+    pthread_mutex_unlock(&store_lock);
+    en->dev = st ? (unsigned long long)st->st_dev : 0;
+    en->ino = st ? (unsigned long long)st->st_ino : 0;
+    en->shared = r;
+    en->bytes = bytes;
+    if (r) {
+        en->tex = r->tex;
+        en->tex.borrowed = true;
+    } else {
+        en->tex = *t;
+        en->tex.borrowed = false;
+    }
     c->entries[c->n++] = en;
     c->bytes += bytes;
     return en;
+oom:
+    if (r)
+        store_release(r);
+    pthread_mutex_unlock(&store_lock);
+    free(en);
+    if (!r)
+        texture_free(t);
+    return err_set(e, "%s: out of memory", name), NULL;
 }
 
 int texture_cache_load(struct texture_cache *c, const char *path, const struct texture **out,
@@ -104,19 +218,38 @@ int texture_cache_load(struct texture_cache *c, const char *path, const struct t
     char q[FILE_QUOTE_SIZE];
     *out = NULL;
     struct stat st;
-    if (stat(path, &st) == 0 && S_ISREG(st.st_mode))
+    bool have = stat(path, &st) == 0 && S_ISREG(st.st_mode) && st.st_ino;
+    if (have) {
         for (int i = 0; i < c->n; i++)
             if (c->entries[i]->ino == (unsigned long long)st.st_ino &&
-                c->entries[i]->dev == (unsigned long long)st.st_dev && c->entries[i]->ino) {
+                c->entries[i]->dev == (unsigned long long)st.st_dev) {
                 *out = &c->entries[i]->tex;
                 return 0;
             }
+        if (!c->solo) { /* another cache's (another scene): shared, not decoded again */
+            pthread_mutex_lock(&store_lock);
+            struct texture_shared *r = store_find(&st);
+            pthread_mutex_unlock(&store_lock);
+            if (r) {
+                struct texture t = r->tex;
+                t.borrowed = true; /* r's texels: cache_add frees only its copy */
+                struct texture_cache_entry *en =
+                    cache_add(c, &t, &st, file_quote(path, q, sizeof q), e);
+                pthread_mutex_lock(&store_lock);
+                store_release(r); /* cache_add took its own reference */
+                pthread_mutex_unlock(&store_lock);
+                if (!en)
+                    return -1;
+                *out = &en->tex;
+                return 0;
+            }
+        }
+    }
     struct texture t;
     if (texture_load(path, TEXTURE_MAX_SIDE, &t, w, e))
         return -1;
     struct texture_cache_entry *en =
-        cache_add(c, &t, (unsigned long long)st.st_dev, (unsigned long long)st.st_ino,
-                  file_quote(path, q, sizeof q), e);
+        cache_add(c, &t, have ? &st : NULL, file_quote(path, q, sizeof q), e);
     if (!en)
         return -1;
     *out = &en->tex;
@@ -135,7 +268,7 @@ int texture_cache_decode(struct texture_cache *c, const uint8_t *data, size_t le
     }
     if (!c)
         return 0;
-    struct texture_cache_entry *en = cache_add(c, out, 0, 0, name, e);
+    struct texture_cache_entry *en = cache_add(c, out, NULL, name, e);
     if (!en) {
         memset(out, 0, sizeof *out);
         return -1;
@@ -147,10 +280,19 @@ int texture_cache_decode(struct texture_cache *c, const uint8_t *data, size_t le
 
 void texture_cache_free(struct texture_cache *c)
 {
+    pthread_mutex_lock(&store_lock);
     for (int i = 0; i < c->n; i++) {
-        texture_free(&c->entries[i]->tex);
-        free(c->entries[i]);
+        struct texture_cache_entry *en = c->entries[i];
+        if (en->shared) {
+            store_release(en->shared);
+        } else {
+            if (!c->solo)
+                store_bytes -= en->bytes;
+            texture_free(&en->tex);
+        }
+        free(en);
     }
+    pthread_mutex_unlock(&store_lock);
     free(c->entries);
     memset(c, 0, sizeof *c);
 }

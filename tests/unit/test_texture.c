@@ -9,6 +9,9 @@
 #include <time.h>
 #include <unistd.h>
 
+#include <fcntl.h>
+#include <sys/stat.h>
+
 #include <stb_image.h>
 #include <stb_image_write.h>
 
@@ -615,4 +618,66 @@ TEST(truncated_jpeg_is_a_warning)
     CHECK(w.n == 1 && strstr(w.msg[0], "t: damaged or truncated JPEG (Premature end of JPEG"));
     free(tx.rgba);
     free(buf);
+}
+
+/* issue 25, item 18: the budget was per cache (per scene), so six scenes naming the same six
+ * 4096^2 textures held 3.1 GB; now one budget for the process, and a file another cache
+ * decoded is shared with it, counted once, not decoded again */
+TEST(texture_budget_is_per_process_and_files_are_shared_across_caches)
+{
+    char a[64], b[64], want_msg[200];
+    snprintf(a, sizeof a, "/tmp/rastty-share-a-%d.png", (int)getpid());
+    snprintf(b, sizeof b, "/tmp/rastty-share-b-%d.png", (int)getpid());
+    static uint8_t grey[256 * 256];
+    memset(grey, 200, sizeof grey);
+    REQUIRE(stbi_write_png(a, 256, 256, 1, grey, 256) != 0);
+    memset(grey, 100, sizeof grey);
+    REQUIRE(stbi_write_png(b, 256, 256, 1, grey, 256) != 0);
+    size_t one = 0; /* a 256x256 texture and its mips */
+    for (size_t side = 256; side >= 1; side /= 2)
+        one += side * side * 4;
+    size_t before = texture_process_bytes();
+    /* room for one and a half textures: two scenes may not hold one each */
+    struct texture_cache s1 = {.budget = before + one + one / 2};
+    struct texture_cache s2 = {.budget = s1.budget}, s3 = {.budget = s1.budget};
+    const struct texture *t1, *t2, *t3;
+    struct err e;
+    REQUIRE(texture_cache_load(&s1, a, &t1, NULL, &e) == 0);
+    CHECK_EQ_INT(texture_process_bytes() - before, one);
+    CHECK_EQ_INT(texture_cache_load(&s2, b, &t2, NULL, &e), -1);
+    snprintf(want_msg, sizeof want_msg, "%s: texture would pass the %zu MiB texture budget",
+             b, s1.budget >> 20);
+    CHECK_STR_CONTAINS(e.msg, want_msg);
+    /* the same file in another scene: the first scene's texels, counted once */
+    REQUIRE(texture_cache_load(&s2, a, &t2, NULL, &e) == 0);
+    CHECK(t2->rgba == t1->rgba);
+    CHECK_EQ_INT(t2->rgba[0], 200);
+    CHECK_EQ_INT(s2.bytes, one);
+    CHECK_EQ_INT(texture_process_bytes() - before, one);
+    /* the scene that decoded it goes: the texels stay for the other */
+    texture_cache_free(&s1);
+    CHECK_EQ_INT(texture_process_bytes() - before, one);
+    CHECK_EQ_INT(t2->rgba[0], 200);
+    REQUIRE(texture_cache_load(&s3, a, &t3, NULL, &e) == 0);
+    CHECK(t3->rgba == t2->rgba);
+    texture_cache_free(&s2);
+    texture_cache_free(&s3);
+    CHECK_EQ_INT(texture_process_bytes(), before);
+    /* a file rewritten since is decoded again (same inode, new size and time) */
+    struct texture_cache s4 = {0}, s5 = {0};
+    REQUIRE(texture_cache_load(&s4, a, &t1, NULL, &e) == 0);
+    FILE *f = fopen(a, "r+b");
+    REQUIRE(f);
+    REQUIRE(fseek(f, 0, SEEK_END) == 0 && fputc(0, f) == 0);
+    fclose(f);
+    struct timespec ts[2] = {{0, UTIME_NOW}, {1, 0}};
+    REQUIRE(utimensat(AT_FDCWD, a, ts, 0) == 0);
+    REQUIRE(texture_cache_load(&s5, a, &t2, NULL, &e) == 0);
+    CHECK(t2->rgba != t1->rgba);
+    CHECK_EQ_INT(texture_process_bytes() - before, 2 * one);
+    texture_cache_free(&s4);
+    texture_cache_free(&s5);
+    CHECK_EQ_INT(texture_process_bytes(), before);
+    remove(a);
+    remove(b);
 }
