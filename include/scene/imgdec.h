@@ -17,6 +17,11 @@
  *     PNG, JPEG, PNM and HDR are downscaled while decoding, so memory stays near the output
  *     size; TGA/BMP/PSD/GIF (decoded whole) and interlaced PNGs above
  *     IMGDEC_MAX_WHOLE (4096) per side are refused instead;
+ *   - a progressive (or multi-scan) JPEG is the exception: libjpeg keeps all its DCT
+ *     coefficients at full size whatever the scaling (2 bytes per pixel and component:
+ *     768 MiB for 16384^2 4:2:0); it gets that memory when half of MemAvailable holds it,
+ *     else it is refused naming its size and the need ("p.jpg: progressive JPEG of
+ *     16384x16384 needs 768 MiB to decode, more than half of the ... available");
  *   - a file whose pixel data is shorter than its header's dimensions need is refused
  *     (truncated), before decoding where the format allows it (PNM, flat HDR).
  * HDR images are tone-mapped (Reinhard x/(1+x), then gamma 1/2.2) to 8 bits per channel.

@@ -16,6 +16,12 @@
 
 #define JPEG_MAX_SCANS 200               /* progressive JPEGs: more scans is a CPU bomb */
 #define JPEG_MAX_MEMORY (256L << 20)     /* libjpeg's own working memory */
+/* A progressive JPEG is decoded from all its coefficients at once (2 bytes per pixel and
+ * component at full size, whatever the DCT scaling: a 16384^2 4:2:0 file needs 768 MiB,
+ * 4:4:4 1.5 GiB), more than JPEG_MAX_MEMORY: its coefficient buffer gets what it needs when
+ * half of MemAvailable holds it. Tests scale both down (MiB): */
+#define JPEG_MEMORY_ENV "RASTTY_TEST_JPEG_MEMORY_MIB"  /* for JPEG_MAX_MEMORY */
+#define MEMAVAILABLE_ENV "RASTTY_TEST_MEMAVAILABLE_MIB" /* for /proc/meminfo's */
 #define PNG_MAX_CHUNK (16L << 20)        /* ancillary chunks (iCCP, zTXt, ...) */
 
 /* ---- the row sink: box filter by an integer factor ------------------------------------ */
@@ -311,6 +317,55 @@ static void jpeg_on_progress(j_common_ptr cinfo)
     }
 }
 
+/* a test's value in MiB from the environment, else dflt (bytes) */
+static long long env_mib(const char *var, long long dflt)
+{
+    const char *v = getenv(var);
+    char *end;
+    long long n = v && *v ? strtoll(v, &end, 10) : -1;
+    return n >= 0 && v && *end == '\0' && n < (1LL << 40) ? n << 20 : dflt;
+}
+
+/* MemAvailable in bytes (the kernel's estimate of what can be allocated without swapping);
+ * -1 when unknown */
+static long long mem_available(void)
+{
+    long long test = env_mib(MEMAVAILABLE_ENV, -1);
+    if (test >= 0)
+        return test;
+    FILE *f = fopen("/proc/meminfo", "r");
+    if (!f)
+        return -1;
+    char line[128];
+    long long kb = -1;
+    while (fgets(line, sizeof line, f))
+        if (sscanf(line, "MemAvailable: %lld kB", &kb) == 1)
+            break;
+    fclose(f);
+    return kb >= 0 ? kb * 1024 : -1;
+}
+
+/* The bytes of a progressive JPEG's coefficient buffer (libjpeg's whole-image virtual
+ * arrays: each component's blocks, rounded up to its sampling factors, 128 bytes each) */
+static long long jpeg_coef_bytes(const struct jpeg_decompress_struct *d)
+{
+    int mh = 1, mv = 1;
+    for (int i = 0; i < d->num_components; i++) {
+        mh = d->comp_info[i].h_samp_factor > mh ? d->comp_info[i].h_samp_factor : mh;
+        mv = d->comp_info[i].v_samp_factor > mv ? d->comp_info[i].v_samp_factor : mv;
+    }
+    long long n = 0;
+    for (int i = 0; i < d->num_components; i++) {
+        long long h = d->comp_info[i].h_samp_factor, v = d->comp_info[i].v_samp_factor;
+        long long bw = ((long long)d->image_width * h + mh * 8 - 1) / (mh * 8);
+        long long bh = ((long long)d->image_height * v + mv * 8 - 1) / (mv * 8);
+        bw = (bw + h - 1) / h * h;
+        bh = (bh + v - 1) / v * v;
+        n += bw * bh * (long long)sizeof(JBLOCK);
+    }
+    return n;
+}
+
 static int decode_jpeg(const uint8_t *data, size_t len, const char *name, int max_side,
                        struct imgdec_image *out, struct warnings *w, struct err *e)
 {
@@ -330,7 +385,8 @@ static int decode_jpeg(const uint8_t *data, size_t len, const char *name, int ma
         goto done;
     }
     jpeg_create_decompress(d);
-    d->mem->max_memory_to_use = JPEG_MAX_MEMORY;
+    long long base = env_mib(JPEG_MEMORY_ENV, JPEG_MAX_MEMORY);
+    d->mem->max_memory_to_use = (long)base;
     c->progress.progress_monitor = jpeg_on_progress;
     d->progress = &c->progress;
     jpeg_mem_src(d, data, (unsigned long)len);
@@ -338,6 +394,21 @@ static int decode_jpeg(const uint8_t *data, size_t len, const char *name, int ma
     int iw = (int)d->image_width, ih = (int)d->image_height;
     if (too_big(name, iw, ih, e))
         goto done;
+    /* (a baseline file whose components come in scans of their own needs them all too) */
+    if (d->progressive_mode || d->comps_in_scan < d->num_components) {
+        long long coef = jpeg_coef_bytes(d);
+        if (coef > base / 2) { /* (the rest of the working memory stays as it was) */
+            long long avail = mem_available();
+            if (avail >= 0 && coef > avail / 2) {
+                err_set(e, "%s: %s JPEG of %dx%d needs %lld MiB to decode, more than half of "
+                           "the %lld MiB of memory available (save it as a baseline JPEG or "
+                           "PNG)",
+                        name, d->progressive_mode ? "progressive" : "multi-scan", iw, ih, (coef + (1 << 20) - 1) >> 20, avail >> 20);
+                goto done;
+            }
+            d->mem->max_memory_to_use = (long)(coef + base);
+        }
+    }
     /* let the decoder scale by 1/2, 1/4, 1/8 (cheap: fewer DCT coefficients); the box
      * filter does the rest */
     unsigned denom = 1, mw = (unsigned)max_side;

@@ -681,3 +681,84 @@ TEST(texture_budget_is_per_process_and_files_are_shared_across_caches)
     remove(a);
     remove(b);
 }
+
+/* a w x h JPEG (a gradient with a checker in blue) in memory; progressive or baseline */
+static unsigned char *jpeg_make(int w, int h, bool progressive, unsigned long *n)
+{
+    struct jpeg_compress_struct c;
+    struct jpeg_error_mgr jerr;
+    c.err = jpeg_std_error(&jerr);
+    jpeg_create_compress(&c);
+    unsigned char *buf = NULL;
+    *n = 0;
+    jpeg_mem_dest(&c, &buf, n);
+    c.image_width = (JDIMENSION)w, c.image_height = (JDIMENSION)h;
+    c.input_components = 3, c.in_color_space = JCS_RGB;
+    jpeg_set_defaults(&c);
+    if (progressive)
+        jpeg_simple_progression(&c);
+    jpeg_start_compress(&c, TRUE);
+    uint8_t *row = malloc((size_t)w * 3);
+    for (int y = 0; y < h; y++) {
+        for (int x = 0; x < w; x++) {
+            row[3 * x] = (uint8_t)(x * 255 / w);
+            row[3 * x + 1] = (uint8_t)(y * 255 / h);
+            row[3 * x + 2] = ((x / 64 + y / 64) & 1) ? 200 : 0;
+        }
+        JSAMPROW r = row;
+        jpeg_write_scanlines(&c, &r, 1);
+    }
+    free(row);
+    jpeg_finish_compress(&c);
+    jpeg_destroy_compress(&c);
+    return buf;
+}
+
+/* issue 25, item 17: a 16384^2 progressive JPEG was refused ('Backing store not supported':
+ * libjpeg keeps all its coefficients, 768 MiB, past the 256 MiB cap) although the README
+ * says such images are downscaled. Scaled down here: a 1 MiB cap, a 1024^2 file whose
+ * coefficients take 3 MiB */
+TEST(progressive_jpeg_gets_the_memory_its_coefficients_need)
+{
+    unsigned long n, nb;
+    unsigned char *prog = jpeg_make(1024, 1024, true, &n);
+    unsigned char *base = jpeg_make(1024, 1024, false, &nb);
+    struct texture tp, tb;
+    struct err e;
+    struct warnings w;
+    setenv("RASTTY_TEST_JPEG_MEMORY_MIB", "1", 1);
+    /* decoded, the same picture as the baseline file's within JPEG's loss */
+    if (decode(prog, n, &tp, &w, &e) != 0) {
+        test_fail(t, __FILE__, __LINE__, "%s", e.msg);
+    } else {
+        CHECK_EQ_INT(w.n, 0);
+        CHECK(tp.w == 1024 && tp.h == 1024);
+        REQUIRE(decode(base, nb, &tb, &w, &e) == 0);
+        long worst = 0;
+        for (size_t i = 0; i < (size_t)1024 * 1024 * 4; i++) {
+            long dv = labs((long)tp.rgba[i] - (long)tb.rgba[i]);
+            worst = dv > worst ? dv : worst;
+        }
+        CHECK(worst < 48);
+        CHECK(tp.rgba[((size_t)30 * 1024 + 100) * 4 + 2] > 150); /* the checker's blue */
+        free(tb.rgba);
+        free(tp.rgba);
+    }
+    /* more than half of the memory available: one line, the size and the need */
+    setenv("RASTTY_TEST_MEMAVAILABLE_MIB", "4", 1);
+    CHECK_EQ_INT(decode(prog, n, &tp, &w, &e), -1);
+    CHECK(strcmp(e.msg, "t: progressive JPEG of 1024x1024 needs 3 MiB to decode, more than "
+                        "half of the 4 MiB of memory available (save it as a baseline JPEG or "
+                        "PNG)") == 0);
+    setenv("RASTTY_TEST_MEMAVAILABLE_MIB", "8", 1);
+    REQUIRE(decode(prog, n, &tp, &w, &e) == 0);
+    free(tp.rgba);
+    /* a baseline file needs no more than its rows */
+    setenv("RASTTY_TEST_MEMAVAILABLE_MIB", "0", 1);
+    REQUIRE(decode(base, nb, &tb, &w, &e) == 0);
+    free(tb.rgba);
+    unsetenv("RASTTY_TEST_MEMAVAILABLE_MIB");
+    unsetenv("RASTTY_TEST_JPEG_MEMORY_MIB");
+    free(prog);
+    free(base);
+}
