@@ -121,6 +121,8 @@ struct gl {
     const char *where;
     struct err *e;
     size_t json_at; /* the JSON's offset in the file (GLB: 20) */
+    const char *json; /* the JSON text, json_len bytes (for line and column in messages) */
+    size_t json_len;
     struct json_doc doc;
     const struct json *root;
     const struct json *accessors, *views, *buffers, *meshes, *nodes, *materials, *textures,
@@ -158,15 +160,33 @@ struct gl {
 
 static int gfail(struct gl *G, const struct json *at, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
+/* "byte N" of the file for offset `at` of the JSON text; in a JSON of several lines also
+ * "(line L, column C)", as an editor counts them (from 1, bytes) */
+static const char *json_where(const struct gl *G, size_t at, char *buf, size_t n)
+{
+    size_t line = 1, col = 1;
+    for (size_t i = 0; G->json && i < at && i < G->json_len; i++)
+        if (G->json[i] == '\n')
+            line++, col = 1;
+        else
+            col++;
+    bool lines = G->json && memchr(G->json, '\n', G->json_len) != NULL;
+    if (lines)
+        snprintf(buf, n, "byte %zu (line %zu, column %zu)", G->json_at + at, line, col);
+    else
+        snprintf(buf, n, "byte %zu", G->json_at + at);
+    return buf;
+}
+
 static int gfail(struct gl *G, const struct json *at, const char *fmt, ...)
 {
-    char msg[256];
+    char msg[256], w[80];
     va_list ap;
     va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
     if (at)
-        return err_set(G->e, "%s: byte %zu: %s", G->where, G->json_at + at->at, msg);
+        return err_set(G->e, "%s: %s: %s", G->where, json_where(G, at->at, w, sizeof w), msg);
     return err_set(G->e, "%s: %s", G->where, msg);
 }
 
@@ -1880,13 +1900,16 @@ static int read_all(struct gl *G, const char *data, size_t len, struct mesh *out
     if (container(G, (const uint8_t *)data, len, &json, &jlen))
         return -1;
     struct err je;
+    G->json = json;
+    G->json_len = jlen;
     if (json_parse(json, jlen, &G->doc, &je)) {
         /* "byte N: ..." of the JSON text, as an offset in the file */
         size_t at;
         const char *rest;
+        char w[80];
         if (sscanf(je.msg, "byte %zu", &at) == 1 && (rest = strchr(je.msg, ':')))
-            return err_set(G->e, "%s: byte %zu: not valid JSON:%s", G->where, at + G->json_at,
-                           rest + 1);
+            return err_set(G->e, "%s: %s: not valid JSON:%s", G->where,
+                           json_where(G, at, w, sizeof w), rest + 1);
         return err_set(G->e, "%s: not valid JSON: %s", G->where, je.msg);
     }
     G->root = G->doc.root;
@@ -1913,6 +1936,16 @@ static int read_all(struct gl *G, const char *data, size_t len, struct mesh *out
     G->samplers = json_get(G->root, "samplers");
     G->cameras = json_get(G->root, "cameras");
     G->skins = json_get(G->root, "skins");
+    /* a top-level collection that is no array was read as none ("meshes": 7 said "no
+     * triangles (the file has no meshes)"): named where it is */
+    static const char *const lists[] = {"accessors", "bufferViews", "buffers", "meshes",
+                                        "nodes",     "materials",   "textures", "images",
+                                        "samplers",  "cameras",     "skins",    "scenes"};
+    for (size_t i = 0; i < sizeof lists / sizeof *lists; i++) {
+        const struct json *l = json_get(G->root, lists[i]);
+        if (l && l->type != JSON_ARRAY)
+            return gfail(G, l, "\"%s\" must be an array", lists[i]);
+    }
     G->n_buf = json_len(G->buffers);
     uint32_t n_nodes = json_len(G->nodes), n_views = json_len(G->views);
     G->n_mats = json_len(G->materials);

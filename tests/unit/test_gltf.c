@@ -685,8 +685,19 @@ TEST(gltf_json_errors_name_the_byte)
     struct mesh m;
     struct err e;
     CHECK_EQ_INT(gb_load(bad, strlen(bad), NULL, &m, NULL, &e), -1);
-    CHECK(strcmp(e.msg, "<memory>: byte 39: not valid JSON: a value (object, array, string, "
-                        "number, true, false or null), got '}'") == 0);
+    /* issue 25: a JSON of several lines is named by line and column too */
+    CHECK(strcmp(e.msg, "<memory>: byte 39 (line 2, column 12): not valid JSON: a value "
+                        "(object, array, string, number, true, false or null), got '}'") == 0);
+    /* a glTF error after parsing, in a file of several lines: the member's line */
+    static const char wrong[] = "{\n  \"asset\": {\"version\": \"3.0\"}\n}\n";
+    CHECK_EQ_INT(gb_load(wrong, strlen(wrong), NULL, &m, NULL, &e), -1);
+    CHECK(strcmp(e.msg, "<memory>: byte 25 (line 2, column 24): glTF version '3.0' (rastty "
+                        "reads 2.x)") == 0);
+    /* a collection that is no array was taken for none: "no triangles" */
+    static const char notarr[] = "{\n  \"asset\": {\"version\": \"2.0\"},\n  \"meshes\": 7\n}\n";
+    CHECK_EQ_INT(gb_load(notarr, strlen(notarr), NULL, &m, NULL, &e), -1);
+    CHECK(strcmp(e.msg, "<memory>: byte 45 (line 3, column 13): \"meshes\" must be an array") ==
+          0);
     static const char none[] = "{\"asset\":{\"version\":\"2.0\"},\"meshes\":[]}";
     CHECK_EQ_INT(gb_load(none, strlen(none), NULL, &m, NULL, &e), -1);
     CHECK_STR_CONTAINS(e.msg, "no triangles (the file has no meshes)");
