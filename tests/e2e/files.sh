@@ -168,4 +168,34 @@ PY
 }
 check sky_faces_say_what_is_wrong_and_when_downscaled sky_faces
 
+# A glTF reads no file outside its folder tree unless --allow-outside (issue 25 item 19):
+# buffers named by .., an absolute path, a file: URI, percent-encoded dots and slashes, a
+# subfolder's .., a symbolic link to a file or a folder outside are refused (exit 2); images
+# so named are a warning and the model draws without them, never with the outside texels.
+centre() { /usr/bin/python3 -c '
+import sys
+d = open(sys.argv[1], "rb").read().split(b"\n", 3)
+w, h = map(int, d[1].split()); p = d[3]; i = 3 * ((h // 2) * w + w // 2)
+print(p[i], p[i + 1], p[i + 2])' "$1"; }
+confined() {
+    local d=$D/confine c; rm -rf $d; mkdir -p $d
+    /usr/bin/python3 tests/e2e/lib/confine.py $d || return 1
+    local m=$d/model
+    for c in dotdot absolute percent_slash percent_dots percent_all deep link dir_link; do
+        quick 2 "/$c.gltf: byte [0-9]+: buffer 0: '[^']*': outside the model's folder \(--allow-outside reads it\)\$" "$BIN" render $m/$c.gltf --out $d/x.ppm || return 1
+    done
+    for c in file_uri file_relative; do
+        quick 2 "/$c.gltf: byte [0-9]+: buffer 0: 'file:[^']*': file: URIs are not read" "$BIN" render $m/$c.gltf --out $d/x.ppm || return 1
+    done
+    for c in img_dotdot img_absolute img_link img_percent; do
+        quick 0 "^warning: .*/$c.gltf: image 0 '[^']*': outside the model's folder \(--allow-outside reads it\); drawn without it\$" "$BIN" render $m/$c.gltf --size 32x32 --out $d/x.ppm || return 1
+        [ "$(centre $d/x.ppm)" = "255 255 255" ] || { echo "centre $(centre $d/x.ppm)"; return 1; }
+    done
+    quick 0 - "$BIN" render $m/inside.gltf --out $d/x.ppm || return 1
+    quick 0 - "$BIN" render $m/dotdot.gltf --allow-outside --out $d/x.ppm || return 1
+    quick 0 - "$BIN" render $m/img_link.gltf --allow-outside --size 32x32 --out $d/x.ppm || return 1
+    [ "$(centre $d/x.ppm)" = "0 255 0" ] || { echo "centre with --allow-outside $(centre $d/x.ppm)"; return 1; }
+}
+check gltf_reads_nothing_outside_its_folder confined
+
 finish
