@@ -152,8 +152,11 @@ int cmd_dump(const struct options *o, struct err *e)
         path_free(&cp);
         return 2;
     }
-    struct scene scene;
-    if (prepare_scene(o, o->inputs[0], &scene, NULL, 0, e)) {
+    struct scene *scene = malloc(sizeof *scene); /* ~28 KB: off the stack, as render's */
+    if (!scene || prepare_scene(o, o->inputs[0], scene, NULL, 0, e)) {
+        if (!scene)
+            err_set(e, "out of memory");
+        free(scene);
         path_free(&cp);
         return 2;
     }
@@ -163,7 +166,7 @@ int cmd_dump(const struct options *o, struct err *e)
     struct camera cam;
     struct render_opts ro;
     struct cell_geom geom = cell_geom(o->glyphs);
-    prepare_camera(o, &scene, cols * CELL_ASPECT / rows, o->frame, &cam, &ro);
+    prepare_camera(o, scene, cols * CELL_ASPECT / rows, o->frame, &cam, &ro);
     /* a dump is what the viewer shows: its light, the headlight, unless --light X,Y,Z (or the
      * config file's light = world); render keeps the conventions' fixed light */
     bool headlight = o->light_camera || (!o->light_set && !o->light_world);
@@ -185,7 +188,7 @@ int cmd_dump(const struct options *o, struct err *e)
     struct skybox tmp = {0};
     const struct skybox *sky;
     struct pipeline *p = pipeline_new();
-    if (prepare_sky(o, &scene, &ro, &tmp, &sky, e))
+    if (prepare_sky(o, scene, &ro, &tmp, &sky, e))
         goto done;
     if (!p) {
         err_set(e, "out of memory");
@@ -211,7 +214,7 @@ int cmd_dump(const struct options *o, struct err *e)
         if (headlight) /* the headlight follows the camera */
             light_use_camera(&ro, &c);
         struct frame_stats st;
-        if (ssaa_draw(&ss, p, scene.items, scene.n_items, sky, &c, &ro, &fb, &st, e))
+        if (ssaa_draw(&ss, p, scene->items, scene->n_items, sky, &c, &ro, &fb, &st, e))
             goto done;
         eo.diff = o->diff && k > 0;
         size_t n;
@@ -260,7 +263,8 @@ done:
     ssaa_free(&ss);
     pipeline_destroy(p);
     skybox_free(&tmp);
-    scene_free(&scene);
+    scene_free(scene);
+    free(scene);
     path_free(&cp);
     return rc;
 }

@@ -23,17 +23,22 @@ int cmd_render(const struct options *o, struct err *e)
     if (!image_color_ext_ok(o->out))
         return err_set(e, "rastty render: --out %s: use a .ppm or .png file name",
                        file_quote(o->out, q, sizeof q)), 2;
-    struct scene scene;
+    /* a scene is ~28 KB: on the heap, so a 64 KiB stack (ulimit -s 64) holds the frame */
+    struct scene *scene = malloc(sizeof *scene);
+    if (!scene)
+        return err_set(e, "out of memory"), 2;
     double l0 = timing_now_ms();
-    if (prepare_scene(o, o->inputs[0], &scene, NULL, 0, e))
+    if (prepare_scene(o, o->inputs[0], scene, NULL, 0, e)) {
+        free(scene);
         return 2;
+    }
     double load_ms = timing_now_ms() - l0;
     struct camera cam;
     struct render_opts ro;
     /* --glyphs: the pixels are that glyph set's (cell.h), as a terminal would show them */
     struct cell_geom geom = cell_geom(o->glyphs);
     double pixel_aspect = cell_pixel_aspect(&geom); /* 1: half blocks' pixels are square */
-    prepare_camera(o, &scene, (double)o->width * pixel_aspect / o->height, o->frame, &cam, &ro);
+    prepare_camera(o, scene, (double)o->width * pixel_aspect / o->height, o->frame, &cam, &ro);
     struct fb fb;
     struct ssaa ss = {0};
     struct pipeline *p = pipeline_new();
@@ -46,14 +51,14 @@ int cmd_render(const struct options *o, struct err *e)
         err_set(e, "out of memory");
     else if (!(ms = malloc((size_t)o->repeat * sizeof *ms)))
         err_set(e, "out of memory");
-    else if (prepare_sky(o, &scene, &ro, &tmp, &sky, e) == 0 &&
+    else if (prepare_sky(o, scene, &ro, &tmp, &sky, e) == 0 &&
              fb_init(&fb, o->width, o->height, ro.view == VIEW_OVERDRAW, e) == 0) {
         fb.pixel_aspect = pixel_aspect;
         if (o->light_camera) /* after the sky: its sun stays toward the world light */
             light_use_camera(&ro, &cam);
         int drawn = 0;
         for (; drawn < o->repeat; drawn++) { /* --repeat: the same frame again, for timing */
-            if (ssaa_draw(&ss, p, scene.items, scene.n_items, sky, &cam, &ro, &fb, &st, e))
+            if (ssaa_draw(&ss, p, scene->items, scene->n_items, sky, &cam, &ro, &fb, &st, e))
                 break;
             ms[drawn] = st.render_ms;
         }
@@ -79,6 +84,7 @@ int cmd_render(const struct options *o, struct err *e)
     ssaa_free(&ss);
     pipeline_destroy(p);
     skybox_free(&tmp);
-    scene_free(&scene);
+    scene_free(scene);
+    free(scene);
     return rc;
 }

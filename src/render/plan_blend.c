@@ -58,9 +58,15 @@ int plan_blend_draw(struct frontend *fe, struct span_ctx *ctx, const struct kern
         }
     }
     qsort(b, n, sizeof *b, farthest_first);
-    struct frame f;
-    frame_init(&f, cam, o, ks, fb, stats);
-    frontend_begin(fe, &f, NULL, ctx, 1);
+    struct frame *f = malloc(sizeof *f); /* ~11 KB: off the stack, as plan_tiles' */
+    if (!f) {
+        free(b);
+        free(tris);
+        free(mats);
+        return err_set(e, "out of memory for a frame");
+    }
+    frame_init(f, cam, o, ks, fb, stats);
+    frontend_begin(fe, f, NULL, ctx, 1);
     int rc = 0;
     /* each item's vertices once, then its triangles run by run in the sorted order */
     struct vertex_out *vo[SCENE_MAX_ITEMS] = {NULL};
@@ -72,8 +78,8 @@ int plan_blend_draw(struct frontend *fe, struct span_ctx *ctx, const struct kern
             rc = -1;
             break;
         }
-        frame_item(&f, &items[it], pv);
-        f.k->vertex_run(m, &f.u, vo[it], 0, m->n_verts);
+        frame_item(f, &items[it], pv);
+        f->k->vertex_run(m, &f->u, vo[it], 0, m->n_verts);
     }
     for (size_t i = 0; i < n && rc == 0;) {
         const int it = b[i].item;
@@ -88,15 +94,16 @@ int plan_blend_draw(struct frontend *fe, struct span_ctx *ctx, const struct kern
         run.tri_material = mats;
         run.n_tris = run.n_opaque = (uint32_t)(j - i);
         run.clusters = NULL; /* (the mesh's are of its own order) */
-        frame_item(&f, &items[it], pv);
-        rc = frontend_triangles(fe, &f, &items[it], &run, vo[it], false, 0, run.n_tris,
+        frame_item(f, &items[it], pv);
+        rc = frontend_triangles(fe, f, &items[it], &run, vo[it], false, 0, run.n_tris,
                                 m->n_verts, e);
         i = j;
     }
     if (rc == 0)
-        rc = frontend_finish(fe, &f, e);
+        rc = frontend_finish(fe, f, e);
     else
-        frontend_abandon(fe, &f);
+        frontend_abandon(fe, f);
+    free(f);
     stats->pixels_tested += ctx->tested;
     stats->pixels_shaded += ctx->shaded;
     free(b);

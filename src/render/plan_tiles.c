@@ -42,22 +42,26 @@ int plan_tiles_draw(struct plan_tiles *t, struct workers *w, const struct kernel
     if (contexts(t, threads, e))
         return -1;
     frame_clear(w, fb, o->background);
-    struct frame f;
-    frame_init(&f, cam, o, ks, fb, stats);
-    frontend_begin(&t->fe, &f, w, t->ctx, threads);
-    const bool wire = f.span.mode == SHADE_WIRE;
+    /* the frame's state is ~11 KB: on the heap, so a 64 KiB stack (ulimit -s 64) holds the
+     * whole call chain */
+    struct frame *f = malloc(sizeof *f);
+    if (!f)
+        return err_set(e, "out of memory for a frame");
+    frame_init(f, cam, o, ks, fb, stats);
+    frontend_begin(&t->fe, f, w, t->ctx, threads);
+    const bool wire = f->span.mode == SHADE_WIRE;
     const bool show_sky = sky && (o->view == VIEW_COLOR || o->view == VIEW_WIRE_OVERLAY);
 
     /* wire frames have no surface colour: the sky goes everywhere, before anything else */
     if (show_sky && wire)
-        frame_sky(w, f.k, sky, cam, fb);
+        frame_sky(w, f->k, sky, cam, fb);
     /* pass 1: surfaces (wire: depth only, for hidden lines), through the batch; pass 2:
      * edges, depth-tested against every item's surfaces when asked */
     bool pass1 = !wire || o->hidden_lines;
     bool pass2 = wire || o->view == VIEW_WIRE_OVERLAY;
     struct frame_stats pre = {0}; /* the hidden-line pre-pass: its counts are not the frame's */
     if (wire)
-        f.stats = &pre;
+        f->stats = &pre;
     for (int pass = 1; pass <= 2; pass++) {
         if ((pass == 1 && !pass1) || (pass == 2 && !pass2))
             continue;
@@ -68,9 +72,9 @@ int plan_tiles_draw(struct plan_tiles *t, struct workers *w, const struct kernel
             const struct mesh *m = item->mesh;
             if (m->n_tris == 0)
                 continue;
-            frame_item(&f, item, pv);
+            frame_item(f, item, pv);
             double scale = frame_item_scale(item->model);
-            if (frame_item_outside(item, f.u.mvp, scale, counts, stats))
+            if (frame_item_outside(item, f->u.mvp, scale, counts, stats))
                 continue;
             /* room for the mesh in full: changing levels never allocates (a batch the
              * pool is drawing points into earlier items' arrays only) */
@@ -84,32 +88,38 @@ int plan_tiles_draw(struct plan_tiles *t, struct workers *w, const struct kernel
              * the calling thread, also while the pool draws; pass 2 reuses pass 1's
              * vertices, or runs the stage on every thread when there was no pass 1 */
             if (pass == 2 && !pass1)
-                frame_vertices(w, f.k, m, &f.u, vo);
+                frame_vertices(w, f->k, m, &f->u, vo);
             if (pass == 1) {
-                if (frontend_triangles(&t->fe, &f, item, m, vo, wire, 0, m->n_opaque, 0, e))
+                if (frontend_triangles(&t->fe, f, item, m, vo, wire, 0, m->n_opaque, 0, e))
                     goto fail;
             } else {
                 frontend_edges(m, vo, o, !wire || o->hidden_lines, !wire, fb, stats);
             }
         }
         if (pass == 1) {
-            if (frontend_finish(&t->fe, &f, e)) /* the surfaces are complete */
+            if (frontend_finish(&t->fe, f, e)) { /* the surfaces are complete */
+                free(f);
                 return -1;
+            }
             if (!wire)
                 for (int k = 0; k < threads; k++) {
                     stats->pixels_tested += t->ctx[k].tested;
                     stats->pixels_shaded += t->ctx[k].shaded;
                 }
             if (show_sky && !wire) /* the sky goes where the surfaces left room */
-                frame_sky(w, f.k, sky, cam, fb);
+                frame_sky(w, f->k, sky, cam, fb);
             /* the blended triangles over both, back to front, on this thread */
             if (!wire && plan_blend_draw(&t->fe, &t->ctx[0], ks, items, n_items, cam, o, fb,
-                                         pv, stats, e))
+                                         pv, stats, e)) {
+                free(f);
                 return -1;
+            }
         }
     }
+    free(f);
     return 0;
 fail: /* nothing may be left drawing once the caller has the frame back */
-    frontend_abandon(&t->fe, &f);
+    frontend_abandon(&t->fe, f);
+    free(f);
     return -1;
 }
