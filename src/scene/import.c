@@ -393,6 +393,10 @@ int import_flatten(const char *data, size_t len, const char *name, bool others,
     struct aiPropertyStore *props = aiCreatePropertyStore();
     aiSetImportPropertyInteger(props, AI_CONFIG_PP_SBP_REMOVE,
                                aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+    /* a file without surfaces gets no stand-in: assimp's COLLADA and ASE readers (and
+     * others) would build pyramids of its node tree, 8 degenerate triangles for one node,
+     * and 'empty.dae' read as 'none of its 8 triangles has an area' */
+    aiSetImportPropertyInteger(props, AI_CONFIG_IMPORT_NO_SKELETON_MESHES, 1);
     const struct aiScene *sc = aiImportFileExWithProperties(
         name,
         aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_ValidateDataStructure,

@@ -468,5 +468,24 @@ TEST(random_bytes_named_ase_are_an_error_naming_the_file)
     struct model_ctx ctx = {.path = "r.ase"};
     CHECK_EQ_INT(model_parse(junk, sizeof junk, &ctx, &m, &e), -1);
     CHECK_STR_CONTAINS(e.msg, "r.ase");
-    CHECK_STR_CONTAINS(e.msg, "has an area");
+    CHECK_STR_CONTAINS(e.msg, "no triangles");
+}
+
+/* A COLLADA file with a node and no geometry: assimp built 8 triangles of a stand-in
+ * skeleton and the message spoke of them ('none of its 8 triangles has an area'); it has
+ * no triangles, and says so */
+TEST(a_model_without_surfaces_says_no_triangles)
+{
+    static const char dae[] =
+        "<?xml version=\"1.0\"?>\n<COLLADA xmlns=\"http://www.collada.org/2005/11/"
+        "COLLADASchema\" version=\"1.4.1\"><asset><up_axis>Y_UP</up_axis></asset>"
+        "<library_visual_scenes><visual_scene id=\"s\"><node id=\"n\"/></visual_scene>"
+        "</library_visual_scenes><scene><instance_visual_scene url=\"#s\"/></scene>"
+        "</COLLADA>\n";
+    struct mesh m;
+    struct err e;
+    struct model_ctx ctx = {.path = "empty.dae"};
+    CHECK_EQ_INT(model_parse(dae, sizeof dae - 1, &ctx, &m, &e), -1);
+    CHECK(strcmp(e.msg, "empty.dae: no triangles (the file has no surfaces rastty can draw)") ==
+          0);
 }
