@@ -42,4 +42,11 @@ void workers_for(struct workers *w, size_t n, size_t chunk, workers_range_fn fn,
 /* The number of online cores (1 .. WORKERS_MAX + 1): the default thread count. */
 int workers_cores(void);
 
+/* fn(arg) on a thread of its own with a stack of WORKERS_CALL_STACK bytes and no signals,
+ * waited for; on the calling thread when no thread can be made. For library calls that need
+ * more stack than a small `ulimit -s` gives the main thread (libtinfo reads a terminfo entry
+ * into a 32 KiB buffer on its stack: the viewer died of SIGSEGV under ulimit -s 64). */
+#define WORKERS_CALL_STACK ((size_t)1 << 20)
+void workers_call(void (*fn)(void *arg), void *arg);
+
 #endif

@@ -2,6 +2,7 @@
 #include "workers.h"
 
 #include <pthread.h>
+#include <signal.h>
 #include <stdatomic.h>
 #include <stdbool.h>
 #include <stdlib.h>
@@ -216,4 +217,38 @@ void workers_for(struct workers *w, size_t n, size_t chunk, workers_range_fn fn,
     struct range_job j = {.n = n, .chunk = chunk, .fn = fn, .arg = arg};
     atomic_init(&j.next, 0);
     workers_run(w, range_chunks, &j);
+}
+
+struct call {
+    void (*fn)(void *);
+    void *arg;
+};
+
+static void *call_main(void *p)
+{
+    struct call *c = p;
+    c->fn(c->arg);
+    return NULL;
+}
+
+void workers_call(void (*fn)(void *arg), void *arg)
+{
+    struct call c = {fn, arg};
+    pthread_attr_t a;
+    pthread_t th;
+    bool started = false;
+    if (pthread_attr_init(&a) == 0) {
+        /* the thread takes no signals: the terminal's handlers belong to the main thread */
+        sigset_t all, old;
+        sigfillset(&all);
+        pthread_sigmask(SIG_SETMASK, &all, &old);
+        started = pthread_attr_setstacksize(&a, WORKERS_CALL_STACK) == 0 &&
+                  pthread_create(&th, &a, call_main, &c) == 0;
+        pthread_sigmask(SIG_SETMASK, &old, NULL);
+        pthread_attr_destroy(&a);
+    }
+    if (started)
+        pthread_join(th, NULL);
+    else
+        fn(arg);
 }

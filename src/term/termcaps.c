@@ -16,6 +16,7 @@
 #include <term.h>
 
 #include "timing.h"
+#include "workers.h"
 
 extern char **environ;
 
@@ -133,7 +134,7 @@ enum palette_mode termcaps_detect(const char *const *envp, const struct termcaps
     return decide(why, "colour terminal", PALETTE_16);
 }
 
-int termcaps_terminfo(const char *term, struct termcaps_terminfo *ti_out)
+static int terminfo_read(const char *term, struct termcaps_terminfo *ti_out)
 {
     *ti_out = (struct termcaps_terminfo){false, false, -1};
     if (!term || !*term)
@@ -161,6 +162,26 @@ int termcaps_terminfo(const char *term, struct termcaps_terminfo *ti_out)
     set_curterm(saved);
     close(fd);
     return ok ? 0 : -1;
+}
+
+struct terminfo_job {
+    const char *term;
+    struct termcaps_terminfo *ti;
+    int rc;
+};
+
+static void terminfo_job(void *p)
+{
+    struct terminfo_job *j = p;
+    j->rc = terminfo_read(j->term, j->ti);
+}
+
+int termcaps_terminfo(const char *term, struct termcaps_terminfo *ti_out)
+{
+    /* libtinfo reads the entry into a 32 KiB buffer on its stack: on a stack of its own */
+    struct terminfo_job j = {term, ti_out, -1};
+    workers_call(terminfo_job, &j);
+    return j.rc;
 }
 
 enum palette_mode termcaps_detect_env(const char **why_out)

@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "timing.h"
+#include "workers.h"
 
 /* The signal handlers' state. Signal handlers can only reach globals; these are the only
  * mutable globals in rastty, written before the handlers are installed (saved termios) or
@@ -178,6 +179,12 @@ static bool foreground(void)
     return tcgetpgrp(STDIN_FILENO) == getpgrp();
 }
 
+static void open_screen(void *unused)
+{
+    (void)unused;
+    screen_handle = newterm(NULL, stdout, stdin);
+}
+
 int tty_open(struct tty *t, struct err *e)
 {
     memset(t, 0, sizeof *t);
@@ -189,7 +196,9 @@ int tty_open(struct tty *t, struct err *e)
     if (tcgetattr(STDIN_FILENO, &saved_termios) == 0)
         have_saved = 1;
     install_handlers();
-    screen_handle = newterm(NULL, stdout, stdin);
+    /* newterm reads the terminfo entry into a 32 KiB buffer on its stack: on a stack of its
+     * own, so that a small `ulimit -s` (64 KiB) holds */
+    workers_call(open_screen, NULL);
     if (!screen_handle)
         return err_set(e, "rastty: cannot use this terminal (TERM=%s)",
                        getenv("TERM") ? "set but unknown" : "unset");

@@ -12,6 +12,7 @@ NAMES=(suspend_and_resume_repaints demo_scene_starts_and_fills_window zoom_in_gr
        status_line_names_the_texture a_models_warning_shows_on_the_status_line
        no_alt_screen_terminal_is_cleared_at_exit no_hud_viewer_idles_and_ends_with_its_terminal
        an_outside_stop_and_continue_leaves_the_prompt_alone a_1000x300_terminal_draws_its_frame_and_idles
+       the_viewer_runs_on_a_64k_stack
        screenshot_key_writes_png_ans_and_a_command_that_reproduces_it)
 if ! have_tmux; then
     for n in "${NAMES[@]}"; do skip "$n" "tmux not installed"; done
@@ -564,5 +565,21 @@ large_window() {
     done
 }
 check a_1000x300_terminal_draws_its_frame_and_idles large_window
+
+# A 64 KiB stack (ulimit -s 64) runs the viewer (issue 25 item 18): ncurses' newterm and
+# setupterm read the terminfo entry into a 32 KiB buffer on their stack, and the viewer died
+# of SIGSEGV before its first frame (exit 139); they run on a stack of their own now. A
+# COLLADA model (the importer's child, the blended pass), two keys, the help, then q.
+small_stack() {
+    tm new-session -d -s k64 -x 80 -y 25 \
+        "ulimit -s 64; $(printf '%q ' "$BIN" --colors truecolor tests/fuzz/corpus/import/tri.dae); echo EXIT=\$? > $OUT/k64.exit; sleep 120"
+    wait_for 15 hud_has k64 " fps" || { echo "no status line; $(cat $OUT/k64.exit 2>/dev/null)"; return 1; }
+    still_after k64 0 && keys k64 w a h || return 1
+    tm send-keys -t k64 q q
+    wait_for 10 test -s $OUT/k64.exit || { echo "did not end"; return 1; }
+    cat $OUT/k64.exit
+    grep -qx "EXIT=0" $OUT/k64.exit
+}
+check the_viewer_runs_on_a_64k_stack small_stack
 
 finish
