@@ -183,7 +183,7 @@ FUZZ_CFLAGS  := -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover
                 -std=c11 $(DEFS) $(ALL_INC) $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 build/fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/fuzz_mesh.h tests/fuzz/stb_impl.c $(SRCS)
 	@mkdir -p build/fuzz-work/$*
-	clang++ -g -O1 -fsanitize=fuzzer-no-link,address,undefined -std=c++17 -D_DEFAULT_SOURCE $(ALL_INC) -c src/scene/draco_shim.cc -o build/fuzz-work/$*/draco_shim.o
+	clang++ -g -O1 -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize=vptr -std=c++17 -D_DEFAULT_SOURCE $(ALL_INC) -c src/scene/draco_shim.cc -o build/fuzz-work/$*/draco_shim.o
 	clang $(FUZZ_CFLAGS) $< tests/fuzz/stb_impl.c $(filter-out src/main.c $(AVX2_SRCS),$(SRCS)) build/fuzz-work/$*/draco_shim.o -o $@ $(LDLIBS)
 fuzz: $(addprefix build/fuzz_,$(FUZZ_TARGETS))
 	@for t in $(FUZZ_TARGETS); do \
