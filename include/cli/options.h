@@ -46,6 +46,7 @@ struct options {
                                  -1 not given (the file's first, if any) */
     const char *out;          /* --out */
     const char *depth_out;    /* --depth-out */
+    const char *format;       /* --format png|ppm: what --out - writes; NULL = png */
     bool stats;               /* --stats: print frame statistics to stderr */
     int repeat;               /* --repeat: render this many times (timing); 0 = not given */
     /* bench */

@@ -55,6 +55,9 @@ struct tty {
     enum tty_sync sync;  /* set by tty_query; TTY_SYNC_DSR until then */
 };
 
+/* After a model was read from standard input (`rastty -`): the keys come from the
+ * controlling terminal, /dev/tty, put on descriptor 0 (as less does). 0 or -1 with a message. */
+int tty_keys_from_terminal(struct err *e);
 /* Fails (with a message) when stdin/stdout is not a terminal or TERM is unusable. */
 int tty_open(struct tty *t, struct err *e);
 void tty_close(struct tty *t);

@@ -4,6 +4,7 @@
 #include <curses.h>
 #include <term.h>
 #include <errno.h>
+#include <fcntl.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -176,6 +177,22 @@ static void write_restore(const char *buf, size_t n)
 static bool foreground(void)
 {
     return tcgetpgrp(STDIN_FILENO) == getpgrp();
+}
+
+int tty_keys_from_terminal(struct err *e)
+{
+    if (isatty(STDIN_FILENO))
+        return 0;
+    int fd = open("/dev/tty", O_RDWR | O_NOCTTY | O_CLOEXEC);
+    if (fd < 0)
+        return err_set(e, "rastty: the model came on standard input, and there is no terminal "
+                          "for the keys (/dev/tty: %s)", strerror(errno));
+    int rc = dup2(fd, STDIN_FILENO) < 0 ? -1 : 0;
+    if (rc)
+        err_set(e, "rastty: /dev/tty: %s", strerror(errno));
+    close(fd);
+    clearerr(stdin);
+    return rc;
 }
 
 int tty_open(struct tty *t, struct err *e)

@@ -636,6 +636,9 @@ int view_run(const struct options *o, struct err *e)
     int rc = 2;
     if (load_scenes(v, e))
         goto out;
+    for (int i = 0; i < o->n_inputs; i++) /* the model came on stdin: keys from the terminal */
+        if (strcmp(o->inputs[i], "-") == 0 && tty_keys_from_terminal(e))
+            goto out;
     /* the demo spins unless told not to; a model given on the command line does not */
     bool spin = o->spin >= 0 ? o->spin : o->n_inputs == 0;
     bool headlight = o->light_camera || (!o->light_set && !o->light_world);
