@@ -36,8 +36,9 @@ struct tty_event {
     enum tty_event_kind kind;
     int key;             /* TTY_KEY: ncurses key code (KEY_UP, 'w', 27 = Esc, ...) */
     int mx, my;          /* TTY_MOUSE: cell position */
-    int button;          /* 1 = left; 4/5 = wheel up/down; 0 = motion */
+    int button;          /* 1 = left (or middle: pan); 4/5 = wheel up/down; 0 = motion */
     bool pressed, released;
+    bool pan;            /* shift held (SGR +4, ncurses BUTTON_SHIFT) or the middle button */
 };
 
 /* The query whose answer marks a frame as arrived (see tty_query): the first of these the

@@ -106,7 +106,7 @@ static const struct flag flags[] = {
     {"--bandwidth", F_BANDWIDTH, ARG_VALUE, C_VIEW, "RATE", "cap the bytes/s sent (128k, 1Mbit, 2M; default: what the link takes)", NULL, 0},
     {"--spin", F_SPIN, ARG_NONE, C_VIEW, NULL, "auto-rotate (the default for the demo only)", NULL, 0},
     {"--no-spin", F_NO_SPIN, ARG_NONE, C_VIEW, NULL, "do not auto-rotate", NULL, 0},
-    {"--no-hud", F_NO_HUD, ARG_NONE, C_VIEW, NULL, "hide the status line", NULL, 0},
+    {"--no-hud", F_NO_HUD, ARG_NONE, C_VIEW, NULL, "start with the status line hidden (H shows it)", NULL, 0},
     {"--chart", F_CHART, ARG_NONE, C_BENCH, NULL, "speed against accuracy of every method on the scene set", NULL, 0},
     {"--sweep", F_SWEEP, ARG_VALUE, C_BENCH, "NAME", "where methods fail: grazing|depthrange|magnitude|sliver|nearplane|minification", NULL, 0},
     {"--csv", F_CSV, ARG_VALUE, C_BENCH, "FILE", "--chart/--sweep: also write the numbers as CSV", NULL, 0},

@@ -223,8 +223,8 @@ int tty_open(struct tty *t, struct err *e)
     set_escdelay(25);
     curs_set(0);
     refresh(); /* ncurses' one and only drawing: it clears the alternate screen */
-    mmask_t want = BUTTON1_PRESSED | BUTTON1_RELEASED | REPORT_MOUSE_POSITION |
-                   BUTTON4_PRESSED | BUTTON5_PRESSED;
+    mmask_t want = BUTTON1_PRESSED | BUTTON1_RELEASED | BUTTON2_PRESSED | BUTTON2_RELEASED |
+                   REPORT_MOUSE_POSITION | BUTTON4_PRESSED | BUTTON5_PRESSED | BUTTON_SHIFT;
     t->mouse = mousemask(want, NULL) != 0;
     mouseinterval(0);
     if (t->mouse)
@@ -514,14 +514,17 @@ static enum tty_event_kind sgr_mouse(const char *seq, struct tty_event *ev)
         return TTY_NONE;
     ev->mx = (int)v[1] - 1;
     ev->my = (int)v[2] - 1;
+    /* +4 shift (+8 meta, +16 control: ignored); a middle-button drag pans as a shift-drag */
+    ev->pan = (b & 4) != 0 || (!(b & 64) && (b & 3) == 1);
     if (b & 64) { /* wheel: 64 up, 65 down; no release */
         if ((b & 3) > 1 || final == 'm')
             return TTY_NONE;
         ev->button = (b & 1) ? 5 : 4;
         ev->pressed = true;
-    } else if ((b & 3) != 0) { /* middle, right */
+        ev->pan = false;
+    } else if ((b & 3) > 1) { /* right; 3: a release without its button (X10 style) */
         return TTY_NONE;
-    } else if (b & 32) { /* motion with the left button held */
+    } else if (b & 32) { /* motion with the left or middle button held */
         ev->button = 0;
     } else {
         ev->button = 1;
@@ -608,10 +611,13 @@ enum tty_event_kind tty_next_event(struct tty *t, int timeout_ms, struct tty_eve
         ev->kind = TTY_MOUSE;
         ev->mx = m.x;
         ev->my = m.y;
-        ev->pressed = (m.bstate & (BUTTON1_PRESSED | BUTTON4_PRESSED | BUTTON5_PRESSED)) != 0;
-        ev->released = (m.bstate & BUTTON1_RELEASED) != 0;
+        mmask_t b1 = BUTTON1_PRESSED | BUTTON1_RELEASED, b2 = BUTTON2_PRESSED | BUTTON2_RELEASED;
+        ev->pressed = (m.bstate & (BUTTON1_PRESSED | BUTTON2_PRESSED | BUTTON4_PRESSED |
+                                   BUTTON5_PRESSED)) != 0;
+        ev->released = (m.bstate & (BUTTON1_RELEASED | BUTTON2_RELEASED)) != 0;
         ev->button = (m.bstate & BUTTON4_PRESSED) ? 4 : (m.bstate & BUTTON5_PRESSED) ? 5
-                     : (m.bstate & (BUTTON1_PRESSED | BUTTON1_RELEASED)) ? 1 : 0;
+                     : (m.bstate & (b1 | b2)) ? 1 : 0;
+        ev->pan = ev->button < 4 && (m.bstate & (BUTTON_SHIFT | b2)) != 0;
         return ev->kind;
     }
     ev->kind = TTY_KEY;

@@ -166,7 +166,7 @@ static int resize(struct view *v, struct err *e)
 {
     tty_refresh_size(&v->tty);
     int rows = v->tty.rows - 1; /* the status line */
-    if (v->o->no_hud)
+    if (v->s.hud_hidden)
         rows = v->tty.rows;
     int cols = v->tty.cols;
     cols = cols > ENCODE_MAX_COLS ? ENCODE_MAX_COLS : cols;
@@ -187,6 +187,7 @@ static int resize(struct view *v, struct err *e)
         v->fb.pixel_aspect = cell_pixel_aspect(&g);
         v->fb_cols = cols;
         v->fb_rows = rows;
+        v->s.rows = rows; /* a pan drag: the model follows the mouse */
         v->glyphs = g.glyphs;
         v->eo.glyphs = g.glyphs;
     }
@@ -206,7 +207,7 @@ static bool still(struct view *v, double t)
 
 static void hud_draw(struct view *v, double t)
 {
-    if (v->o->no_hud || v->tty.rows < 1) {
+    if (v->s.hud_hidden || v->tty.rows < 1) {
         v->s.hud_dirty = false; /* nothing to draw: or the loop never waits (100% CPU idle) */
         return;
     }
@@ -429,9 +430,14 @@ static int act(struct view *v, enum view_action a, double t, bool *quit, struct 
         view_message(&v->s, msg, t);
         break;
     }
+    case VIEW_HUD_TOGGLED: /* the picture gains or gives back the last row */
+        if (resize(v, e))
+            return -1;
+        if (!v->s.hud_hidden)
+            view_message(&v->s, "status line on  (H: off)", t);
+        break;
     case VIEW_NONE: break;
     }
-    (void)e;
     return 0;
 }
 
@@ -650,6 +656,7 @@ int view_run(const struct options *o, struct err *e)
     view_state_init(&v->s, &cam, &ro, spin, headlight,
                     o->spin_timeout >= 0 ? o->spin_timeout : VIEW_SPIN_TIMEOUT_S, timing_now_s());
     v->s.glyphs = o->glyphs;
+    v->s.hud_hidden = o->no_hud; /* the start state; H toggles it */
     bool ask;
     v->mode = colour_mode(o, &ask);
     /* over ssh, default to a small tolerance: far fewer bytes, invisible change */

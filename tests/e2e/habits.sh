@@ -145,8 +145,111 @@ EOF2
     [ "${n:-0}" -gt 200 ]
 }
 tm_has() { tm capture-pane -t "$1" -p | grep -q "$2"; }
-HELP_KEY=h
+HELP_KEY=?
 if have_tmux; then check ansi2ppm_decodes_a_capture_with_the_status_line_and_the_help captures
 else skip ansi2ppm_decodes_a_capture_with_the_status_line_and_the_help "tmux not installed"; fi
+
+# the picture of session $1 (status line dropped unless $3 = all) as $OUT/$2.ppm; its stats
+picture() {
+    local rows; rows=$(tm display -p -t "$1" '#{pane_height}')
+    [ "${3:-}" = all ] || rows=$((rows - 1))
+    capture "$1" "$OUT/$2.ans" $rows
+    decode "$OUT/$2.ans" "$OUT/$2.ppm" 2>/dev/null && ppmstat "$OUT/$2.ppm" 0,0,0
+}
+same_picture() { cmp -s "$OUT/$1.ppm" "$OUT/$2.ppm"; }
+
+# h j k l turn exactly as the arrows do (a tap turns for the same time); h no longer opens
+# the help, ? does, and the status line says so
+vi_keys() {
+    local s=vi pair k a
+    start $s 80 25 assets/teapot.obj --background 0,0,0 && still_after $s 0 || return 1
+    picture $s home > /dev/null
+    hud_has $s "?: help" || { echo "status line: $(status_line $s)"; return 1; }
+    for pair in h:Left j:Down k:Up l:Right; do
+        k=${pair%%:*} a=${pair#*:}
+        # (a press within 0.5 s of the last one of its command is auto-repeat: it moves less)
+        keys $s r && nap 0.6 && keys $s $k || return 1
+        picture $s "vi-$k" > /dev/null
+        keys $s r && nap 0.6 && keys $s $a || return 1
+        picture $s "vi-$a" > /dev/null
+        same_picture "vi-$k" "vi-$a" || { echo "$k is not $a"; return 1; }
+        same_picture "vi-$k" home && { echo "$k did not turn"; return 1; }
+    done
+    echo "h j k l drew the pictures Left Down Up Right draw"
+    tm capture-pane -t $s -p | grep -q "this help" && { echo "h opened the help"; return 1; }
+    keys $s '?' || return 1
+    tm capture-pane -t $s -p | grep -q "this help" || { echo "? did not open the help"; return 1; }
+    keys $s '?' || return 1
+    tm capture-pane -t $s -p | grep -q "this help" && { echo "? did not close the help"; return 1; }
+    return 0
+}
+if have_tmux; then check hjkl_turn_as_the_arrows_and_question_mark_is_the_help vi_keys
+else skip hjkl_turn_as_the_arrows_and_question_mark_is_the_help "tmux not installed"; fi
+
+# H hides the status line (the picture takes the last row) and shows it again; --no-hud
+# starts hidden
+hud_key() {
+    local s=hud
+    start $s 80 25 assets/sphere.obj && still_after $s 0 || return 1
+    set -- $(picture $s with all); local rows_with=$2
+    tm send-keys -t $s H
+    wait_for 10 no_status $s || { echo "H: the status line stayed: $(status_line $s)"; return 1; }
+    # no #N to wait for without a status line: the picture's last row fills in
+    wait_for 10 bottom_drawn $s || { echo "the last row stayed empty"; return 1; }
+    set -- $(picture $s without all)
+    echo "status line: picture 80x$rows_with (area $3 with it); H: 80x$2"
+    tm send-keys -t $s H
+    wait_for 10 hud_has $s "status line on" || { echo "H again: $(status_line $s)"; return 1; }
+    tm kill-session -t $s
+    tm new-session -d -s nh -x 80 -y 25 "$(printf '%q ' "$BIN") --colors truecolor --no-hud assets/sphere.obj; sleep 60"
+    wait_for 10 bottom_drawn nh || return 1
+    no_status nh || return 1
+    tm send-keys -t nh H
+    wait_for 10 hud_has nh " fps" || { echo "--no-hud then H: no status line"; return 1; }
+}
+no_status() { [[ $(status_line "$1") != *" fps"* && $(status_line "$1") != *"?: help"* ]]; }
+# the last row holds the picture (the viewer's sky, in colour), not the status line
+bottom_drawn() { tm capture-pane -t "$1" -e -p | tail -n 1 | grep -q '38;2;'; }
+if have_tmux; then check shift_h_hides_and_shows_the_status_line hud_key
+else skip shift_h_hides_and_shows_the_status_line "tmux not installed"; fi
+
+# pan: a shift-drag or a middle-drag to the right moves the model right (it follows the
+# mouse), Shift-Right moves the camera right (the model left, as d does); a plain drag
+# still orbits
+pan() {
+    local s=pan
+    start $s 100 31 assets/teapot.obj --background 0,0,0 || return 1
+    still_after $s 0 || return 1
+    set -- $(picture $s p0); local x0=$4 y0=$5
+    # shift (+4): press 4 at 40,15, motion 36 to 60,15 (20 columns right), release
+    tm send-keys -t $s -H 1b 5b 3c 34 3b 34 30 3b 31 35 4d            # ESC[<4;40;15M
+    tm send-keys -t $s -H 1b 5b 3c 33 36 3b 36 30 3b 31 35 4d         # ESC[<36;60;15M
+    tm send-keys -t $s -H 1b 5b 3c 34 3b 36 30 3b 31 35 6d            # ESC[<4;60;15m
+    wait_for 10 moved $s p1 x "$x0" 15 || { echo "shift-drag: centroid x $x0 -> $(cut -d' ' -f4 <<< "$(picture $s p1)")"; return 1; }
+    set -- $(picture $s p1); local x1=$4 y1=$5
+    echo "shift-drag 20 columns right: centroid x $x0 -> $x1 (y $y0 -> $y1)"
+    keys $s r || return 1
+    set -- $(picture $s p2); local x2=$4
+    # the middle button (1): press at 50,20, motion 33 to 50,10 (10 rows up), release
+    tm send-keys -t $s -H 1b 5b 3c 31 3b 35 30 3b 32 30 4d            # ESC[<1;50;20M
+    tm send-keys -t $s -H 1b 5b 3c 33 33 3b 35 30 3b 31 30 4d         # ESC[<33;50;10M
+    tm send-keys -t $s -H 1b 5b 3c 31 3b 35 30 3b 31 30 6d            # ESC[<1;50;10m
+    wait_for 10 moved $s p3 y "$y0" -10 || { echo "middle-drag up: no move up"; return 1; }
+    set -- $(picture $s p3); echo "middle-drag 10 rows up: centroid y $y0 -> $5, x $x2 -> $4"
+    keys $s r S-Right S-Right || return 1
+    set -- $(picture $s p4); echo "Shift-Right twice: centroid x $x2 -> $4"
+    awk -v a="$x2" -v b="$4" 'BEGIN { exit !(b < a - 2) }' || { echo "Shift-Right did not move the model left"; return 1; }
+}
+# moved S NAME x|y FROM BY: the centroid's x or y moved by at least BY pixels (negative: down
+# to FROM+BY) from FROM, in a still picture
+moved() {
+    [ "$(frame_no "$1")" -gt 0 ] || return 1
+    local st; st=$(picture "$1" "$2") || return 1
+    set -- $st "$3" "$4" "$5"
+    local v=$4; [ "$7" = y ] && v=$5
+    awk -v v="$v" -v f="$8" -v by="$9" 'BEGIN { exit !((by > 0 && v > f + by) || (by < 0 && v < f + by)) }'
+}
+if have_tmux; then check shift_and_middle_drag_and_shift_arrows_pan pan
+else skip shift_and_middle_drag_and_shift_arrows_pan "tmux not installed"; fi
 
 finish
