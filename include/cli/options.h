@@ -72,6 +72,7 @@ struct options {
     int frame_index;          /* ansi2ppm --frame K; -1 = the last */
     double fps;
     bool no_hud;
+    double cell_aspect;       /* --cell-aspect: a cell's height / width; 0 = not given */
     int spin;                 /* --spin 1, --no-spin 0, not given -1 */
     double spin_timeout;      /* config spin-timeout; -1 = the default */
     double bandwidth;         /* --bandwidth in bytes/s, 0 = none */

@@ -52,6 +52,7 @@ enum tty_sync {
 
 struct tty {
     int cols, rows;
+    int px_w, px_h;      /* the window's size in pixels (TIOCGWINSZ), 0 when not told */
     bool mouse;          /* the terminal reports mouse events */
     enum tty_sync sync;  /* set by tty_query; TTY_SYNC_DSR until then */
 };

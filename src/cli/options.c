@@ -30,7 +30,7 @@ enum flag_id {
     F_COLORS, F_TOLERANCE, F_DITHER, F_DIFF, F_PPM_DIR, F_FRAME_INDEX, F_FPS, F_NO_HUD, F_CHART,
     F_SWEEP, F_CSV, F_SVG, F_MODELS, F_HELP, F_VERSION, F_SPIN, F_NO_SPIN, F_BANDWIDTH, F_SKY,
     F_LOD,
-    F_GLYPHS, F_BUDGET, F_CREASE, F_UP_AXIS, F_NORMAL_MAP, F_CAMERA, F_ALLOW_OUTSIDE, F_FORMAT,
+    F_GLYPHS, F_BUDGET, F_CREASE, F_UP_AXIS, F_NORMAL_MAP, F_CAMERA, F_ALLOW_OUTSIDE, F_FORMAT, F_CELL_ASPECT,
 };
 
 struct flag {
@@ -106,6 +106,7 @@ static const struct flag flags[] = {
     {"--bandwidth", F_BANDWIDTH, ARG_VALUE, C_VIEW, "RATE", "cap the bytes/s sent (128k, 1Mbit, 2M; default: what the link takes)", NULL, 0},
     {"--spin", F_SPIN, ARG_NONE, C_VIEW, NULL, "auto-rotate (the default for the demo only)", NULL, 0},
     {"--no-spin", F_NO_SPIN, ARG_NONE, C_VIEW, NULL, "do not auto-rotate", NULL, 0},
+    {"--cell-aspect", F_CELL_ASPECT, ARG_VALUE, C_DRAW, "R", "a terminal cell's height / width, 0.5..4 (view: default the terminal's, from its pixel size or ESC[16t, else 2; render, dump: 2), so circles stay round", NULL, 0},
     {"--no-hud", F_NO_HUD, ARG_NONE, C_VIEW, NULL, "start with the status line hidden (H shows it)", NULL, 0},
     {"--chart", F_CHART, ARG_NONE, C_BENCH, NULL, "speed against accuracy of every method on the scene set", NULL, 0},
     {"--sweep", F_SWEEP, ARG_VALUE, C_BENCH, "NAME", "where methods fail: grazing|depthrange|magnitude|sliver|nearplane|minification", NULL, 0},
@@ -427,6 +428,11 @@ static int apply(struct options *o, const struct flag *f, const char *v, struct 
             return bad(e, f->name, "expected a camera number 0..64", v);
         return 0;
     case F_ALLOW_OUTSIDE: o->model.any_path = true; return 0;
+    case F_CELL_ASPECT:
+        if (parse_double(v, &o->cell_aspect) ||
+            !(o->cell_aspect >= CELL_ASPECT_MIN && o->cell_aspect <= CELL_ASPECT_MAX))
+            return bad(e, f->name, "expected a cell's height / width, 0.5..4", v);
+        return 0;
     case F_FORMAT:
         if (strcmp(v, "png") != 0 && strcmp(v, "ppm") != 0)
             return bad(e, f->name, "expected png or ppm", v);

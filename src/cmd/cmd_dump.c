@@ -163,7 +163,8 @@ int cmd_dump(const struct options *o, struct err *e)
     struct camera cam;
     struct render_opts ro;
     struct cell_geom geom = cell_geom(o->glyphs);
-    prepare_camera(o, &scene, cols * CELL_ASPECT / rows, o->frame, &cam, &ro);
+    double cell_r = o->cell_aspect > 0 ? o->cell_aspect : 1 / CELL_ASPECT; /* height/width */
+    prepare_camera(o, &scene, cols / (cell_r * rows), o->frame, &cam, &ro);
     /* a dump is what the viewer shows: its light, the headlight, unless --light X,Y,Z (or the
      * config file's light = world); render keeps the conventions' fixed light */
     bool headlight = o->light_camera || (!o->light_set && !o->light_world);
@@ -199,7 +200,7 @@ int cmd_dump(const struct options *o, struct err *e)
     if (fb_init(&fb, cell_fb_w(&geom, cols), cell_fb_h(&geom, rows), ro.view == VIEW_OVERDRAW, e) ||
         encode_screen_init(&es, cols, rows, e))
         goto done;
-    fb.pixel_aspect = cell_pixel_aspect(&geom);
+    fb.pixel_aspect = cell_pixel_aspect_r(&geom, cell_r);
     for (int k = 0; k < frames; k++) {
         struct camera c = cam;
         if (o->camera_path) {

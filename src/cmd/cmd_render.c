@@ -39,7 +39,8 @@ int cmd_render(const struct options *o, struct err *e)
     struct render_opts ro;
     /* --glyphs: the pixels are that glyph set's (cell.h), as a terminal would show them */
     struct cell_geom geom = cell_geom(o->glyphs);
-    double pixel_aspect = cell_pixel_aspect(&geom); /* 1: half blocks' pixels are square */
+    /* 1: half blocks' pixels are square (on 1:2 cells; --cell-aspect another shape) */
+    double pixel_aspect = cell_pixel_aspect_r(&geom, o->cell_aspect > 0 ? o->cell_aspect : 2);
     prepare_camera(o, &scene, (double)o->width * pixel_aspect / o->height, o->frame, &cam, &ro);
     struct fb fb;
     struct ssaa ss = {0};

@@ -4,6 +4,7 @@
 #include <curses.h>
 #include <term.h>
 #include <errno.h>
+#include <sys/ioctl.h>
 #include <fcntl.h>
 #include <signal.h>
 #include <stdio.h>
@@ -286,6 +287,12 @@ void tty_refresh_size(struct tty *t)
     getmaxyx(stdscr, r, c);
     t->rows = r;
     t->cols = c;
+    struct winsize ws;
+    t->px_w = t->px_h = 0;
+    if (ioctl(STDOUT_FILENO, TIOCGWINSZ, &ws) == 0) {
+        t->px_w = ws.ws_xpixel;
+        t->px_h = ws.ws_ypixel;
+    }
 }
 
 int tty_write(const char *buf, size_t n)

@@ -252,4 +252,46 @@ moved() {
 if have_tmux; then check shift_and_middle_drag_and_shift_arrows_pan pan
 else skip shift_and_middle_drag_and_shift_arrows_pan "tmux not installed"; fi
 
+# cell aspect: a terminal whose cells are 10x22 pixels (told by ESC[16t's answer, or by
+# TIOCGWINSZ's pixel fields) gets the picture --cell-aspect 2.2 draws, byte for byte, and
+# not the 1:2 one: the sphere is 1.1 times as many pixels wide as tall, so it is round on
+# the screen
+FILTER=tests/e2e/lib/termfilter.py
+aspect_picture() { # session name termfilter-args... -- viewer-args...
+    local s=$1 name=$2 f=() ; shift 2
+    while [ "$1" != -- ]; do f+=("$1"); shift; done; shift
+    tm new-session -d -s "$s" -x 80 -y 25 \
+        "$(printf '%q ' /usr/bin/python3 "$FILTER" --answers dsr,cpr,da1,caps "${f[@]}" -- "$BIN" --colors truecolor assets/sphere.obj --background 0,0,0 "$@"); sleep 60"
+    wait_for 15 hud_has "$s" " fps" && still_after "$s" 0 || { echo "$s: $(status_line "$s")"; return 1; }
+    picture "$s" "$name" > /dev/null
+}
+bbox_ratio() { # width / height of the non-black pixels of $OUT/NAME.ppm
+    python3 - "$OUT/$1.ppm" <<'EOF2'
+import sys
+b = open(sys.argv[1], "rb").read().split(b"\n", 3)
+w, h = map(int, b[1].split()); px = b[3]
+xs, ys = [], []
+for i in range(w * h):
+    if px[3 * i:3 * i + 3] != b"\0\0\0":
+        xs.append(i % w); ys.append(i // w)
+print("%.3f" % ((max(xs) - min(xs) + 1) / (max(ys) - min(ys) + 1)))
+EOF2
+}
+cell_aspect() {
+    aspect_picture a1 two -- || return 1
+    aspect_picture a2 flag -- --cell-aspect 2.2 || return 1
+    aspect_picture a3 answer --cell 22x10 --pixels 0x0 -- || return 1 # (tmux tells 16x32 px)
+    aspect_picture a4 winsize --pixels 800x550 -- || return 1   # 25 rows of 22 px
+    aspect_picture a5 wins --cell 11x10 --pixels 800x550 -- || return 1 # TIOCGWINSZ first
+    local r2 r22; r2=$(bbox_ratio two); r22=$(bbox_ratio flag)
+    echo "sphere's width / height in pixels: 1:2 cells $r2, --cell-aspect 2.2 $r22"
+    same_picture two flag && { echo "--cell-aspect 2.2 drew the 1:2 picture"; return 1; }
+    same_picture answer flag || { echo "ESC[16t's 22x10 did not draw --cell-aspect 2.2's picture"; return 1; }
+    same_picture winsize flag || { echo "TIOCGWINSZ's 800x550 did not draw --cell-aspect 2.2's picture"; return 1; }
+    same_picture wins flag || { echo "TIOCGWINSZ did not come before ESC[16t"; return 1; }
+    awk -v a="$r2" -v b="$r22" 'BEGIN { exit !(a > 0.95 && a < 1.05 && b > 1.05 && b < 1.15) }'
+}
+if have_tmux; then check cell_aspect_from_the_terminal_or_the_flag_keeps_circles_round cell_aspect
+else skip cell_aspect_from_the_terminal_or_the_flag_keeps_circles_round "tmux not installed"; fi
+
 finish
