@@ -35,12 +35,16 @@ enum {
     FILE_E_SOCKET = -1003,
     FILE_E_OTHER = -1004, /* some other kind of file that is not a regular file */
     FILE_E_TOO_BIG = -1005,
+    FILE_E_TTY = -1006,   /* file_read_stdin: standard input is a terminal, nothing piped */
 };
 
 /* Read the whole regular file into a malloc'd buffer (NUL-terminated; *len_out excludes
  * the NUL). Returns 0, or an error code with *buf_out = NULL: errno values (ENOENT,
  * EISDIR, ENOMEM, ...) or FILE_E_* above (FILE_E_TOO_BIG beyond max bytes). */
 int file_read(const char *path, size_t max, char **buf_out, size_t *len_out);
+/* Standard input to its end (a pipe or a redirected file; `-` as a model name), the same
+ * contract; FILE_E_TTY when it is a terminal (nothing piped in: never wait for typing). */
+int file_read_stdin(size_t max, char **buf_out, size_t *len_out);
 /* Words for a file_read code: strerror, or "a FIFO, not a regular file" and the like. */
 const char *file_strerror(int code);
 

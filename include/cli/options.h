@@ -46,6 +46,7 @@ struct options {
                                  -1 not given (the file's first, if any) */
     const char *out;          /* --out */
     const char *depth_out;    /* --depth-out */
+    const char *format;       /* --format png|ppm: what --out - writes; NULL = png */
     bool stats;               /* --stats: print frame statistics to stderr */
     int repeat;               /* --repeat: render this many times (timing); 0 = not given */
     /* bench */
@@ -71,6 +72,7 @@ struct options {
     int frame_index;          /* ansi2ppm --frame K; -1 = the last */
     double fps;
     bool no_hud;
+    double cell_aspect;       /* --cell-aspect: a cell's height / width; 0 = not given */
     int spin;                 /* --spin 1, --no-spin 0, not given -1 */
     double spin_timeout;      /* config spin-timeout; -1 = the default */
     double bandwidth;         /* --bandwidth in bytes/s, 0 = none */

@@ -45,6 +45,9 @@ void camera_turn(struct camera *c, double yaw_deg, double pitch_deg, int orbit);
  * fly mode eye and target move together; in orbit mode `forward` changes the distance to
  * the target (never closer than 1e-3 of it). */
 void camera_move(struct camera *c, double forward, double right, double up, int orbit);
+/* Pan: eye and target move together by `right` along the view's right vector and `up`
+ * along the view's own up (the picture's vertical, not the world's), in world units. */
+void camera_pan(struct camera *c, double right, double up);
 double camera_distance(const struct camera *c);
 
 #endif

@@ -62,7 +62,11 @@ int model_parse(const char *data, size_t len, const struct model_ctx *ctx, struc
 /* The same with the format given. */
 int model_parse_as(enum model_format f, const char *data, size_t len,
                    const struct model_ctx *ctx, struct mesh *out, struct err *e);
-/* Read the file (regular files only, FILE_MAX_MODEL) and model_parse it. */
+/* A model read from standard input (the name `-`) is named this in messages; as it has no
+ * folder, the files it names (mtllib, textures, buffers) are relative to the current one. */
+#define MODEL_STDIN_NAME "<stdin>"
+/* Read the file (regular files only, FILE_MAX_MODEL; `-`: standard input, a pipe or a
+ * redirected file, never a terminal) and model_parse it, its format by content. */
 int model_load(const char *path, struct texture_cache *cache, struct warnings *w,
                struct mesh *out, struct err *e);
 /* The same with the reading options (NULL: the defaults). */

@@ -64,10 +64,28 @@ static inline int cell_px(const struct cell_geom *g) { return g->px_w * g->px_h;
 static inline int cell_fb_w(const struct cell_geom *g, int cols) { return cols * g->px_w; }
 static inline int cell_fb_h(const struct cell_geom *g, int rows) { return rows * g->px_h; }
 static inline int cell_rows(const struct cell_geom *g, int h) { return (h + g->px_h - 1) / g->px_h; }
-/* a pixel's width / height on the screen */
+/* a pixel's width / height on the screen, for cells `r` times as tall as wide (--cell-aspect,
+ * or the terminal's: cell_aspect_of) */
+static inline double cell_pixel_aspect_r(const struct cell_geom *g, double r)
+{
+    return (double)g->px_h / (r * g->px_w);
+}
+/* ... for the usual 1:2 cells (CELL_ASPECT) */
 static inline double cell_pixel_aspect(const struct cell_geom *g)
 {
-    return CELL_ASPECT * g->px_h / g->px_w;
+    return cell_pixel_aspect_r(g, 1 / CELL_ASPECT);
+}
+#define CELL_ASPECT_MIN 0.5 /* --cell-aspect's range (height / width) */
+#define CELL_ASPECT_MAX 4.0
+/* A cell's height / width from a window of cols x rows cells and px_w x px_h pixels
+ * (TIOCGWINSZ), or from one cell's pixels (rows = cols = 1: ESC[16t's answer): 0 when
+ * unknown (a zero) or outside CELL_ASPECT_MIN..MAX (a terminal telling nonsense). */
+static inline double cell_aspect_of(int px_w, int px_h, int cols, int rows)
+{
+    if (px_w <= 0 || px_h <= 0 || cols <= 0 || rows <= 0)
+        return 0;
+    double r = ((double)px_h / rows) / ((double)px_w / cols);
+    return r >= CELL_ASPECT_MIN && r <= CELL_ASPECT_MAX ? r : 0;
 }
 
 /* The code point showing `mask` (fg where set) in glyph set g: ' ' for 0; U+2588 for every

@@ -25,6 +25,15 @@
  * Writing in the last column leaves a pending wrap (the next glyph wraps, like xterm); we do
  * not scroll: LF on the last row parks the cursor below the grid, and drawing there is an
  * error. A default fg/bg is shown as default_fg / default_bg (229,229,229 / 0,0,0).
+ * Text cells (.text set; ansi2ppm sets it): a tmux capture of the viewer holds its status
+ * line and, while open, its help box. A cell whose character is no glyph — a printable ASCII
+ * character other than the ramp's, a ramp character drawn with colours set (rastty's ramp
+ * is drawn in the terminal's own colours), any other character (the box's frame) — is
+ * drawn as a cell of its background colour (after reverse video), what a cell of text
+ * mostly shows, and counted in text_cells; SGR's text attributes (1-5, 8, 9, 21-25, 28,
+ * 29) are then accepted and change no colour. The picture's glyph cells around decode as
+ * ever. Without .text such bytes are errors, as before (the tests' and the fuzzer's check
+ * that rastty's own output holds nothing else).
  * Frames: every bare ESC[H (no parameters) starts a frame; frame k = the screen just before
  * the (k+2)-th ESC[H, or at the end. Bytes before the first ESC[H belong to frame 0; input
  * without any ESC[H (a tmux capture) is one frame. See encode.h's mark_frames. */
@@ -44,6 +53,7 @@ struct decode_state {
     uint32_t region[CELL_MASTER_PX]; /* pixel i of a cell: its master-grid cells (cell.h) */
     uint8_t *rgb;             /* cols*px_w x rows*px_h x 3, row 0 top; NULL while measuring */
     const char *name;         /* message prefix (a file name); "input" when NULL */
+    bool text;                /* text cells allowed (below); false: they are errors */
     uint8_t default_fg[3], default_bg[3];
     /* terminal state */
     int row, col;             /* cursor cell; row == rows means below the grid */
@@ -55,6 +65,7 @@ struct decode_state {
     int frames;               /* bare ESC[H seen since the last reset */
     int used_cols, used_rows; /* extent of the cells drawn since the last reset */
     int need_w, need_h;       /* the grid the glyphs drawn need (cell_shape_grid) */
+    int text_cells;           /* text cells drawn since the last reset (with .text) */
 };
 
 /* 1..8192 x 1..4096 cells on g's grid (its px_w x px_h; the glyph set does not matter). The
@@ -74,9 +85,9 @@ int decode_frame(struct decode_state *d, const char *buf, size_t len, int k, str
 /* Grid size the input needs (extent of the cells it draws, auto-wrap ignored), its number
  * of frames and the pixels per cell its glyphs need (the finest of them: columns the most,
  * rows the least common multiple; at least half blocks' 1x2; grid_out->glyphs is the glyph
- * set with that grid, or CELL_GLYPHS_COUNT for a mix), parsing it all; name as in
+ * set with that grid, or CELL_GLYPHS_COUNT for a mix), parsing it all; name and text as in
  * decode_state. */
-int decode_measure(const char *buf, size_t len, const char *name, int *cols_out, int *rows_out,
-                   int *frames_out, struct cell_geom *grid_out, struct err *e);
+int decode_measure(const char *buf, size_t len, const char *name, bool text, int *cols_out,
+                   int *rows_out, int *frames_out, struct cell_geom *grid_out, struct err *e);
 
 #endif

@@ -8,6 +8,8 @@
 #ifndef RASTTY_IMAGE_H
 #define RASTTY_IMAGE_H
 
+#include <stdbool.h>
+
 #include "err.h"
 #include "fb.h"
 
@@ -16,6 +18,8 @@ int image_write_color(const char *path, const struct fb *fb, struct err *e);
 int image_write_ppm(const char *path, const struct fb *fb, struct err *e);
 int image_write_png(const char *path, const struct fb *fb, struct err *e);
 int image_write_pfm(const char *path, const struct fb *fb, struct err *e);
+/* The picture to standard output, PPM or PNG (`--out -`); the caller has refused a terminal. */
+int image_write_stdout(const struct fb *fb, bool ppm, struct err *e);
 /* Does path end in .ppm or .png? */
 int image_color_ext_ok(const char *path);
 

@@ -71,6 +71,12 @@ int termcaps_terminfo(const char *term, struct termcaps_terminfo *ti_out);
 enum palette_mode termcaps_detect_env(const char **why_out);
 
 #define TERMCAPS_QUERY "\033[>0q\033[48;2;1;2;3m\033P$qm\033\\\033[0m\033P+q524742\033\\"
+/* XTWINOPS 16: the cell's size in pixels, asked with the start's probe when TIOCGWINSZ's
+ * pixel fields are zero (ssh, many terminals). */
+#define TERMCAPS_CELL_QUERY "\033[16t"
+/* The answer ESC[6;H;Wt in reply (NUL-terminated): 0 with the cell's height and width in
+ * pixels, or -1 when there is none (or a zero). Pure. */
+int termcaps_cell_pixels(const char *reply, int *h_out, int *w_out);
 /* The mode the terminal's answers to TERMCAPS_QUERY (reply, NUL-terminated) say, given the
  * environment's answer env: truecolor if one of them says so, else env. why_out as above. */
 enum palette_mode termcaps_from_reply(enum palette_mode env, const char *reply,

@@ -36,8 +36,9 @@ struct tty_event {
     enum tty_event_kind kind;
     int key;             /* TTY_KEY: ncurses key code (KEY_UP, 'w', 27 = Esc, ...) */
     int mx, my;          /* TTY_MOUSE: cell position */
-    int button;          /* 1 = left; 4/5 = wheel up/down; 0 = motion */
+    int button;          /* 1 = left (or middle: pan); 4/5 = wheel up/down; 0 = motion */
     bool pressed, released;
+    bool pan;            /* shift held (SGR +4, ncurses BUTTON_SHIFT) or the middle button */
 };
 
 /* The query whose answer marks a frame as arrived (see tty_query): the first of these the
@@ -51,10 +52,14 @@ enum tty_sync {
 
 struct tty {
     int cols, rows;
+    int px_w, px_h;      /* the window's size in pixels (TIOCGWINSZ), 0 when not told */
     bool mouse;          /* the terminal reports mouse events */
     enum tty_sync sync;  /* set by tty_query; TTY_SYNC_DSR until then */
 };
 
+/* After a model was read from standard input (`rastty -`): the keys come from the
+ * controlling terminal, /dev/tty, put on descriptor 0 (as less does). 0 or -1 with a message. */
+int tty_keys_from_terminal(struct err *e);
 /* Fails (with a message) when stdin/stdout is not a terminal or TERM is unusable. */
 int tty_open(struct tty *t, struct err *e);
 void tty_close(struct tty *t);

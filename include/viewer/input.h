@@ -3,7 +3,9 @@
  *
  * Movement and turning commands are "held" commands: the viewer moves while a key keeps
  * repeating, scaled by elapsed time (see view_state.c). Lowercase q quits (or closes the
- * help); Shift-Q moves down. */
+ * help); Shift-Q moves down. hjkl turn as the arrows do (vi's left, down, up, right), so
+ * the help is ? (and F1) and the light b; H shows and hides the status line; the shifted
+ * arrows pan. */
 #ifndef RASTTY_INPUT_H
 #define RASTTY_INPUT_H
 
@@ -12,12 +14,13 @@ enum input_cmd {
     /* held: continuous while the key repeats */
     IN_FORWARD, IN_BACK, IN_LEFT, IN_RIGHT, IN_DOWN, IN_UP,
     IN_YAW_LEFT, IN_YAW_RIGHT, IN_PITCH_UP, IN_PITCH_DOWN,
+    IN_PAN_LEFT, IN_PAN_RIGHT, IN_PAN_UP, IN_PAN_DOWN, /* eye and target together, in the view plane */
     IN_HELD_COUNT,
     /* one-shot */
     IN_ORBIT = IN_HELD_COUNT, IN_FOV_IN, IN_FOV_OUT, IN_SLOWER, IN_FASTER, IN_RESET,
     IN_NEXT_SCENE, IN_PREV_SCENE, IN_SHADE, IN_FILTER, IN_CULL, IN_LIGHT, IN_VIEW,
     IN_RASTER, IN_PERSPECTIVE, IN_DEPTH, IN_LOD, IN_GLYPHS, IN_PAUSE, IN_INFO, IN_SCREENSHOT,
-    IN_TURN_UP, IN_NEXT_CAMERA,
+    IN_TURN_UP, IN_NEXT_CAMERA, IN_HUD,
     IN_HELP,
     IN_QUIT,
     IN_COUNT

@@ -6,7 +6,8 @@
  * `dirty` says the picture changed or `hud_dirty` the status line.
  *
  *   view_key      a command (input.h) at time t
- *   view_mouse    a mouse event: the wheel zooms, a left drag orbits
+ *   view_mouse    a mouse event: the wheel zooms, a left drag orbits, a shift- or
+ *                 middle-drag pans (eye and target together, the model following the mouse)
  *   view_advance  held keys and auto-rotation over [from, to]
  *   view_frame_opts  the render options a frame is drawn with (the headlight applied)
  *
@@ -46,6 +47,7 @@ enum view_action {
     VIEW_SCREENSHOT,
     VIEW_TURN_UP,      /* the model's next axis up (scene_turn_up), framed again */
     VIEW_NEXT_CAMERA,  /* the model file's next camera (then rastty's framing) */
+    VIEW_HUD_TOGGLED,  /* H: the status line hidden or shown (the picture's rows change) */
 };
 
 struct view_state {
@@ -59,6 +61,9 @@ struct view_state {
     bool headlight;           /* the light follows the camera (else the world lights) */
     bool help;                /* the key help overlay is shown */
     bool hud_camera;          /* the status line shows the camera position */
+    bool hud_hidden;          /* no status line (--no-hud at start, then the H key) */
+    int rows;                 /* the picture's rows of cells (a pan drag follows the mouse) */
+    double cell_w;            /* a cell's width over its height (0.5 for 1:2 cells) */
     double extent;            /* the scene's size: movement speed scales with it */
     double speed;             /* [ and ] */
     double spin_timeout;      /* seconds without input before the spin pauses; 0 = never */
@@ -66,6 +71,7 @@ struct view_state {
     /* held keys: each command moves from held_from until held_until */
     double held_from[IN_HELD_COUNT], held_until[IN_HELD_COUNT], last_press[IN_HELD_COUNT];
     bool dragging;
+    bool drag_pan;            /* this drag pans (shift held, or the middle button) */
     int drag_x, drag_y;
     /* for the loop */
     bool dirty;               /* the picture must be drawn again */

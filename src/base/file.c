@@ -61,6 +61,54 @@ static int kind_error(mode_t m)
     return FILE_E_OTHER;
 }
 
+/* Read fd to its end into a malloc'd, NUL-terminated buffer; size: the expected length (a
+ * first allocation), max: the limit (FILE_E_TOO_BIG past it). */
+static int read_all(int fd, size_t size, size_t max, char **buf_out, size_t *len_out)
+{
+    size_t cap = size + 2; /* the NUL, and one byte to see EOF at once */
+    char *buf = malloc(cap);
+    if (!buf)
+        return ENOMEM;
+    size_t len = 0;
+    int rc = 0;
+    for (;;) {
+        if (len + 1 >= cap) { /* the file grew since fstat (or a pipe: it goes on) */
+            if (cap - 2 >= max) {
+                rc = FILE_E_TOO_BIG;
+                break;
+            }
+            size_t ncap = cap * 2 > max + 2 ? max + 2 : cap * 2;
+            char *nb = realloc(buf, ncap);
+            if (!nb) {
+                rc = ENOMEM;
+                break;
+            }
+            buf = nb;
+            cap = ncap;
+        }
+        ssize_t got = read(fd, buf + len, cap - 1 - len);
+        if (got < 0) {
+            if (errno == EINTR)
+                continue;
+            rc = errno ? errno : EIO;
+            break;
+        }
+        if (got == 0)
+            break;
+        len += (size_t)got;
+    }
+    if (rc == 0 && len > max)
+        rc = FILE_E_TOO_BIG;
+    if (rc) {
+        free(buf);
+        return rc;
+    }
+    buf[len] = '\0';
+    *buf_out = buf;
+    *len_out = len;
+    return 0;
+}
+
 int file_read(const char *path, size_t max, char **buf_out, size_t *len_out)
 {
     *buf_out = NULL;
@@ -87,51 +135,25 @@ int file_read(const char *path, size_t max, char **buf_out, size_t *len_out)
     int fl = fcntl(fd, F_GETFL);
     if (fl >= 0)
         fcntl(fd, F_SETFL, fl & ~O_NONBLOCK);
-    size_t cap = (size_t)st.st_size + 2; /* the NUL, and one byte to see EOF at once */
-    char *buf = malloc(cap);
-    if (!buf) {
-        close(fd);
-        return ENOMEM;
-    }
-    size_t len = 0;
-    int rc = 0;
-    for (;;) {
-        if (len + 1 >= cap) { /* the file grew since fstat */
-            if (cap - 2 >= max) {
-                rc = FILE_E_TOO_BIG;
-                break;
-            }
-            size_t ncap = cap * 2 > max + 2 ? max + 2 : cap * 2;
-            char *nb = realloc(buf, ncap);
-            if (!nb) {
-                rc = ENOMEM;
-                break;
-            }
-            buf = nb;
-            cap = ncap;
-        }
-        ssize_t got = read(fd, buf + len, cap - 1 - len);
-        if (got < 0) {
-            if (errno == EINTR)
-                continue;
-            rc = errno ? errno : EIO;
-            break;
-        }
-        if (got == 0)
-            break;
-        len += (size_t)got;
-    }
+    int rc = read_all(fd, (size_t)st.st_size, max, buf_out, len_out);
     close(fd);
-    if (rc == 0 && len > max)
-        rc = FILE_E_TOO_BIG;
-    if (rc) {
-        free(buf);
-        return rc;
+    return rc;
+}
+
+int file_read_stdin(size_t max, char **buf_out, size_t *len_out)
+{
+    *buf_out = NULL;
+    *len_out = 0;
+    if (isatty(STDIN_FILENO))
+        return FILE_E_TTY; /* nothing piped in: reading would wait for the user's typing */
+    struct stat st;
+    size_t hint = 0;
+    if (fstat(STDIN_FILENO, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0) {
+        if ((unsigned long long)st.st_size > max)
+            return FILE_E_TOO_BIG;
+        hint = (size_t)st.st_size;
     }
-    buf[len] = '\0';
-    *buf_out = buf;
-    *len_out = len;
-    return 0;
+    return read_all(STDIN_FILENO, hint ? hint : 65536, max, buf_out, len_out);
 }
 
 const char *file_strerror(int code)
@@ -142,6 +164,7 @@ const char *file_strerror(int code)
     case FILE_E_SOCKET: return "a socket, not a regular file";
     case FILE_E_OTHER: return "not a regular file";
     case FILE_E_TOO_BIG: return "file too large";
+    case FILE_E_TTY: return "standard input is a terminal, nothing was piped in (rastty - < FILE)";
     case EISDIR: return "a directory, not a file";
     default: return strerror(code);
     }

@@ -30,7 +30,7 @@ enum flag_id {
     F_COLORS, F_TOLERANCE, F_DITHER, F_DIFF, F_PPM_DIR, F_FRAME_INDEX, F_FPS, F_NO_HUD, F_CHART,
     F_SWEEP, F_CSV, F_SVG, F_MODELS, F_HELP, F_VERSION, F_SPIN, F_NO_SPIN, F_BANDWIDTH, F_SKY,
     F_LOD,
-    F_GLYPHS, F_BUDGET, F_CREASE, F_UP_AXIS, F_NORMAL_MAP, F_CAMERA, F_ALLOW_OUTSIDE,
+    F_GLYPHS, F_BUDGET, F_CREASE, F_UP_AXIS, F_NORMAL_MAP, F_CAMERA, F_ALLOW_OUTSIDE, F_FORMAT, F_CELL_ASPECT,
 };
 
 struct flag {
@@ -84,7 +84,8 @@ static const struct flag flags[] = {
     ENUM_FLAG("--cluster-cull", C_DRAW | C_BENCH, "drop whole clusters of triangles that cannot reach a pixel (outside the view, facing away when culled, between pixel centres) before their vertices are transformed; never changes a picture (default off: it does not pay yet)", render_cluster_cull_names, render.cluster_cull),
     {"--hidden-lines", F_HIDDEN_LINES, ARG_NONE, C_DRAW, NULL, "wire: hide edges behind the model's surfaces", NULL, 0},
     ENUM_FLAG("--view", C_DRAW, "what the picture shows", render_view_names, render.view),
-    {"--out", F_OUT, ARG_VALUE, C_RENDER | C_DUMP | C_A2P, "FILE", "output file (.ppm/.png; dump: .ans)", NULL, 0},
+    {"--out", F_OUT, ARG_VALUE, C_RENDER | C_DUMP | C_A2P, "FILE", "output file (.ppm/.png; dump: .ans or .cast); - is standard output (render, ansi2ppm: never a terminal)", NULL, 0},
+    {"--format", F_FORMAT, ARG_VALUE, C_RENDER | C_A2P, "png|ppm", "the image format of --out - (default png); a file's is its extension", NULL, 0},
     {"--depth-out", F_DEPTH_OUT, ARG_VALUE, C_RENDER, "FILE.pfm", "also write the depth buffer as PFM", NULL, 0},
     {"--stats", F_STATS, ARG_NONE, C_RENDER | C_DUMP, NULL, "print triangle/pixel counts and timings to stderr", NULL, 0},
     {"--repeat", F_REPEAT, ARG_VALUE, C_RENDER | C_BENCH, "N", "render the frame N times (timing; --stats prints median_ms=; bench --chart: frames timed per method, default 9)", NULL, 0},
@@ -105,7 +106,8 @@ static const struct flag flags[] = {
     {"--bandwidth", F_BANDWIDTH, ARG_VALUE, C_VIEW, "RATE", "cap the bytes/s sent (128k, 1Mbit, 2M; default: what the link takes)", NULL, 0},
     {"--spin", F_SPIN, ARG_NONE, C_VIEW, NULL, "auto-rotate (the default for the demo only)", NULL, 0},
     {"--no-spin", F_NO_SPIN, ARG_NONE, C_VIEW, NULL, "do not auto-rotate", NULL, 0},
-    {"--no-hud", F_NO_HUD, ARG_NONE, C_VIEW, NULL, "hide the status line", NULL, 0},
+    {"--cell-aspect", F_CELL_ASPECT, ARG_VALUE, C_DRAW, "R", "a terminal cell's height / width, 0.5..4 (view: default the terminal's, from its pixel size or ESC[16t, else 2; render, dump: 2), so circles stay round", NULL, 0},
+    {"--no-hud", F_NO_HUD, ARG_NONE, C_VIEW, NULL, "start with the status line hidden (H shows it)", NULL, 0},
     {"--chart", F_CHART, ARG_NONE, C_BENCH, NULL, "speed against accuracy of every method on the scene set", NULL, 0},
     {"--sweep", F_SWEEP, ARG_VALUE, C_BENCH, "NAME", "where methods fail: grazing|depthrange|magnitude|sliver|nearplane|minification", NULL, 0},
     {"--csv", F_CSV, ARG_VALUE, C_BENCH, "FILE", "--chart/--sweep: also write the numbers as CSV", NULL, 0},
@@ -426,6 +428,16 @@ static int apply(struct options *o, const struct flag *f, const char *v, struct 
             return bad(e, f->name, "expected a camera number 0..64", v);
         return 0;
     case F_ALLOW_OUTSIDE: o->model.any_path = true; return 0;
+    case F_CELL_ASPECT:
+        if (parse_double(v, &o->cell_aspect) ||
+            !(o->cell_aspect >= CELL_ASPECT_MIN && o->cell_aspect <= CELL_ASPECT_MAX))
+            return bad(e, f->name, "expected a cell's height / width, 0.5..4", v);
+        return 0;
+    case F_FORMAT:
+        if (strcmp(v, "png") != 0 && strcmp(v, "ppm") != 0)
+            return bad(e, f->name, "expected png or ppm", v);
+        o->format = v;
+        return 0;
     case F_HELP: o->cmd = CMD_HELP; return 0;
     case F_VERSION: o->cmd = CMD_VERSION; return 0;
     }
@@ -445,6 +457,16 @@ static int validate(struct options *o, struct err *e)
     if (!kernel_set(o->render.kernel))
         return err_set(e, "rastty: --kernel %s: not available on this CPU or in this build",
                        render_kernel_names.names[o->render.kernel]);
+    int stdin_inputs = 0;
+    for (int i = 0; i < o->n_inputs; i++)
+        stdin_inputs += strcmp(o->inputs[i], "-") == 0;
+    if (stdin_inputs > 1)
+        return err_set(e, "rastty: - (standard input) may be given once");
+    if (o->format && o->out && strcmp(o->out, "-") != 0)
+        return err_set(e, "rastty: --format %s is for --out - (standard output); a file's format "
+                          "is its extension", o->format);
+    if (o->depth_out && strcmp(o->depth_out, "-") == 0)
+        return err_set(e, "rastty render: --depth-out -: the depth goes to a file (FILE.pfm)");
     switch (o->cmd) {
     case CMD_RENDER:
         if (o->n_inputs != 1)
@@ -459,6 +481,8 @@ static int validate(struct options *o, struct err *e)
             return -1;
         break;
     case CMD_DUMP:
+        if (o->out && strcmp(o->out, "-") == 0) /* standard output, as without --out */
+            o->out = NULL;
         if (o->n_inputs != 1)
             return err_set(e, "rastty dump: expected one MODEL or SCENE.rsc (see rastty --help)");
         if (o->cols && o->rows) {
@@ -662,9 +686,9 @@ void options_usage(FILE *out)
     defaults(&dflt);
     fprintf(out,
             "usage: rastty [view] [MODEL|SCENE.rsc ...]   interactive viewer (no file: demo)\n"
-            "       rastty render MODEL --out FILE.ppm|FILE.png [options]\n"
-            "       rastty dump MODEL [--out FILE.ans] [options]\n"
-            "       rastty ansi2ppm FILE.ans --out FILE.ppm [--frame K]\n"
+            "       rastty render MODEL --out FILE.ppm|FILE.png|- [options]\n"
+            "       rastty dump MODEL [--out FILE.ans|-] [options]\n"
+            "       rastty ansi2ppm FILE.ans --out FILE.ppm|FILE.png|- [--frame K]\n"
             "       rastty bench [options]\n\noptions:\n");
     for (size_t k = 0; k < sizeof flags / sizeof flags[0]; k++) {
         const struct flag *f = &flags[k];
@@ -689,7 +713,8 @@ void options_usage(FILE *out)
             }
         fprintf(out, "%s]\n", f->cmds == ~0u ? "all" : "");
     }
-    fprintf(out, "\nMODEL: OBJ, STL, PLY, glTF/GLB, FBX, COLLADA, 3DS, ... (format by content).\n"
+    fprintf(out, "\nMODEL: OBJ, STL, PLY, glTF/GLB, FBX, COLLADA, 3DS, ... (format by content); - reads it\n"
+                 "from standard input (its MTL and textures relative to the current folder).\n"
                  "Exit status: 0 success (a material's missing texture or library is only a\n"
                  "warning), 1 runtime failure, 2 bad usage or a bad file named on the command line.\n"
                  "See rastty(1) for keys, the scene format and examples.\n");

@@ -141,7 +141,8 @@ int prepare_scene(const struct options *o, const char *path, struct scene *s, ch
     if (s->warnings.dropped)
         fprintf(stderr, "warning: ... and %d more warnings\n", s->warnings.dropped);
     size_t len = strlen(path);
-    bool model = len < 4 || strcmp(path + len - 4, ".rsc") != 0;
+    /* (standard input has no name to find a texture beside) */
+    bool model = (len < 4 || strcmp(path + len - 4, ".rsc") != 0) && strcmp(path, "-") != 0;
     char found[4200];
     if (!o->texture && o->render.textures && model && wants_a_texture(s) &&
         texfind_beside(path, found, sizeof found) == 0) {

@@ -166,7 +166,8 @@ int cmd_dump(const struct options *o, struct err *e)
     struct camera cam;
     struct render_opts ro;
     struct cell_geom geom = cell_geom(o->glyphs);
-    prepare_camera(o, scene, cols * CELL_ASPECT / rows, o->frame, &cam, &ro);
+    double cell_r = o->cell_aspect > 0 ? o->cell_aspect : 1 / CELL_ASPECT; /* height/width */
+    prepare_camera(o, scene, cols / (cell_r * rows), o->frame, &cam, &ro);
     /* a dump is what the viewer shows: its light, the headlight, unless --light X,Y,Z (or the
      * config file's light = world); render keeps the conventions' fixed light */
     bool headlight = o->light_camera || (!o->light_set && !o->light_world);
@@ -202,7 +203,7 @@ int cmd_dump(const struct options *o, struct err *e)
     if (fb_init(&fb, cell_fb_w(&geom, cols), cell_fb_h(&geom, rows), ro.view == VIEW_OVERDRAW, e) ||
         encode_screen_init(&es, cols, rows, e))
         goto done;
-    fb.pixel_aspect = cell_pixel_aspect(&geom);
+    fb.pixel_aspect = cell_pixel_aspect_r(&geom, cell_r);
     for (int k = 0; k < frames; k++) {
         struct camera c = cam;
         if (o->camera_path) {
@@ -272,21 +273,33 @@ done:
 int cmd_ansi2ppm(const struct options *o, struct err *e)
 {
     char q_out[FILE_QUOTE_SIZE];
-    if (!image_color_ext_ok(o->out))
-        return err_set(e, "rastty ansi2ppm: --out %s: use a .ppm or .png file name",
+    bool to_stdout = strcmp(o->out, "-") == 0;
+    bool ppm = o->format && strcmp(o->format, "ppm") == 0;
+    if (!to_stdout && !image_color_ext_ok(o->out))
+        return err_set(e, "rastty ansi2ppm: --out %s: use a .ppm or .png file name (or - for "
+                          "standard output)",
                        file_quote(o->out, q_out, sizeof q_out)), 2;
+    if (to_stdout && isatty(STDOUT_FILENO))
+        return err_set(e, "rastty ansi2ppm: --out -: standard output is a terminal; refusing to "
+                          "write a %s image to it (redirect it: > x.png, or | a viewer)",
+                       ppm ? "PPM" : "PNG"), 2;
     const char *path = o->inputs[0];
+    bool in = strcmp(path, "-") == 0; /* `tmux capture-pane -e -p | rastty ansi2ppm - ...` */
     char q[FILE_QUOTE_SIZE];
-    file_quote(path, q, sizeof q);
+    if (in)
+        snprintf(q, sizeof q, "<stdin>");
+    else
+        file_quote(path, q, sizeof q);
     char *buf;
     size_t len;
-    int read_rc = file_read(path, FILE_MAX_ANSI, &buf, &len);
+    int read_rc = in ? file_read_stdin(FILE_MAX_ANSI, &buf, &len)
+                     : file_read(path, FILE_MAX_ANSI, &buf, &len);
     if (read_rc)
         return err_set(e, "%s: cannot read: %s", q, file_strerror(read_rc)), 2;
     int cols, rows, frames, rc = 2;
     struct decode_state d = {0};
     struct cell_geom grid; /* the grid the glyphs need, unless --glyphs names one */
-    if (decode_measure(buf, len, q, &cols, &rows, &frames, &grid, e) == 0) {
+    if (decode_measure(buf, len, q, true, &cols, &rows, &frames, &grid, e) == 0) {
         if (o->glyphs_set)
             grid = cell_geom(o->glyphs);
         int k = o->frame_index >= 0 ? o->frame_index : frames - 1;
@@ -294,10 +307,16 @@ int cmd_ansi2ppm(const struct options *o, struct err *e)
             err_set(e, "%s: has %d frame%s, no frame %d", q, frames, frames == 1 ? "" : "s", k);
         } else if (decode_init(&d, cols, rows, grid, e) == 0) {
             d.name = q;
+            d.text = true; /* a capture's status line and help box: their background */
             if (decode_frame(&d, buf, len, k, e) == 0) {
+                if (d.text_cells)
+                    fprintf(stderr, "%s: %d text cell%s (a status line, a help box) drawn as "
+                                    "their background colour\n",
+                            q, d.text_cells, d.text_cells == 1 ? "" : "s");
                 struct fb fb = {.w = cell_fb_w(&grid, cols), .h = cell_fb_h(&grid, rows),
                                 .rgb = d.rgb};
-                rc = image_write_color(o->out, &fb, e) ? 1 : 0;
+                rc = (to_stdout ? image_write_stdout(&fb, ppm, e)
+                                : image_write_color(o->out, &fb, e)) ? 1 : 0;
             }
             decode_free(&d);
         }

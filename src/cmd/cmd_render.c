@@ -1,6 +1,7 @@
 /* cmd_render.c: `rastty render` — one frame of one model or scene to an image file. */
 #include "cmd.h"
 
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -20,9 +21,15 @@
 int cmd_render(const struct options *o, struct err *e)
 {
     char q[FILE_QUOTE_SIZE];
-    if (!image_color_ext_ok(o->out))
-        return err_set(e, "rastty render: --out %s: use a .ppm or .png file name",
+    bool to_stdout = strcmp(o->out, "-") == 0;
+    if (!to_stdout && !image_color_ext_ok(o->out))
+        return err_set(e, "rastty render: --out %s: use a .ppm or .png file name (or - for "
+                          "standard output)",
                        file_quote(o->out, q, sizeof q)), 2;
+    if (to_stdout && isatty(STDOUT_FILENO)) /* as chafa and convert do: no binary on a screen */
+        return err_set(e, "rastty render: --out -: standard output is a terminal; refusing to "
+                          "write a %s image to it (redirect it: > x.png, or | a viewer)",
+                       o->format && strcmp(o->format, "ppm") == 0 ? "PPM" : "PNG"), 2;
     /* a scene is ~28 KB: on the heap, so a 64 KiB stack (ulimit -s 64) holds the frame */
     struct scene *scene = malloc(sizeof *scene);
     if (!scene)
@@ -37,7 +44,8 @@ int cmd_render(const struct options *o, struct err *e)
     struct render_opts ro;
     /* --glyphs: the pixels are that glyph set's (cell.h), as a terminal would show them */
     struct cell_geom geom = cell_geom(o->glyphs);
-    double pixel_aspect = cell_pixel_aspect(&geom); /* 1: half blocks' pixels are square */
+    /* 1: half blocks' pixels are square (on 1:2 cells; --cell-aspect another shape) */
+    double pixel_aspect = cell_pixel_aspect_r(&geom, o->cell_aspect > 0 ? o->cell_aspect : 2);
     prepare_camera(o, scene, (double)o->width * pixel_aspect / o->height, o->frame, &cam, &ro);
     struct fb fb;
     struct ssaa ss = {0};
@@ -62,7 +70,9 @@ int cmd_render(const struct options *o, struct err *e)
                 break;
             ms[drawn] = st.render_ms;
         }
-        if (drawn == o->repeat && image_write_color(o->out, &fb, e) == 0 &&
+        if (drawn == o->repeat &&
+            (to_stdout ? image_write_stdout(&fb, o->format && strcmp(o->format, "ppm") == 0, e)
+                       : image_write_color(o->out, &fb, e)) == 0 &&
             (!o->depth_out || image_write_pfm(o->depth_out, &fb, e) == 0))
             rc = 0;
         if (o->stats && drawn > 0) {

@@ -136,3 +136,13 @@ void camera_move(struct camera *c, double forward, double right, double up, int 
     c->eye = v3_add(c->eye, d);
     c->target = v3_add(c->target, d);
 }
+
+void camera_pan(struct camera *c, double right, double up)
+{
+    vec3 f = v3_norm(v3_sub(c->target, c->eye));
+    vec3 r = v3_norm(v3_cross(f, c->up));
+    vec3 u = v3_cross(r, f); /* unit: r and f are unit and perpendicular */
+    vec3 d = v3_add(v3_scale(r, right), v3_scale(u, up));
+    c->eye = v3_add(c->eye, d);
+    c->target = v3_add(c->target, d);
+}

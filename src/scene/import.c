@@ -703,8 +703,11 @@ int import_read(const char *data, size_t len, const struct model_ctx *ctx, struc
         return -1;
     char name[64];
     const char *iname = ctx->path;
-    if (!iname) { /* assimp picks importers by name: give it one that fits the bytes */
-        snprintf(name, sizeof name, "memory.%s", import_guess_ext(data, len));
+    bool in = iname && strcmp(iname, MODEL_STDIN_NAME) == 0;
+    if (!iname || in) { /* assimp picks importers by name: give it one that fits the bytes
+                           (standard input's others are found in the current folder) */
+        snprintf(name, sizeof name, "%s.%s", in ? "stdin" : "memory",
+                 import_guess_ext(data, len));
         iname = name;
     }
     struct import_job job = {data, len, iname, ctx->path != NULL};

@@ -352,13 +352,17 @@ int model_load_with(const char *path, const struct model_opts *opts,
     memset(out, 0, sizeof *out);
     char *data;
     size_t len;
-    int rc = file_read(path, FILE_MAX_MODEL, &data, &len);
+    bool in = strcmp(path, "-") == 0; /* standard input: its name in messages is <stdin>,
+                                          its MTL and textures are relative to . */
+    int rc = in ? file_read_stdin(FILE_MAX_MODEL, &data, &len)
+                : file_read(path, FILE_MAX_MODEL, &data, &len);
     if (rc) {
         char q[FILE_QUOTE_SIZE];
-        return err_set(e, "%s: cannot read: %s", file_quote(path, q, sizeof q),
-                       file_strerror(rc));
+        return err_set(e, "%s: cannot read: %s",
+                       in ? MODEL_STDIN_NAME : file_quote(path, q, sizeof q), file_strerror(rc));
     }
-    struct model_ctx ctx = {.path = path, .cache = cache, .warn = w, .opts = opts};
+    struct model_ctx ctx = {.path = in ? MODEL_STDIN_NAME : path, .cache = cache, .warn = w,
+                            .opts = opts};
     rc = model_parse(data, len, &ctx, out, e);
     free(data);
     return rc;

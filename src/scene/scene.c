@@ -20,7 +20,7 @@
 static void set_name(struct scene *s, const char *path)
 {
     const char *base = strrchr(path, '/');
-    base = base ? base + 1 : path;
+    base = base ? base + 1 : strcmp(path, "-") == 0 ? "stdin" : path;
     err_quote(base, strlen(base), sizeof s->name - 4, s->name, sizeof s->name);
 }
 

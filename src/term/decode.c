@@ -91,6 +91,7 @@ void decode_reset(struct decode_state *d)
     d->fg_default = d->bg_default = true;
     d->reverse = false;
     d->frames = d->used_cols = d->used_rows = 0;
+    d->text_cells = 0;
     d->need_w = d->need_h = 1;
 }
 
@@ -184,6 +185,10 @@ static int sgr(struct decode_state *d, const int *p, int n, size_t at, struct er
             d->reverse = false;
         } else if (v == 7 || v == 27) {
             d->reverse = v == 7;
+        } else if (d->text && ((v >= 1 && v <= 5) || (v >= 21 && v <= 25) || v == 8 ||
+                               v == 28 || v == 9 || v == 29)) {
+            /* text's attributes (bold, dim, italic, underline, blink, hidden, struck): no
+             * colour of a glyph cell changes with them */
         } else if (v == 39) {
             d->fg_default = true;
         } else if (v == 49) {
@@ -254,10 +259,14 @@ static int parse(struct decode_state *d, const char *buf, size_t len, int stop_f
             }
             uint32_t shape;
             if (cell_shape(cp, &shape)) {
-                char msg[120];
-                snprintf(msg, sizeof msg, "unsupported character U+%04X (only block elements, "
-                                          "sextants and braille)", (unsigned)cp);
-                return fail(d, e, i, msg);
+                if (!d->text) {
+                    char msg[120];
+                    snprintf(msg, sizeof msg, "unsupported character U+%04X (only block "
+                                              "elements, sextants and braille)", (unsigned)cp);
+                    return fail(d, e, i, msg);
+                }
+                shape = 0; /* text (the help box's frame): a cell of its background */
+                d->text_cells++;
             }
             if (put_cell(d, shape, cur_fg(d), cur_bg(d), i, e))
                 return -1;
@@ -347,13 +356,22 @@ static int parse(struct decode_state *d, const char *buf, size_t len, int stop_f
             }
             i = j + 1;
         } else {
+            /* the monochrome ramp is drawn in the terminal's own colours; with colours set
+             * (a status line, a help box), or any other printable character, it is text */
             const char *ramp = b ? strchr(PALETTE_RAMP, b) : NULL;
-            if (!ramp)
+            bool plain = d->fg_default && d->bg_default && !d->reverse;
+            if (ramp && (plain || !d->text)) {
+                uint8_t g = palette_ramp_grey((int)(ramp - PALETTE_RAMP));
+                uint8_t grey[3] = {g, g, g};
+                if (put_cell(d, 0, grey, grey, i, e))
+                    return -1;
+            } else if (d->text && b > 0x20 && b < 0x7f) {
+                if (put_cell(d, 0, cur_fg(d), cur_bg(d), i, e))
+                    return -1;
+                d->text_cells++;
+            } else {
                 return fail_byte(d, e, i, "unexpected byte", b);
-            uint8_t g = palette_ramp_grey((int)(ramp - PALETTE_RAMP));
-            uint8_t grey[3] = {g, g, g};
-            if (put_cell(d, 0, grey, grey, i, e))
-                return -1;
+            }
             i++;
         }
     }
@@ -381,13 +399,14 @@ int decode_frame(struct decode_state *d, const char *buf, size_t len, int k, str
     return 0;
 }
 
-int decode_measure(const char *buf, size_t len, const char *name, int *cols_out, int *rows_out,
-                   int *frames_out, struct cell_geom *grid_out, struct err *e)
+int decode_measure(const char *buf, size_t len, const char *name, bool text, int *cols_out,
+                   int *rows_out, int *frames_out, struct cell_geom *grid_out, struct err *e)
 {
     struct decode_state d;
     memset(&d, 0, sizeof d);
     d.cols = d.rows = MEASURE_DIM;
     d.name = name;
+    d.text = text;
     decode_reset(&d);
     if (decode_apply(&d, buf, len, e))
         return -1;

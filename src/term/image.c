@@ -1,6 +1,7 @@
 /* image.c: PPM / PNG / PFM output (see image.h). */
 #include "image.h"
 
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -52,6 +53,26 @@ int image_write_png(const char *path, const struct fb *fb, struct err *e)
     fwrite(png, 1, (size_t)len, o.f);
     free(png);
     return file_out_commit(&o, e);
+}
+
+int image_write_stdout(const struct fb *fb, bool ppm, struct err *e)
+{
+    int len = 0;
+    unsigned char *png = ppm ? NULL
+                             : stbi_write_png_to_mem(fb->rgb, fb->w * 3, fb->w, fb->h, 3, &len);
+    if (!ppm && !png)
+        return err_set(e, "standard output: cannot encode PNG");
+    errno = 0;
+    if (ppm) {
+        printf("P6\n%d %d\n255\n", fb->w, fb->h);
+        fwrite(fb->rgb, 3, (size_t)fb->w * (size_t)fb->h, stdout);
+    } else {
+        fwrite(png, 1, (size_t)len, stdout);
+        free(png);
+    }
+    if (fflush(stdout) != 0 || ferror(stdout))
+        return err_set(e, "standard output: write failed: %s", strerror(errno ? errno : EIO));
+    return 0;
 }
 
 int image_write_color(const char *path, const struct fb *fb, struct err *e)

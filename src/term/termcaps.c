@@ -303,3 +303,27 @@ int termcaps_tmux_features(char *out, size_t n)
     out[strcspn(out, "\n")] = '\0';
     return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? 0 : -1;
 }
+
+int termcaps_cell_pixels(const char *reply, int *h_out, int *w_out)
+{
+    for (const char *p = strstr(reply, "\033[6;"); p; p = strstr(p + 1, "\033[6;")) {
+        const char *q = p + 4;
+        long v[2];
+        int k = 0;
+        for (; k < 2; k++) {
+            char *end;
+            if (*q < '0' || *q > '9')
+                break;
+            v[k] = strtol(q, &end, 10);
+            if (v[k] <= 0 || v[k] > 100000 || *end != (k == 0 ? ';' : 't'))
+                break;
+            q = end + 1;
+        }
+        if (k == 2) {
+            *h_out = (int)v[0];
+            *w_out = (int)v[1];
+            return 0;
+        }
+    }
+    return -1;
+}

@@ -4,6 +4,8 @@
 #include <curses.h>
 #include <term.h>
 #include <errno.h>
+#include <sys/ioctl.h>
+#include <fcntl.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -185,6 +187,22 @@ static void open_screen(void *unused)
     screen_handle = newterm(NULL, stdout, stdin);
 }
 
+int tty_keys_from_terminal(struct err *e)
+{
+    if (isatty(STDIN_FILENO))
+        return 0;
+    int fd = open("/dev/tty", O_RDWR | O_NOCTTY | O_CLOEXEC);
+    if (fd < 0)
+        return err_set(e, "rastty: the model came on standard input, and there is no terminal "
+                          "for the keys (/dev/tty: %s)", strerror(errno));
+    int rc = dup2(fd, STDIN_FILENO) < 0 ? -1 : 0;
+    if (rc)
+        err_set(e, "rastty: /dev/tty: %s", strerror(errno));
+    close(fd);
+    clearerr(stdin);
+    return rc;
+}
+
 int tty_open(struct tty *t, struct err *e)
 {
     memset(t, 0, sizeof *t);
@@ -215,8 +233,8 @@ int tty_open(struct tty *t, struct err *e)
     set_escdelay(25);
     curs_set(0);
     refresh(); /* ncurses' one and only drawing: it clears the alternate screen */
-    mmask_t want = BUTTON1_PRESSED | BUTTON1_RELEASED | REPORT_MOUSE_POSITION |
-                   BUTTON4_PRESSED | BUTTON5_PRESSED;
+    mmask_t want = BUTTON1_PRESSED | BUTTON1_RELEASED | BUTTON2_PRESSED | BUTTON2_RELEASED |
+                   REPORT_MOUSE_POSITION | BUTTON4_PRESSED | BUTTON5_PRESSED | BUTTON_SHIFT;
     t->mouse = mousemask(want, NULL) != 0;
     mouseinterval(0);
     if (t->mouse)
@@ -278,6 +296,12 @@ void tty_refresh_size(struct tty *t)
     getmaxyx(stdscr, r, c);
     t->rows = r;
     t->cols = c;
+    struct winsize ws;
+    t->px_w = t->px_h = 0;
+    if (ioctl(STDOUT_FILENO, TIOCGWINSZ, &ws) == 0) {
+        t->px_w = ws.ws_xpixel;
+        t->px_h = ws.ws_ypixel;
+    }
 }
 
 int tty_write(const char *buf, size_t n)
@@ -506,14 +530,17 @@ static enum tty_event_kind sgr_mouse(const char *seq, struct tty_event *ev)
         return TTY_NONE;
     ev->mx = (int)v[1] - 1;
     ev->my = (int)v[2] - 1;
+    /* +4 shift (+8 meta, +16 control: ignored); a middle-button drag pans as a shift-drag */
+    ev->pan = (b & 4) != 0 || (!(b & 64) && (b & 3) == 1);
     if (b & 64) { /* wheel: 64 up, 65 down; no release */
         if ((b & 3) > 1 || final == 'm')
             return TTY_NONE;
         ev->button = (b & 1) ? 5 : 4;
         ev->pressed = true;
-    } else if ((b & 3) != 0) { /* middle, right */
+        ev->pan = false;
+    } else if ((b & 3) > 1) { /* right; 3: a release without its button (X10 style) */
         return TTY_NONE;
-    } else if (b & 32) { /* motion with the left button held */
+    } else if (b & 32) { /* motion with the left or middle button held */
         ev->button = 0;
     } else {
         ev->button = 1;
@@ -600,10 +627,13 @@ enum tty_event_kind tty_next_event(struct tty *t, int timeout_ms, struct tty_eve
         ev->kind = TTY_MOUSE;
         ev->mx = m.x;
         ev->my = m.y;
-        ev->pressed = (m.bstate & (BUTTON1_PRESSED | BUTTON4_PRESSED | BUTTON5_PRESSED)) != 0;
-        ev->released = (m.bstate & BUTTON1_RELEASED) != 0;
+        mmask_t b1 = BUTTON1_PRESSED | BUTTON1_RELEASED, b2 = BUTTON2_PRESSED | BUTTON2_RELEASED;
+        ev->pressed = (m.bstate & (BUTTON1_PRESSED | BUTTON2_PRESSED | BUTTON4_PRESSED |
+                                   BUTTON5_PRESSED)) != 0;
+        ev->released = (m.bstate & (BUTTON1_RELEASED | BUTTON2_RELEASED)) != 0;
         ev->button = (m.bstate & BUTTON4_PRESSED) ? 4 : (m.bstate & BUTTON5_PRESSED) ? 5
-                     : (m.bstate & (BUTTON1_PRESSED | BUTTON1_RELEASED)) ? 1 : 0;
+                     : (m.bstate & (b1 | b2)) ? 1 : 0;
+        ev->pan = ev->button < 4 && (m.bstate & (BUTTON_SHIFT | b2)) != 0;
         return ev->kind;
     }
     ev->kind = TTY_KEY;

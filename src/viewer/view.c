@@ -65,6 +65,7 @@ struct view {
     struct encode_stats est;
     double encode_ms, fps, last_frame_at, next_hud_at;
     unsigned long frames;   /* frames written in full: the status line's "#N" (view_hud.h) */
+    double cell_r;          /* a cell's height / width (--cell-aspect, or the terminal's) */
     char hud_text[512];
     /* everything for one update (status line, overlay, frame, DSR) goes out in one write */
     char *out;
@@ -166,7 +167,7 @@ static int resize(struct view *v, struct err *e)
 {
     tty_refresh_size(&v->tty);
     int rows = v->tty.rows - 1; /* the status line */
-    if (v->o->no_hud)
+    if (v->s.hud_hidden)
         rows = v->tty.rows;
     int cols = v->tty.cols;
     cols = cols > ENCODE_MAX_COLS ? ENCODE_MAX_COLS : cols;
@@ -184,9 +185,11 @@ static int resize(struct view *v, struct err *e)
         if (fb_init(&v->fb, cell_fb_w(&g, cols), cell_fb_h(&g, rows), true, e) ||
             encode_screen_init(&v->es, cols, rows, e))
             return -1;
-        v->fb.pixel_aspect = cell_pixel_aspect(&g);
+        v->fb.pixel_aspect = cell_pixel_aspect_r(&g, v->cell_r);
         v->fb_cols = cols;
         v->fb_rows = rows;
+        v->s.rows = rows; /* a pan drag: the model follows the mouse */
+        v->s.cell_w = 1 / v->cell_r;
         v->glyphs = g.glyphs;
         v->eo.glyphs = g.glyphs;
     }
@@ -206,7 +209,7 @@ static bool still(struct view *v, double t)
 
 static void hud_draw(struct view *v, double t)
 {
-    if (v->o->no_hud || v->tty.rows < 1) {
+    if (v->s.hud_hidden || v->tty.rows < 1) {
         v->s.hud_dirty = false; /* nothing to draw: or the loop never waits (100% CPU idle) */
         return;
     }
@@ -429,9 +432,14 @@ static int act(struct view *v, enum view_action a, double t, bool *quit, struct 
         view_message(&v->s, msg, t);
         break;
     }
+    case VIEW_HUD_TOGGLED: /* the picture gains or gives back the last row */
+        if (resize(v, e))
+            return -1;
+        if (!v->s.hud_hidden)
+            view_message(&v->s, "status line on  (H: off)", t);
+        break;
     case VIEW_NONE: break;
     }
-    (void)e;
     return 0;
 }
 
@@ -612,13 +620,22 @@ static enum palette_mode colour_mode(const struct options *o, bool *ask_out)
  * TERMCAPS_QUERY). The answer also measures the round trip for the pacing. */
 static void ask_terminal(struct view *v, bool ask)
 {
-    char reply[1024];
-    const char *req = ask ? TERMCAPS_QUERY : "";
+    char reply[1024], req[256];
+    /* the cell's shape: --cell-aspect, else the window's pixels over its cells (TIOCGWINSZ),
+     * else ESC[16t's answer (asked with the probe: no wait of its own), else 1:2 */
+    double r = v->o->cell_aspect;
+    if (r <= 0)
+        r = cell_aspect_of(v->tty.px_w, v->tty.px_h, v->tty.cols, v->tty.rows);
+    snprintf(req, sizeof req, "%s%s", ask ? TERMCAPS_QUERY : "", r > 0 ? "" : TERMCAPS_CELL_QUERY);
+    v->cell_r = r > 0 ? r : 1 / CELL_ASPECT;
     double t0 = timing_now_s();
     if (tty_query(&v->tty, req, reply, sizeof reply, QUERY_MS) < 0) {
         pace_no_answers(&v->pace);
         return;
     }
+    int ch, cw;
+    if (r <= 0 && termcaps_cell_pixels(reply, &ch, &cw) == 0 && cell_aspect_of(cw, ch, 1, 1) > 0)
+        v->cell_r = cell_aspect_of(cw, ch, 1, 1);
     pace_sent(&v->pace, t0, strlen(req) + sizeof TTY_PROBE - 1, 0, 1);
     pace_answer(&v->pace, timing_now_s());
     if (ask)
@@ -636,6 +653,9 @@ int view_run(const struct options *o, struct err *e)
     int rc = 2;
     if (load_scenes(v, e))
         goto out;
+    for (int i = 0; i < o->n_inputs; i++) /* the model came on stdin: keys from the terminal */
+        if (strcmp(o->inputs[i], "-") == 0 && tty_keys_from_terminal(e))
+            goto out;
     /* the demo spins unless told not to; a model given on the command line does not */
     bool spin = o->spin >= 0 ? o->spin : o->n_inputs == 0;
     bool headlight = o->light_camera || (!o->light_set && !o->light_world);
@@ -647,6 +667,7 @@ int view_run(const struct options *o, struct err *e)
     view_state_init(&v->s, &cam, &ro, spin, headlight,
                     o->spin_timeout >= 0 ? o->spin_timeout : VIEW_SPIN_TIMEOUT_S, timing_now_s());
     v->s.glyphs = o->glyphs;
+    v->s.hud_hidden = o->no_hud; /* the start state; H toggles it */
     bool ask;
     v->mode = colour_mode(o, &ask);
     /* over ssh, default to a small tolerance: far fewer bytes, invisible change */

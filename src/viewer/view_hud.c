@@ -84,7 +84,7 @@ void view_hud_compose(const struct view_state *s, const struct view_hud_info *in
         add(&f, 1, "eye %.2f,%.2f,%.2f target %.2f,%.2f,%.2f fov %.0f", s->cam.eye.x,
             s->cam.eye.y, s->cam.eye.z, s->cam.target.x, s->cam.target.y, s->cam.target.z,
             s->cam.fov_deg);
-    add(&f, 1, "h: help"); /* the key a new user needs: goes only after every field below */
+    add(&f, 1, "?: help"); /* the key a new user needs: goes only after every field below */
     if (in->texture && s->ro.textures)
         add(&f, 2, "tex:%s", in->texture);
     else

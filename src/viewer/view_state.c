@@ -1,6 +1,7 @@
 /* view_state.c: the viewer's model and what keys and the mouse do to it (see view_state.h). */
 #include "view_state.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -40,6 +41,7 @@ void view_state_init(struct view_state *s, const struct camera *cam, const struc
     s->headlight = headlight;
     s->speed = 1;
     s->extent = 1;
+    s->cell_w = 0.5;
     s->spin_timeout = spin_timeout;
     s->last_input = now;
     s->dirty = s->hud_dirty = true;
@@ -168,8 +170,8 @@ enum view_action view_key(struct view_state *s, enum input_cmd c, double t)
         break;
     case IN_LIGHT:
         s->headlight = !s->headlight;
-        view_message(s, s->headlight ? "light follows the camera (l: fixed in the world)"
-                                     : "light fixed in the world (l: follows the camera)", t);
+        view_message(s, s->headlight ? "light follows the camera (b: fixed in the world)"
+                                     : "light fixed in the world (b: follows the camera)", t);
         break;
     case IN_PAUSE: /* pause and resume; after a camera key stopped it, start it again */
         if (s->spin) {
@@ -182,6 +184,9 @@ enum view_action view_key(struct view_state *s, enum input_cmd c, double t)
         }
         break;
     case IN_INFO: s->hud_camera = !s->hud_camera; break;
+    case IN_HUD:
+        s->hud_hidden = !s->hud_hidden;
+        return VIEW_HUD_TOGGLED;
     case IN_HELP:
         s->help = !s->help;
         return s->help ? VIEW_HELP_OPENED : VIEW_HELP_CLOSED;
@@ -215,12 +220,23 @@ void view_mouse(struct view_state *s, const struct tty_event *ev, double t)
     }
     if (ev->pressed && ev->button == 1) {
         s->dragging = true;
+        s->drag_pan = ev->pan; /* shift-drag or the middle button: the whole drag pans */
         s->drag_x = ev->mx, s->drag_y = ev->my;
         return;
     }
     if (s->dragging && (ev->button == 0 || ev->released)) {
         int dx = ev->mx - s->drag_x, dy = ev->my - s->drag_y;
-        if (dx || dy) {
+        if ((dx || dy) && (s->drag_pan || ev->pan)) {
+            /* the point at the target's depth follows the mouse: the view's height there
+             * over the picture's rows per cell */
+            double rows = s->rows > 0 ? s->rows : 24;
+            double cell = 2 * camera_distance(&s->cam) * tan(s->cam.fov_deg * M_PI / 360) / rows;
+            if (s->cam.ortho_height > 0)
+                cell = s->cam.ortho_height / rows;
+            camera_pan(&s->cam, -dx * cell * s->cell_w, dy * cell);
+            camera_touched(s);
+            s->dirty = true;
+        } else if (dx || dy) {
             /* a cell is 2 pixels tall: equal angle per pixel in both directions */
             camera_turn(&s->cam, -dx * 1.5, dy * 3.0, 1);
             camera_touched(s);
@@ -253,6 +269,10 @@ void view_advance(struct view_state *s, double from, double to)
         case IN_YAW_RIGHT: camera_turn(&s->cam, -a, 0, s->orbit); break;
         case IN_PITCH_UP: camera_turn(&s->cam, 0, a, s->orbit); break;
         case IN_PITCH_DOWN: camera_turn(&s->cam, 0, -a, s->orbit); break;
+        case IN_PAN_LEFT: camera_pan(&s->cam, -d, 0); break;
+        case IN_PAN_RIGHT: camera_pan(&s->cam, d, 0); break;
+        case IN_PAN_UP: camera_pan(&s->cam, 0, d); break;
+        case IN_PAN_DOWN: camera_pan(&s->cam, 0, -d); break;
         default: break;
         }
         s->dirty = true;

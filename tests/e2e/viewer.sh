@@ -311,7 +311,7 @@ help_overlay() {
     local s=hp log=$OUT/help.log
     start $s 100 40 --spin || return 1          # the demo, spinning: a frame every 1/60 s
     : > $log; tm pipe-pane -o -t $s "cat >> $log"
-    tm send-keys -t $s h
+    tm send-keys -t $s ?
     wait_for 5 grep -aq "shading: wire flat" $log || { echo "no help drawn"; return 1; }
     # 60 more frames of spinning under the help (each frame ends with a DSR request)
     local f0; f0=$(dsr_count $log)
@@ -326,7 +326,7 @@ help_overlay() {
     keys $s Space || { echo "q quit the viewer instead of closing the help"; return 1; }
     tm capture-pane -t $s -p | grep -q "shading: wire flat" && { echo "q did not close the help"; return 1; }
     hud_has $s " fps" || { echo "q quit the viewer instead of closing the help"; return 1; }
-    keys $s h || return 1
+    keys $s ? || return 1
     tm capture-pane -t $s -p | grep -q "shading: wire flat" || { echo "help not on screen"; return 1; }
     keys $s Escape || { echo "Esc quit the viewer instead of closing the help"; return 1; }
     tm capture-pane -t $s -p | grep -q "shading: wire flat" && { echo "Esc did not close the help"; return 1; }

@@ -163,3 +163,23 @@ TEST(a_disk_stays_round_in_every_glyph_set)
     pipeline_destroy(p);
     mesh_free(&m);
 }
+
+/* issue 25 item 8: a cell's height / width from the window's pixels (TIOCGWINSZ) or one
+ * cell's (ESC[16t), and a pixel's shape for it: a 1:2.2 font keeps circles round */
+TEST(cell_aspect_from_the_terminals_pixels)
+{
+    CHECK_NEAR(cell_aspect_of(800, 528, 80, 24), 2.2, 1e-12); /* 10x22 cells */
+    CHECK_NEAR(cell_aspect_of(10, 22, 1, 1), 2.2, 1e-12);
+    CHECK_NEAR(cell_aspect_of(640, 384, 80, 24), 2.0, 1e-12);
+    CHECK(cell_aspect_of(0, 0, 80, 24) == 0);                  /* not told (ssh, tmux) */
+    CHECK(cell_aspect_of(800, 24, 80, 24) == 0);               /* nonsense: 1x10 px cells */
+    CHECK(cell_aspect_of(800, 528, 0, 24) == 0);
+    struct cell_geom half = cell_geom(CELL_HALF), quad = cell_geom(CELL_QUADRANT);
+    CHECK_NEAR(cell_pixel_aspect_r(&half, 2), 1, 1e-12); /* square on 1:2 */
+    CHECK_NEAR(cell_pixel_aspect_r(&half, 2.2), 1 / 1.1, 1e-12);
+    CHECK_NEAR(cell_pixel_aspect_r(&quad, 2.2), 1 / 2.2, 1e-12); /* 2x2 a cell: tall pixels */
+    CHECK_NEAR(cell_pixel_aspect(&half), cell_pixel_aspect_r(&half, 2), 1e-12);
+    /* a fb of 80x24 cells of 1:2.2 is 80 / (2.2 * 24) as wide as tall on the screen */
+    struct fb fb = {.w = 80, .h = 48, .pixel_aspect = cell_pixel_aspect_r(&half, 2.2)};
+    CHECK_NEAR(fb_aspect(&fb), 80 / (2.2 * 24), 1e-12);
+}

@@ -187,7 +187,7 @@ TEST(frames_split_at_bare_cursor_home)
     CHECK_STR_CONTAINS(e.msg, "frame 3 does not exist (3 frames)");
     CHECK(decode_frame(&d, s, sizeof s - 1, -1, &e) == -1);
     int cols, rows, frames;
-    REQUIRE(decode_measure(s, sizeof s - 1, "x", &cols, &rows, &frames, NULL, &e) == 0);
+    REQUIRE(decode_measure(s, sizeof s - 1, "x", false, &cols, &rows, &frames, NULL, &e) == 0);
     CHECK_EQ_INT(cols, 2);
     CHECK_EQ_INT(rows, 1);
     CHECK_EQ_INT(frames, 3);
@@ -227,4 +227,35 @@ TEST(tmux_capture_decodes_like_the_original)
     CHECK(is_rgb(px(&b, 0, 4), 0, 0, 0) && is_rgb(px(&b, 2, 4), 7, 7, 7));
     decode_free(&a);
     decode_free(&b);
+}
+
+/* issue 25 item 8: a tmux capture of the viewer holds its status line (black on grey) and,
+ * while open, the help box (text in a frame of box-drawing characters). With .text, such
+ * cells are their background colour and the picture's glyphs around them decode as ever;
+ * without it they are errors, as before. */
+TEST(text_cells_are_their_background_when_allowed)
+{
+    const char *cap = "\x1b[38;2;1;2;3;48;2;4;5;6m" UP UP "\n"               /* the picture */
+                      "\x1b[30m\x1b[47m a.b \x1b[1;4mq\x1b[0m\n"               /* status line */
+                      "\x1b[44m\xe2\x94\x82x\x1b[7m:\x1b[27m" UP "\x1b[0m"; /* help box */
+    struct decode_state d;
+    struct err e = {""};
+    int cols, rows, frames;
+    struct cell_geom g;
+    CHECK(decode_measure(cap, strlen(cap), "cap", false, &cols, &rows, &frames, &g, &e) != 0);
+    CHECK(strstr(e.msg, "unexpected byte 'a'") != NULL);
+    REQUIRE(decode_measure(cap, strlen(cap), "cap", true, &cols, &rows, &frames, &g, &e) == 0);
+    CHECK_EQ_INT(cols, 6);
+    CHECK_EQ_INT(rows, 3);
+    REQUIRE(decode_init(&d, cols, rows, HALF, NULL) == 0);
+    d.text = true;
+    REQUIRE(decode_frame(&d, cap, strlen(cap), 0, &e) == 0);
+    CHECK(is_rgb(px(&d, 1, 0), 1, 2, 3) && is_rgb(px(&d, 1, 1), 4, 5, 6)); /* glyphs */
+    for (int x = 0; x < 6; x++) /* "a.b q": grey 47 (229), '.' no ramp grey, 'q' bold too */
+        CHECK(is_rgb(px(&d, x, 2), 229, 229, 229) && is_rgb(px(&d, x, 3), 229, 229, 229));
+    CHECK(is_rgb(px(&d, 0, 4), 0, 0, 238) && is_rgb(px(&d, 1, 5), 0, 0, 238)); /* blue box */
+    CHECK(is_rgb(px(&d, 2, 4), 229, 229, 229)); /* reverse: ':' shows the fg as its bg */
+    CHECK(is_rgb(px(&d, 3, 4), 229, 229, 229) && is_rgb(px(&d, 3, 5), 0, 0, 238)); /* UP */
+    CHECK_EQ_INT(d.text_cells, 7); /* a . b q, the box line, x, : (spaces are cells anyway) */
+    decode_free(&d);
 }

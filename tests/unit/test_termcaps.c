@@ -155,3 +155,24 @@ TEST(tmux_client_features_say_rgb_or_not)
     CHECK_EQ_INT(termcaps_tmux_rgb(""), -1); /* no client attached */
     CHECK_EQ_INT(termcaps_tmux_rgb(NULL), -1);
 }
+
+/* issue 25 item 8: XTWINOPS 16's answer, the cell's pixels, among the probe's other answers */
+TEST(the_cell_size_answer_is_found_among_the_others)
+{
+    int h = 0, w = 0;
+    CHECK(termcaps_cell_pixels("\033[6;22;10t", &h, &w) == 0);
+    CHECK_EQ_INT(h, 22);
+    CHECK_EQ_INT(w, 10);
+    /* after XTVERSION's answer and before DSR's: what tty_query hands over */
+    CHECK(termcaps_cell_pixels("\033P>|XTerm(379)\033\\\033[6;17;8t\033[0n", &h, &w) == 0);
+    CHECK(h == 17 && w == 8);
+    /* not it: another XTWINOPS answer (4: the window's pixels; 8: its cells), a zero, cut */
+    CHECK(termcaps_cell_pixels("\033[4;480;640t\033[8;24;80t", &h, &w) == -1);
+    CHECK(termcaps_cell_pixels("\033[6;0;10t", &h, &w) == -1);
+    CHECK(termcaps_cell_pixels("\033[6;22;10", &h, &w) == -1);
+    CHECK(termcaps_cell_pixels("\033[6;22t", &h, &w) == -1);
+    CHECK(termcaps_cell_pixels("", &h, &w) == -1);
+    /* a first bad one does not hide a good one after it */
+    CHECK(termcaps_cell_pixels("\033[6;x;1t\033[6;20;9t", &h, &w) == 0);
+    CHECK(h == 20 && w == 9);
+}

@@ -1,5 +1,6 @@
 /* test_view.c: the viewer's keys, mouse, spin rules, status line and screenshot command,
  * as pure functions of (state, event, time) — no terminal. */
+#include <curses.h>
 #include <math.h>
 #include <string.h>
 
@@ -349,7 +350,7 @@ TEST(u_turns_the_model_to_its_next_axis)
     CHECK(!s.spin); /* a camera key: the framing changes */
 }
 
-/* issue 25: what a new user's status line says about a small untextured model, and "h: help"
+/* issue 25: what a new user's status line says about a small untextured model, and "?: help"
  * at every width a line of essentials fits */
 TEST(the_status_line_tells_an_untextured_model_and_keeps_the_help_key)
 {
@@ -360,13 +361,13 @@ TEST(the_status_line_tells_an_untextured_model_and_keeps_the_help_key)
                                .fps = 30, .st = &st};
     char line[512];
     view_hud_compose(&s, &in, 300, 0, line, sizeof line);
-    CHECK(strncmp(line, " cube.obj [1/1] | phong | truecolor | 30 fps | h: help |", 56) == 0);
+    CHECK(strncmp(line, " cube.obj [1/1] | phong | truecolor | 30 fps | ?: help |", 56) == 0);
     CHECK(!strstr(line, "trilinear"));     /* no texture: no filter */
     CHECK_STR_CONTAINS(line, " 36/36 |");   /* not 0.0k/0.0k */
     CHECK_STR_CONTAINS(line, "| untextured |");
     for (int w = 60; w <= 161; w++) {
         view_hud_compose(&s, &in, w, 0, line, sizeof line);
-        CHECK_STR_CONTAINS(line, "h: help");
+        CHECK_STR_CONTAINS(line, "?: help");
     }
     in.texture = "MTL"; /* textured: the filter is named */
     view_hud_compose(&s, &in, 300, 0, line, sizeof line);
@@ -412,4 +413,103 @@ TEST(shift_c_cycles_the_model_files_cameras)
     CHECK_EQ_INT(input_command('C'), IN_NEXT_CAMERA);
     CHECK_EQ_INT(view_key(&s, IN_NEXT_CAMERA, 1), VIEW_NEXT_CAMERA);
     CHECK(!s.spin); /* a camera key: the view changes */
+}
+
+/* issue 25 item 8: vi's hjkl turn as the arrows do; so the help moved to ? (and F1) and the
+ * light to b; H shows and hides the status line; the shifted arrows pan. No key has two
+ * commands, and the help names them. */
+TEST(hjkl_turn_as_the_arrows_and_the_keys_they_displaced_moved)
+{
+    CHECK_EQ_INT(input_command('h'), input_command(KEY_LEFT));
+    CHECK_EQ_INT(input_command('j'), input_command(KEY_DOWN));
+    CHECK_EQ_INT(input_command('k'), input_command(KEY_UP));
+    CHECK_EQ_INT(input_command('l'), input_command(KEY_RIGHT));
+    CHECK_EQ_INT(input_command('h'), IN_YAW_LEFT);
+    CHECK_EQ_INT(input_command('?'), IN_HELP);
+    CHECK_EQ_INT(input_command(KEY_F(1)), IN_HELP);
+    CHECK_EQ_INT(input_command('b'), IN_LIGHT);
+    CHECK_EQ_INT(input_command('H'), IN_HUD);
+    CHECK_EQ_INT(input_command(KEY_SLEFT), IN_PAN_LEFT);
+    CHECK_EQ_INT(input_command(KEY_SRIGHT), IN_PAN_RIGHT);
+    CHECK_EQ_INT(input_command(KEY_SR), IN_PAN_UP);
+    CHECK_EQ_INT(input_command(KEY_SF), IN_PAN_DOWN);
+    bool hjkl = false, help = false, hud = false, pan = false, light = false;
+    for (int i = 0; input_help_line(i); i++) {
+        const char *l = input_help_line(i);
+        hjkl |= strstr(l, "h j k l") != NULL;
+        help |= strncmp(l, "? F1 ", 5) == 0;
+        hud |= strncmp(l, "H ", 2) == 0 && strstr(l, "status line");
+        pan |= strncmp(l, "S-arrows ", 9) == 0 && strstr(l, "pan");
+        light |= strncmp(l, "b ", 2) == 0 && strstr(l, "light");
+    }
+    CHECK(hjkl && help && hud && pan && light);
+    struct view_state s;
+    start(&s, false);
+    view_key(&s, IN_LIGHT, 1);
+    CHECK_STR_CONTAINS(s.message, "(b: follows the camera)");
+}
+
+TEST(h_shift_hides_and_shows_the_status_line)
+{
+    struct view_state s;
+    start(&s, true);
+    CHECK(!s.hud_hidden);
+    CHECK_EQ_INT(view_key(&s, IN_HUD, 1), VIEW_HUD_TOGGLED);
+    CHECK(s.hud_hidden);
+    CHECK(s.spin); /* not a camera key */
+    CHECK_EQ_INT(view_key(&s, IN_HUD, 2), VIEW_HUD_TOGGLED);
+    CHECK(!s.hud_hidden);
+}
+
+/* pan: eye and target move together, across the view (the picture's right and up), the
+ * distance and the direction kept; a plain drag still orbits (the target stays) */
+TEST(pan_keys_and_a_shift_or_middle_drag_move_eye_and_target_together)
+{
+    struct view_state s;
+    start(&s, false);
+    camera_turn(&s.cam, 30, 20, 1); /* a view that is not along an axis */
+    struct camera c0 = s.cam;
+    vec3 f = v3_norm(v3_sub(c0.target, c0.eye));
+    vec3 r = v3_norm(v3_cross(f, c0.up)), u = v3_cross(r, f);
+    view_key(&s, IN_PAN_RIGHT, 1);
+    view_advance(&s, 1, 2);
+    vec3 de = v3_sub(s.cam.eye, c0.eye), dt = v3_sub(s.cam.target, c0.target);
+    CHECK(v3_len(de) > 0.01);
+    CHECK_NEAR(v3_len(v3_sub(de, dt)), 0, 1e-9);
+    CHECK_NEAR(v3_dot(v3_norm(de), r), 1, 1e-9); /* to the right */
+    CHECK(!s.spin);
+    start(&s, false);
+    camera_turn(&s.cam, 30, 20, 1);
+    view_key(&s, IN_PAN_UP, 1);
+    view_advance(&s, 1, 2);
+    de = v3_sub(s.cam.eye, c0.eye);
+    CHECK_NEAR(v3_dot(v3_norm(de), u), 1, 1e-9); /* the picture's up, not the world's */
+    CHECK_NEAR(v3_len(v3_sub(de, v3_sub(s.cam.target, c0.target))), 0, 1e-9);
+    /* a shift-drag 10 columns right: the camera goes left, the model follows the mouse */
+    for (int middle = 0; middle < 2; middle++) {
+        start(&s, false);
+        camera_turn(&s.cam, 30, 20, 1);
+        s.rows = 24;
+        struct tty_event ev = {.kind = TTY_MOUSE, .button = 1, .pressed = true, .mx = 10,
+                               .my = 10, .pan = true};
+        view_mouse(&s, &ev, 1);
+        ev = (struct tty_event){.kind = TTY_MOUSE, .button = 0, .mx = 20, .my = 10,
+                                .pan = !middle}; /* ncurses: no modifier on the motion */
+        view_mouse(&s, &ev, 1.1);
+        de = v3_sub(s.cam.eye, c0.eye);
+        dt = v3_sub(s.cam.target, c0.target);
+        CHECK_NEAR(v3_len(v3_sub(de, dt)), 0, 1e-9);
+        CHECK(v3_dot(de, r) < 0);
+        /* 10 columns of 24 rows at 1:2: 10/48 of the view's height at the target */
+        double h = 2 * camera_distance(&c0) * tan(c0.fov_deg * M_PI / 360);
+        CHECK_NEAR(v3_len(de), h * 10 * 0.5 / 24, 1e-9);
+        CHECK(s.dirty && !s.spin);
+    }
+    start(&s, false);
+    struct tty_event ev = {.kind = TTY_MOUSE, .button = 1, .pressed = true, .mx = 10, .my = 10};
+    view_mouse(&s, &ev, 1);
+    ev = (struct tty_event){.kind = TTY_MOUSE, .button = 0, .mx = 20, .my = 10};
+    vec3 t0 = s.cam.target;
+    view_mouse(&s, &ev, 1.1);
+    CHECK_NEAR(v3_len(v3_sub(s.cam.target, t0)), 0, 1e-12); /* orbit: the target stays */
 }

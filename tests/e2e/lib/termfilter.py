@@ -10,15 +10,21 @@ those in LIST, a comma-separated subset of
   da1   ESC[c   primary device attributes (every VT100 descendant)
   caps  XTVERSION ESC[>0q, DECRQSS and XTGETTCAP (DCS $q / +q)
 or `none` (a terminal that answers nothing at all). st is `cpr,da1`. --log FILE: everything
-CMD wrote, queries included (to count them). Keys typed on our side
+CMD wrote, queries included (to count them). --cell HxW: answer XTWINOPS 16 (ESC[16t, the
+cell's size in pixels) with ESC[6;H;Wt ourselves (tmux does not). --pixels WxH: the pty's
+window size in pixels (TIOCGWINSZ's ws_xpixel, ws_ypixel; tmux leaves them 0). Keys typed on our side
 reach CMD at once; window size changes are passed on. Exits when CMD exits."""
-import fcntl, os, pty, re, select, signal, sys, termios, tty
+import fcntl, os, pty, re, select, signal, struct, sys, termios, tty
 
 args = sys.argv[1:]
-keep, log = set(), None
-while args[:1] in (["--answers"], ["--log"]) and len(args) > 1:
+keep, log, cell, pixels = set(), None, None, None
+while args[:1] in (["--answers"], ["--log"], ["--cell"], ["--pixels"]) and len(args) > 1:
     if args[0] == "--answers":
         keep = set(x for x in args[1].split(",") if x and x != "none")
+    elif args[0] == "--cell":
+        cell = tuple(int(x) for x in args[1].split("x"))
+    elif args[0] == "--pixels":
+        pixels = tuple(int(x) for x in args[1].split("x"))
     else:
         log = open(args[1], "ab", buffering=0)
     args = args[2:]
@@ -31,7 +37,8 @@ QUERIES = {
     "da1": rb"\x1b\[0?c",
     "caps": rb"\x1b\[>0?q|\x1bP[$+]q[^\x1b]*\x1b\\",
 }
-drop = [q for k, q in QUERIES.items() if k not in keep]
+drop = [q for k, q in QUERIES.items() if k not in keep] + [rb"\x1b\[16t"]
+CELL_Q = b"\x1b[16t"
 DROP = re.compile(b"|".join(drop)) if drop else None
 # an escape sequence that is complete (a CSI with its final byte, a DCS with its ST, or a
 # two-byte escape): anything else at the end of a read is kept for the next one
@@ -45,6 +52,9 @@ if pid == 0:
 def winch(*_):
     try:
         ws = fcntl.ioctl(0, termios.TIOCGWINSZ, b"\0" * 8)
+        if pixels:
+            rows, cols, _, _ = struct.unpack("HHHH", ws)
+            ws = struct.pack("HHHH", rows, cols, pixels[0], pixels[1])
         fcntl.ioctl(fd, termios.TIOCSWINSZ, ws)
         os.kill(pid, signal.SIGWINCH)
     except OSError:
@@ -81,6 +91,9 @@ try:
             esc = buf.rfind(b"\x1b", max(0, len(buf) - 512))
             if esc >= 0 and not WHOLE.match(buf, esc):
                 buf, held = buf[:esc], buf[esc:]
+            if cell:  # answered in the order asked: before the probe's queries reach tmux
+                for _ in range(buf.count(CELL_Q)):
+                    os.write(fd, b"\x1b[6;%d;%dt" % cell)
             if DROP:
                 buf = DROP.sub(b"", buf)
             while buf:
