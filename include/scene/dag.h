@@ -102,7 +102,5 @@ const struct mesh_dag *dag_of(const struct mesh *m);
 bool dag_is_cut_mesh(const struct mesh *m);
 /* Free m's hierarchy (lod_free does it). */
 void dag_free(struct mesh *m);
-/* Bytes the hierarchy adds to the mesh. */
-size_t dag_bytes(const struct mesh_dag *d);
 
 #endif

@@ -801,13 +801,3 @@ void dag_free(struct mesh *m)
     free(d);
     m->dag = NULL;
 }
-
-size_t dag_bytes(const struct mesh_dag *d)
-{
-    const struct mesh *hm = &d->mesh;
-    size_t nt = 0, nv = 0;
-    for (uint32_t i = 0; i < d->n; i++)
-        nt += d->c[i].n_tris, nv += d->c[i].n_verts;
-    return sizeof *d + d->n * sizeof *d->c + nt * sizeof *d->tris + nv * sizeof *d->verts +
-           (size_t)hm->n_tris * (sizeof *hm->tris + sizeof *hm->tri_material);
-}
