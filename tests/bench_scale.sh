@@ -9,7 +9,8 @@
 # Per model, size and thread count: `render --eye 0.5,0.364,0.8 --frame --repeat N --stats`
 # (median_ms) with --lod off (every triangle of the file: what must not change a pixel),
 # with --lod auto (the levels of detail: its PSNR against --lod off, by
-# build/oracle/compare), and — where this build has the switch — --lod off
+# build/oracle/compare), with --lod clusters (the cluster hierarchy, scene/dag.h: dag_ms,
+# its PSNR, the triangles of its cut), and — where this build has the switch — --lod off
 # --cluster-cull on (cluster_ms; speedup = off_ms / cluster_ms; the clusters culled of
 # those tested; the pictures must be the same bytes: "same" or "DIFFER"). load_ms is
 # render's, rss_MB the peak resident memory of the --lod off run (/usr/bin/time), tris the
@@ -54,9 +55,9 @@ TIME=
 [ -x /usr/bin/time ] && TIME="/usr/bin/time -f rss_kb=%M"
 ms_of() { sed -n 's/.*median_ms=\([0-9.]*\).*/\1/p' | tail -n 1; }
 echo "-- scale: median ms of $repeat frames, eye 0.5,0.364,0.8 framed; auto's PSNR against --lod off"
-printf '  %-20s %-8s %2s %9s %9s %9s %8s %9s %6s %9s %7s %15s %5s\n' model size th load_ms rss_MB \
-    off_ms tris auto_ms PSNR cluster_ms speedup culled/tested bytes
-[ -n "$csv" ] && echo "model,size,threads,load_ms,rss_mb,off_ms,tris,auto_ms,auto_psnr,cluster_ms,speedup,culled_tested,same_bytes" > "$csv"
+printf '  %-20s %-8s %2s %9s %9s %9s %8s %9s %6s %9s %6s %8s %9s %7s %15s %5s\n' model size th load_ms rss_MB \
+    off_ms tris auto_ms PSNR dag_ms PSNR dag_tris cluster_ms speedup culled/tested bytes
+[ -n "$csv" ] && echo "model,size,threads,load_ms,rss_mb,off_ms,tris,auto_ms,auto_psnr,dag_ms,dag_psnr,dag_tris,cluster_ms,speedup,culled_tested,same_bytes" > "$csv"
 for m in "${models[@]}"; do
     name=$(basename "$m"); name=${name%.*}
     for size in 160x96 640x480; do
@@ -76,6 +77,16 @@ for m in "${models[@]}"; do
             psnr=-
             [ -x "$CMP" ] && psnr=$("$CMP" "$o.auto.ppm" "$o.auto.pfm" "$o.off.ppm" "$o.off.pfm" |
                 sed -n 's/.*psnr=\([0-9.inf]*\).*/\1/p')
+            dag=- dpsnr=- dtris=-
+            if "$BIN" --help 2>&1 | grep -q 'clusters:PX'; then
+                st=$("$BIN" render "$m" "${cam[@]}" --lod clusters --out "$o.dag.ppm" \
+                    --depth-out "$o.dag.pfm" 2>&1)
+                dag=$(ms_of <<<"$st")
+                dtris=$(sed -n 's/^lod: cluster hierarchy, .*, \([0-9]*\) triangles$/\1/p' <<<"$st")
+                dtris=${dtris:--}
+                [ -x "$CMP" ] && dpsnr=$("$CMP" "$o.dag.ppm" "$o.dag.pfm" "$o.off.ppm" "$o.off.pfm" |
+                    sed -n 's/.*psnr=\([0-9.inf]*\).*/\1/p')
+            fi
             nc=- sp=- eq=- cl=-
             if [ $cull = 1 ]; then
                 st=$("$BIN" render "$m" "${cam[@]}" --lod off --cluster-cull on \
@@ -86,9 +97,9 @@ for m in "${models[@]}"; do
                 eq=same
                 cmp -s "$o.nc.ppm" "$o.off.ppm" && cmp -s "$o.nc.pfm" "$o.off.pfm" || eq=DIFFER
             fi
-            printf '  %-20s %-8s %2s %9s %9s %9s %8s %9s %6s %9s %7s %15s %5s\n' "$name" "$size" \
-                "$th" "$load" "$rss" "$off" "$tris" "$auto" "$psnr" "$nc" "$sp" "$cl" "$eq"
-            [ -n "$csv" ] && echo "$name,$size,$th,$load,$rss,$off,$tris,$auto,$psnr,$nc,$sp,$cl,$eq" >> "$csv"
+            printf '  %-20s %-8s %2s %9s %9s %9s %8s %9s %6s %9s %6s %8s %9s %7s %15s %5s\n' "$name" "$size" \
+                "$th" "$load" "$rss" "$off" "$tris" "$auto" "$psnr" "$dag" "$dpsnr" "$dtris" "$nc" "$sp" "$cl" "$eq"
+            [ -n "$csv" ] && echo "$name,$size,$th,$load,$rss,$off,$tris,$auto,$psnr,$dag,$dpsnr,$dtris,$nc,$sp,$cl,$eq" >> "$csv"
         done
     done
 done

@@ -25,6 +25,7 @@
  * each slice has its framebuffer and counts). */
 struct frame {
     const struct render_opts *o;
+    const struct camera *cam;
     const struct kernel_set *ks; /* the kernels that draw it (kernel.h) */
     const struct kernel *k;      /* its kernel for whole stages: vertices, rasterizer, sky */
     struct vertex_uniforms u;    /* the current item's (frame_item) */

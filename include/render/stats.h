@@ -30,6 +30,10 @@ struct frame_stats {
      * and tris_no_centre. */
     uint64_t clusters_tested, clusters_frustum, clusters_facing, clusters_no_centre,
         clusters_drawn;
+    /* the cluster hierarchy (scene/dag.h, --lod auto): clusters in the cut (drawn or culled),
+     * their triangles, and a bit per level they come from */
+    uint64_t dag_cut, dag_tris;
+    uint32_t dag_levels;
     int lod_min, lod_max;   /* levels of detail drawn (0 = full), over the drawn items; -1 none */
     const char *kernel;     /* the kernels that drew it (kernel.h: "avx2", "sse2", "ref", ...) */
     int threads;            /* threads that drew the frame */

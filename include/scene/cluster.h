@@ -46,6 +46,10 @@
 /* Build m's clusters over its opaque triangles (replacing any): 0, or -1 out of memory (m
  * then has none, and is drawn triangle by triangle as before). */
 int cluster_build(struct mesh *m);
+/* The box, cone and flags (mesh_cluster's center, axis, half, cone_axis, cone_cos, flags;
+ * the rest untouched) of the triangles tri[0 .. n) of m, n > 0 (scene/dag.h uses it for its
+ * clusters of every level). */
+void cluster_bounds(const struct mesh *m, const uint32_t *tri, uint32_t n, struct mesh_cluster *c);
 /* Bytes the clusters take. */
 size_t cluster_bytes(const struct mesh *m);
 

@@ -44,9 +44,11 @@
 
 /* Mesh level of detail (--lod; this file picks the level per frame and draw item): off draws
  * every mesh in full, auto the coarsest level whose error stays under lod_px pixels on
- * screen, RATIO (LOD_RATIO) the level nearest to that fraction of the triangles. Only off
- * and auto have names (render_lod_names in render.h, the chart's `lod` axis). */
-enum lod_mode { LOD_OFF, LOD_AUTO, LOD_RATIO };
+ * screen, RATIO (LOD_RATIO) the level nearest to that fraction of the triangles, clusters
+ * (LOD_CLUSTERS) the cut of a mesh's cluster hierarchy (dag.h) whose errors stay under
+ * lod_px (meshes without one: as auto). Only off and auto have names (render_lod_names in
+ * render.h, the chart's `lod` axis). */
+enum lod_mode { LOD_OFF, LOD_AUTO, LOD_RATIO, LOD_CLUSTERS };
 #define LOD_NAMED 2
 /* auto's error bound in pixels, chosen from the methods chart (README, "Level of detail") */
 #define LOD_DEFAULT_PX 0.15f
@@ -60,9 +62,10 @@ enum lod_mode { LOD_OFF, LOD_AUTO, LOD_RATIO };
 int lod_build(struct mesh *m, struct err *e);
 
 /* Build the chains of meshes[0..n) on a background thread; lod_finish waits for it. The
- * meshes must not move or be freed before lod_finish. */
+ * meshes must not move or be freed before lod_finish. clusters: first each mesh's cluster
+ * hierarchy (dag.h; --lod clusters), and the chain only for a mesh that gets none. */
 struct lod_job;
-int lod_start(struct mesh *meshes, int n, struct lod_job **out, struct err *e);
+int lod_start(struct mesh *meshes, int n, bool clusters, struct lod_job **out, struct err *e);
 /* Has the job finished every chain? (NULL: yes.) */
 bool lod_done(const struct lod_job *j);
 /* Wait for the job and free it (NULL: nothing); cancel: stop after the level being built (a

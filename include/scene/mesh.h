@@ -166,6 +166,8 @@ struct mesh {
     float bbox_min[3], bbox_max[3]; /* over the positions used by triangles */
     float center[3], radius;        /* bounding sphere: bbox centre, farthest used vertex */
     struct mesh_lod *lod; /* simplified levels (lod.h), or NULL; a level's own is NULL */
+    struct mesh_dag *dag; /* the cluster hierarchy (dag.h), set (atomically) once complete,
+                             or NULL; the hierarchy's own mesh points to it too */
     struct mesh_clusters *clusters; /* its opaque triangles in runs with bounds (cluster.h),
                                        or NULL: drawn triangle by triangle */
 };

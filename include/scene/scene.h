@@ -93,10 +93,11 @@ int scene_set_normal_map(struct scene *s, const char *path, struct err *e);
 char scene_turn_up(struct scene *s);
 /* Draw every item with this texture instead of its own (--texture). */
 int scene_set_texture(struct scene *s, const char *path, struct err *e);
-/* Build every mesh's levels of detail (lod.h): wait = before returning; else on a background
- * thread (the viewer: the first frames draw the meshes in full, then the levels arrive).
- * Again: nothing. -1 only when out of memory. */
-int scene_build_lod(struct scene *s, bool wait, struct err *e);
+/* Build every mesh's levels of detail (lod.h; clusters: first the cluster hierarchies,
+ * dag.h): wait = before returning; else on a background thread (the viewer: the first
+ * frames draw the meshes in full, then the levels arrive). Again: nothing. -1 only when out
+ * of memory. */
+int scene_build_lod(struct scene *s, bool wait, bool clusters, struct err *e);
 /* Every mesh's clusters (cluster.h; --cluster-cull on), now: -1 out of memory. */
 int scene_build_clusters(struct scene *s, struct err *e);
 /* Are the levels built (or none asked for)? */

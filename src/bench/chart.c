@@ -127,7 +127,7 @@ static int load_scenes(const struct chart_config *c, struct loaded *ls, int *n_o
         ls[n].s = s;
         n++;
         *n_out = n;
-        if (scene_load(path, s, e) || scene_build_lod(s, true, e))
+        if (scene_load(path, s, e) || scene_build_lod(s, true, false, e))
             return -1;
         if (d->texture) {
             snprintf(path, sizeof path, "%s/%s", dir, d->texture);

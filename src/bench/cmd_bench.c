@@ -127,7 +127,7 @@ static int bench_scene(const struct options *o, const char *path, int cols, int 
     struct scene scene;
     if (scene_load_with(path, &o->model, &scene, e))
         return 2;
-    if (o->render.lod != LOD_OFF && scene_build_lod(&scene, true, e)) {
+    if (o->render.lod != LOD_OFF && scene_build_lod(&scene, true, o->render.lod == LOD_CLUSTERS, e)) {
         scene_free(&scene);
         return 1;
     }

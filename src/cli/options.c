@@ -77,7 +77,7 @@ static const struct flag flags[] = {
     ENUM_FLAG("--split", C_DRAW | C_BENCH, "how threads share a frame: triangle slices merged by depth, screen tiles, or auto (slices for dense meshes at small sizes)", render_split_names, render.split),
     ENUM_FLAG("--kernel", C_DRAW | C_BENCH, "whose kernels draw ($RASTTY_SIMD sets the default): auto is avx2 where the CPU has it; ref is the scalar reference the others match byte for byte", render_kernel_names, render.kernel),
     ENUM_FLAG("--ssaa", C_DRAW | C_BENCH, "supersampling: M x M samples a pixel, box filter", render_ssaa_names, render.ssaa),
-    {"--lod", F_LOD, ARG_VALUE, C_DRAW | C_BENCH, "M", "mesh level of detail: off, auto (the coarsest level whose error is under 0.15 px on screen; auto:PX another bound) or RATIO (the level nearest that fraction of the triangles, 0..1) (default: auto in the viewer, else off)", NULL, 0},
+    {"--lod", F_LOD, ARG_VALUE, C_DRAW | C_BENCH, "M", "mesh level of detail: off, auto (the coarsest level whose error is under 0.15 px on screen; auto:PX another bound), clusters (per cluster of a hierarchy for meshes of 16384 triangles or more, the same bound; clusters:PX) or RATIO (the level nearest that fraction of the triangles, 0..1) (default: auto in the viewer, else off)", NULL, 0},
     {"--background", F_BACKGROUND, ARG_VALUE, C_DRAW, "R,G,B", "background colour, 0..255 each (default 0,0,0)", NULL, 0},
     {"--sky", F_SKY, ARG_VALUE, C_DRAW, "procedural", "the generated sky behind the scene (the viewer's default)", NULL, 0},
     ENUM_FLAG("--cull", C_DRAW | C_BENCH, "face culling", render_cull_names, render.cull),
@@ -219,10 +219,18 @@ static int parse_size(const char *s, int *w, int *h)
     return parse_int(buf, 1, FB_MAX_DIM, w) || parse_int(x + 1, 1, FB_MAX_DIM, h) ? -1 : 0;
 }
 
-/* --lod: off | auto | auto:PX | RATIO */
+/* --lod: off | auto | auto:PX | clusters | clusters:PX | RATIO */
 static int parse_lod(const char *s, struct render_opts *r)
 {
     double d;
+    if (strcmp(s, "clusters") == 0 || strncmp(s, "clusters:", 9) == 0) {
+        d = LOD_DEFAULT_PX;
+        if (s[8] == ':' && (parse_double(s + 9, &d) || !(d > 0 && d <= 1e6)))
+            return -1;
+        r->lod = LOD_CLUSTERS;
+        r->lod_px = (float)d;
+        return 0;
+    }
     if (strcmp(s, "off") == 0 || strcmp(s, "auto") == 0) {
         r->lod = s[0] == 'o' ? LOD_OFF : LOD_AUTO;
         r->lod_px = LOD_DEFAULT_PX;
@@ -404,7 +412,7 @@ static int apply(struct options *o, const struct flag *f, const char *v, struct 
     case F_MODELS: o->models = v; return 0;
     case F_LOD:
         if (parse_lod(v, &o->render))
-            return bad(e, f->name, "expected off, auto, auto:PX (pixels > 0) or RATIO (a fraction "
+            return bad(e, f->name, "expected off, auto, auto:PX (pixels > 0), clusters, clusters:PX or RATIO (a fraction "
                                    "of the triangles, 0 < RATIO <= 1)", v);
         o->lod_set = true;
         return 0;

@@ -160,7 +160,7 @@ int prepare_scene(const struct options *o, const char *path, struct scene *s, ch
     /* levels of detail when they may be drawn: the viewer builds them in the background
      * (its first frames draw the meshes in full), the others before the first frame */
     bool view = o->cmd == CMD_VIEW;
-    if ((view || o->render.lod != LOD_OFF) && scene_build_lod(s, !view, e)) {
+    if ((view || o->render.lod != LOD_OFF) && scene_build_lod(s, !view, o->render.lod == LOD_CLUSTERS, e)) {
         scene_free(s);
         return -1;
     }
@@ -207,8 +207,17 @@ void prepare_print_stats(const struct frame_stats *st)
                                      st->clusters_no_centre),
                 (unsigned long long)st->clusters_frustum, (unsigned long long)st->clusters_facing,
                 (unsigned long long)st->clusters_no_centre, (unsigned long long)st->clusters_drawn);
-    if (st->lod_max < 0)
-        fprintf(stderr, "lod: no mesh drawn\n");
+    if (st->dag_cut) {
+        int lo = __builtin_ctz(st->dag_levels), hi = 31 - __builtin_clz(st->dag_levels);
+        fprintf(stderr, "lod: cluster hierarchy, a cut of %llu clusters of levels %d-%d, %llu "
+                        "triangles\n",
+                (unsigned long long)st->dag_cut, lo, hi, (unsigned long long)st->dag_tris);
+    }
+    if (st->lod_max < 0) {
+        if (!st->dag_cut)
+            fprintf(stderr, "lod: no mesh drawn\n");
+    } else if (st->dag_cut)
+        fprintf(stderr, "lod: other meshes at levels %d-%d\n", st->lod_min, st->lod_max);
     else if (st->lod_min == st->lod_max)
         fprintf(stderr, "lod: level %d, %llu of %llu triangles\n", st->lod_max,
                 (unsigned long long)st->tris_in, (unsigned long long)st->tris_full);

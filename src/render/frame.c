@@ -4,6 +4,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "dag.h"
 #include "light.h"
 #include "lod.h"
 
@@ -12,6 +13,7 @@ void frame_init(struct frame *f, const struct camera *cam, const struct render_o
 {
     memset(f, 0, sizeof *f);
     f->o = o;
+    f->cam = cam;
     f->ks = ks;
     f->k = ks->by_size[SPAN_SIZE_LARGE];
     f->fb = fb;
@@ -103,6 +105,14 @@ const struct mesh *frame_item_level(const struct draw_item *item, const struct c
 {
     const struct mesh *m = item->mesh;
     int level = 0;
+    /* the cluster hierarchy under clusters (not for wireframe: its edges and hidden-line pass
+     * read every triangle of the mesh they get); the front end chooses its cut */
+    const struct mesh_dag *dag = o->lod == LOD_CLUSTERS && o->shade != SHADE_WIRE &&
+                                         o->view != VIEW_WIRE_OVERLAY
+                                     ? dag_of(m)
+                                     : NULL;
+    if (dag)
+        return &dag->mesh;
     if (o->lod != LOD_OFF) {
         vec3 c = m4_mul_point(item->model, v3(m->center[0], m->center[1], m->center[2]));
         double px = lod_pixels_per_unit(cam, fb_h, c, m->radius * scale) * scale;

@@ -2,13 +2,16 @@
 #include "frontend.h"
 
 #include <assert.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "clip.h"
 #include "cluster.h"
 #include "cluster_cull.h"
+#include "dag.h"
 #include "line.h"
+#include "lod.h"
 #include "setup.h"
 
 int frontend_init(struct frontend *fe, uint32_t batch_cap, struct err *e)
@@ -229,18 +232,51 @@ struct tri_walk {
     bool depth_only;
     int n_var;
     uint8_t rich;
+    uint64_t n_cut; /* the hierarchy's cut: its triangles in the slice */
     enum cull_mode cull;
     bool by_material;
     struct shade_proto proto;
     uint64_t n_rejected, n_culled, n_no_centre;
+    const uint8_t *vmark; /* the hierarchy's cut: the vertices to make (a byte each), or
+                             NULL: all */
 };
 
-/* triangles i0 .. i1-1; the vertex stage runs just ahead of them from verts_done on (none
+/* the vertex stage on vertices i0 .. i1-1: all, or the marked ones (in runs; eight at a
+ * time past unmarked ones: vmark has eight zero bytes past the end) */
+static void vertex_stage(const struct frame *f, const struct tri_walk *w, uint32_t i0,
+                         uint32_t i1)
+{
+    const uint8_t *vmark = w->vmark;
+    if (!vmark) {
+        f->k->vertex_run(w->m, &f->u, w->vo, i0, i1);
+        return;
+    }
+    for (uint32_t v = i0; v < i1;) {
+        uint64_t eight;
+        memcpy(&eight, vmark + v, sizeof eight);
+        if (!eight) {
+            v += 8;
+            continue;
+        }
+        if (!vmark[v]) {
+            v++;
+            continue;
+        }
+        uint32_t to = v + 1;
+        while (to < i1 && vmark[to])
+            to++;
+        f->k->vertex_run(w->m, &f->u, w->vo, v, to);
+        v = to;
+    }
+}
+
+/* triangles i0 .. i1-1; the vertex stage runs just ahead of them from *vdone on (none
  * when it is m->n_verts: the caller ran it) */
 static inline __attribute__((always_inline)) int
 walk(struct frontend *fe, struct frame *f, struct tri_walk *w, uint32_t i0, uint32_t i1,
-     uint32_t verts_done, struct err *e)
+     uint32_t *vdone, struct err *e)
 {
+    uint32_t verts_done = *vdone;
     const struct mesh *m = w->m;
     struct vertex_out *vo = w->vo;
     const bool depth_only = w->depth_only;
@@ -264,7 +300,7 @@ walk(struct frontend *fe, struct frame *f, struct tri_walk *w, uint32_t i0, uint
                 uint32_t to = verts_done + FRONTEND_VERTEX_CHUNK;
                 to = hi + 1 > to ? hi + 1 : to;
                 to = to < m->n_verts ? to : m->n_verts;
-                f->k->vertex_run(m, &f->u, vo, verts_done, to);
+                vertex_stage(f, w, verts_done, to);
                 verts_done = to;
             }
         }
@@ -320,6 +356,7 @@ walk(struct frontend *fe, struct frame *f, struct tri_walk *w, uint32_t i0, uint
     w->n_rejected += n_rejected;
     w->n_culled += n_culled;
     w->n_no_centre += n_no_centre;
+    *vdone = verts_done;
     return 0;
 }
 
@@ -423,9 +460,149 @@ static int walk_clusters(struct frontend *fe, struct frame *f, struct tri_walk *
             uint32_t a = c->tri_lo > i0 ? c->tri_lo : i0;
             uint32_t b = c->tri_hi + 1 < i1 ? c->tri_hi + 1 : i1;
             cluster_vertices(fe, f, m, w->vo, c);
-            if (walk(fe, f, w, a, b, m->n_verts, e))
+            uint32_t all = m->n_verts;
+            if (walk(fe, f, w, a, b, &all, e))
                 return -1;
         }
+    return 0;
+}
+
+/* lod.h's lod_pixels_per_unit for an item's spheres in object space, its per-frame parts
+ * once: pixels per object-space unit at the nearest point of sphere (c, r) */
+struct ppu {
+    double m[3][4], scale; /* the model matrix's rows, its largest stretch */
+    vec3 eye, fwd;
+    double near, k, ortho; /* k: fb_h / (2 tan(fov / 2)); ortho > 0: fb_h / view height */
+};
+
+static void ppu_init(struct ppu *q, const struct frame *f)
+{
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 4; c++)
+            q->m[r][c] = f->u.model.m[r][c];
+    q->scale = frame_item_scale(f->u.model);
+    const struct camera *cam = f->cam;
+    q->eye = cam->eye;
+    q->fwd = v3_norm(v3_sub(cam->target, cam->eye));
+    q->near = cam->near;
+    q->k = f->fb->h / (2 * tan(cam->fov_deg * (M_PI / 360.0)));
+    q->ortho = cam->ortho_height > 0 ? f->fb->h / cam->ortho_height : 0;
+}
+
+static inline double ppu_at(const struct ppu *q, const float c[3], float r)
+{
+    if (q->ortho > 0)
+        return q->ortho * q->scale;
+    double z = -r * q->scale;
+    for (int a = 0; a < 3; a++) {
+        double w = q->m[a][0] * c[0] + q->m[a][1] * c[1] + q->m[a][2] * c[2] + q->m[a][3];
+        z += (w - (a == 0 ? q->eye.x : a == 1 ? q->eye.y : q->eye.z)) *
+             (a == 0 ? q->fwd.x : a == 1 ? q->fwd.y : q->fwd.z);
+    }
+    z = z > q->near ? z : q->near;
+    return q->k / z * q->scale;
+}
+
+/* The hierarchy's cut (dag.h) for triangles i0 .. i1-1 of its mesh: each cluster whose own
+ * error projects to at most lod_px and its parent's to more, unless culled whole
+ * (cluster_cull.h), marks its triangles in the slice (a bit each) and their vertices (a
+ * byte each); then the marked triangles are walked in the mesh's order, the vertex stage
+ * on the marked vertices just ahead of them. */
+static int walk_cut(struct frontend *fe, struct frame *f, struct tri_walk *w, uint32_t i0,
+                    uint32_t i1, struct err *e)
+{
+    const struct mesh *m = w->m;
+    const struct mesh_dag *d = m->dag;
+    const size_t words = ((size_t)m->n_opaque + 63) / 64;
+    if (zeroed(&fe->vdone, &fe->vdone_cap, (size_t)m->n_verts + 8, e) ||
+        zeroed((uint8_t **)&fe->marks, &fe->marks_cap, words * sizeof *fe->marks, e))
+        return -1;
+    uint64_t *tmark = fe->marks;
+    uint8_t *vmark = fe->vdone;
+    struct cluster_view cv;
+    cluster_view_init(&cv, f->u.model, f->u.mvp, f->u.eye, f->u.ortho, f->u.view_back,
+                      f->fb->w, f->fb->h, w->cull, w->by_material);
+    struct frame_stats *st = f->stats;
+    struct ppu pu;
+    ppu_init(&pu, f);
+    const double tau = f->o->lod_px;
+    uint64_t dropped[4] = {0, 0, 0, 0};
+    for (uint32_t k = 0; k < d->n; k++) {
+        const struct dag_cluster *c = &d->c[k];
+        if (c->tri_hi < i0 || c->tri_lo >= i1)
+            continue;
+        if (!dag_cut_takes(c, c->error > 0 ? c->error * ppu_at(&pu, c->center, c->radius) : 0,
+                           c->p_error >= 0 ? c->p_error * ppu_at(&pu, c->p_center, c->p_radius) : 0,
+                           tau))
+            continue;
+        const uint32_t *t = d->tris + c->tri_first;
+        const bool whole = c->tri_lo >= i0 && c->tri_hi < i1;
+        uint32_t n = c->n_tris;
+        if (!whole) {
+            n = 0;
+            for (uint32_t q = 0; q < c->n_tris; q++)
+                n += t[q] >= i0 && t[q] < i1;
+        }
+        const bool counts = c->tri_lo >= i0;
+        st->dag_cut += counts;
+        st->dag_levels |= 1u << (c->level < 31 ? c->level : 31);
+        st->dag_tris += n;
+        w->n_cut += n;
+        st->clusters_tested += counts;
+        enum cluster_verdict cvd = cluster_test(&cv, &c->box);
+        if (cvd != CLUSTER_DRAW) {
+            dropped[cvd] += n;
+            if (cvd == CLUSTER_FRUSTUM)
+                st->clusters_frustum += counts;
+            else if (cvd == CLUSTER_FACING)
+                st->clusters_facing += counts;
+            else
+                st->clusters_no_centre += counts;
+            continue;
+        }
+        st->clusters_drawn += counts;
+        for (uint32_t q = 0; q < c->n_tris; q++)
+            if (whole || (t[q] >= i0 && t[q] < i1)) {
+                tmark[t[q] >> 6] |= 1ull << (t[q] & 63);
+                if (!whole)
+                    for (int j = 0; j < 3; j++)
+                        vmark[m->tris[t[q]][j]] = 1;
+            }
+        if (whole) {
+            const uint32_t *v = d->verts + c->vert_first;
+            for (uint32_t q = 0; q < c->n_verts; q++)
+                vmark[v[q]] = 1;
+        }
+    }
+    w->n_rejected += dropped[CLUSTER_FRUSTUM];
+    w->n_no_centre += dropped[CLUSTER_NO_CENTRE];
+    w->n_culled += dropped[CLUSTER_FACING];
+    /* the marked triangles in runs, in the mesh's order */
+    w->vmark = vmark;
+    uint32_t vdone = 0;
+    for (size_t wd = i0 >> 6; wd < words && wd * 64 < i1;) {
+        uint64_t bits = tmark[wd];
+        if (!bits) {
+            wd++;
+            continue;
+        }
+        const uint32_t a = (uint32_t)(wd * 64) + (uint32_t)__builtin_ctzll(bits);
+        uint64_t rest = ~bits & (~0ull << (a & 63)); /* the run's end: the first unmarked */
+        while (!rest && ++wd < words)
+            rest = ~tmark[wd];
+        const uint32_t b = wd < words ? (uint32_t)(wd * 64) + (uint32_t)__builtin_ctzll(rest)
+                                      : (uint32_t)(words * 64);
+        const uint32_t lo = a > i0 ? a : i0, hi = b < i1 ? b : i1;
+        if (lo < hi && walk(fe, f, w, lo, hi, &vdone, e)) {
+            w->vmark = NULL;
+            return -1;
+        }
+        if (wd < words) /* (word wd's bits below b are done) */
+            tmark[wd] &= ~0ull << (b % 64);
+        if (b >= i1)
+            break;
+    }
+    w->vmark = NULL;
     return 0;
 }
 
@@ -453,13 +630,16 @@ int frontend_triangles(struct frontend *fe, struct frame *f, const struct draw_i
     const bool clusters = m->clusters && o->cluster_cull == CLUSTER_CULL_ON && !depth_only &&
                           f->span.mode != SHADE_WIRE && o->view != VIEW_WIRE_OVERLAY &&
                           i1 <= m->n_opaque;
-    int rc = clusters ? walk_clusters(fe, f, &w, i0, i1, e)
-                      : walk(fe, f, &w, i0, i1, verts_from, e);
+    const bool cut = dag_is_cut_mesh(m) && !depth_only && f->span.mode != SHADE_WIRE &&
+                     o->view != VIEW_WIRE_OVERLAY;
+    int rc = cut        ? walk_cut(fe, f, &w, i0, i1, e)
+             : clusters ? walk_clusters(fe, f, &w, i0, i1, e)
+                        : walk(fe, f, &w, i0, i1, &verts_from, e);
     if (rc)
         return -1;
     shade_queued(fe, f);
     struct frame_stats *stats = f->stats;
-    stats->tris_in += i1 - i0;
+    stats->tris_in += cut ? w.n_cut : i1 - i0;
     stats->tris_rejected += w.n_rejected;
     stats->tris_culled += w.n_culled;
     stats->tris_no_centre += w.n_no_centre;

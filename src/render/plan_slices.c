@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "dag.h"
 #include "timing.h"
 
 void plan_slices_init(struct plan_slices *s, uint32_t batch_cap)
@@ -161,7 +162,7 @@ static void slice_main(void *arg, int k)
         /* the vertex stage starts at the lowest vertex the slice's triangles use (one flat
          * loop over their indices: the compiler makes it a vector minimum) */
         uint32_t from = 0;
-        if (i0 && !(m->clusters && j->o->cluster_cull == CLUSTER_CULL_ON)) { /* (clusters:
+        if (i0 && !(m->clusters && j->o->cluster_cull == CLUSTER_CULL_ON) && !dag_is_cut_mesh(m)) { /* (clusters:
                                                        the front end makes their vertices) */
             const uint32_t *idx = m->tris[i0];
             from = m->n_verts;
@@ -261,6 +262,9 @@ int plan_slices_draw(struct plan_slices *s, struct workers *w, const struct kern
         stats->clusters_facing += st->clusters_facing;
         stats->clusters_no_centre += st->clusters_no_centre;
         stats->clusters_drawn += st->clusters_drawn;
+        stats->dag_cut += st->dag_cut;
+        stats->dag_tris += st->dag_tris;
+        stats->dag_levels |= st->dag_levels;
     }
     if (rc)
         return -1;

@@ -76,14 +76,18 @@ int plan_tiles_draw(struct plan_tiles *t, struct workers *w, const struct kernel
             double scale = frame_item_scale(item->model);
             if (frame_item_outside(item, f->u.mvp, scale, counts, stats))
                 continue;
-            /* room for the mesh in full: changing levels never allocates (a batch the
-             * pool is drawing points into earlier items' arrays only) */
-            struct vertex_out *vo = frontend_item_verts(&t->fe, it, m->n_verts, e);
-            if (!vo)
+            if (!frontend_item_verts(&t->fe, it, m->n_verts, e)) /* (the item's record) */
                 goto fail;
             if (counts) /* once a frame: a background build may add levels meanwhile */
                 t->fe.items[it].level = frame_item_level(item, cam, fb->h, o, scale, stats);
             m = t->fe.items[it].level;
+            /* room for the mesh in full (or the cluster hierarchy's, which has more):
+             * changing levels never allocates (a batch the pool is drawing points into
+             * earlier items' arrays only) */
+            struct vertex_out *vo = frontend_item_verts(
+                &t->fe, it, m->n_verts > item->mesh->n_verts ? m->n_verts : item->mesh->n_verts, e);
+            if (!vo)
+                goto fail;
             /* pass 1 runs the vertex stage as its triangles need it (the front end), on
              * the calling thread, also while the pool draws; pass 2 reuses pass 1's
              * vertices, or runs the stage on every thread when there was no pass 1 */

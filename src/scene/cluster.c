@@ -149,7 +149,7 @@ static void patch_axes(const struct mesh *m, const uint32_t *tri, uint32_t n, co
 }
 
 /* bounds, cone and flags of the cluster of triangles tri[0 .. n) */
-static void bounds(const struct mesh *m, const uint32_t *tri, uint32_t n, struct mesh_cluster *c)
+void cluster_bounds(const struct mesh *m, const uint32_t *tri, uint32_t n, struct mesh_cluster *c)
 {
     bool finite = true, cone = true, one_sided = true;
     double axis[3] = {0, 0, 0}, sum[3] = {0, 0, 0};
@@ -274,7 +274,7 @@ static int leaf(const struct mesh *m, uint32_t id, uint32_t first, uint32_t n,
     c->n_tris = (uint8_t)n;
     c->n_sub = n;
     c->n_leaves = 1;
-    bounds(m, tri, n, c);
+    cluster_bounds(m, tri, n, c);
     /* its vertices, once each, ascending, as ranges */
     uint32_t vl[3 * CLUSTER_MAX_TRIS];
     int nv = 0;

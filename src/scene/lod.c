@@ -11,6 +11,8 @@
 
 #include <meshoptimizer.h>
 
+#include "dag.h"
+
 struct mesh_lod {
     atomic_int n_ready;                 /* levels[0 .. n_ready) are complete */
     struct mesh levels[LOD_MAX_LEVELS]; /* levels[k] is level k + 1 */
@@ -22,6 +24,7 @@ struct lod_job {
     struct mesh *meshes;
     int n;
     atomic_bool cancel, done;
+    bool clusters; /* the cluster hierarchies first */
 };
 
 _Static_assert(sizeof(unsigned int) == sizeof(uint32_t), "meshoptimizer indices are ours");
@@ -169,14 +172,18 @@ static void *job_main(void *arg)
 {
     struct lod_job *j = arg;
     for (int i = 0; i < j->n && !atomic_load(&j->cancel); i++)
-        if (j->meshes[i].lod)
-            build_chain(&j->meshes[i], j->meshes[i].lod, &j->cancel); /* out of memory: fewer
-                                                                          levels, still fine */
+        if (j->meshes[i].lod) { /* the hierarchy, else the chain (out of memory: none, or
+                                   fewer levels, still fine) */
+            if (j->clusters)
+                dag_build(&j->meshes[i], &j->cancel);
+            if (!dag_of(&j->meshes[i]))
+                build_chain(&j->meshes[i], j->meshes[i].lod, &j->cancel);
+        }
     atomic_store(&j->done, true);
     return NULL;
 }
 
-int lod_start(struct mesh *meshes, int n, struct lod_job **out, struct err *e)
+int lod_start(struct mesh *meshes, int n, bool clusters, struct lod_job **out, struct err *e)
 {
     *out = NULL;
     int want = 0;
@@ -193,6 +200,7 @@ int lod_start(struct mesh *meshes, int n, struct lod_job **out, struct err *e)
         return err_set(e, "out of memory");
     j->meshes = meshes;
     j->n = n;
+    j->clusters = clusters;
     atomic_init(&j->cancel, false);
     atomic_init(&j->done, false);
     /* the builder takes no signals: the terminal's handlers belong to the main thread */
@@ -227,6 +235,7 @@ void lod_finish(struct lod_job *j, bool cancel)
 
 void lod_free(struct mesh *m)
 {
+    dag_free(m);
     if (!m->lod)
         return;
     int n = atomic_load(&m->lod->n_ready);

@@ -498,11 +498,11 @@ int scene_load(const char *path, struct scene *s, struct err *e)
     return scene_load_with(path, NULL, s, e);
 }
 
-int scene_build_lod(struct scene *s, bool wait, struct err *e)
+int scene_build_lod(struct scene *s, bool wait, bool clusters, struct err *e)
 {
     if (s->lod_job)
         return 0;
-    if (lod_start(s->meshes, s->n_meshes, &s->lod_job, e))
+    if (lod_start(s->meshes, s->n_meshes, clusters, &s->lod_job, e))
         return -1;
     if (wait) {
         lod_finish(s->lod_job, false);

@@ -101,9 +101,14 @@ void view_hud_compose(const struct view_state *s, const struct view_hud_info *in
         char level[24] = "", mode[24];
         if (s->ro.lod == LOD_RATIO)
             snprintf(mode, sizeof mode, "%g", s->ro.lod_ratio);
+        else if (s->ro.lod == LOD_CLUSTERS)
+            snprintf(mode, sizeof mode, "clusters");
         else
             snprintf(mode, sizeof mode, "%s", render_lod_names.names[s->ro.lod]);
-        if (st->lod_min >= 0 && st->lod_min != st->lod_max)
+        if (st->dag_cut) /* the cluster hierarchy: the levels its cut takes */
+            snprintf(level, sizeof level, " C%d-%d", __builtin_ctz(st->dag_levels),
+                     31 - __builtin_clz(st->dag_levels));
+        else if (st->lod_min >= 0 && st->lod_min != st->lod_max)
             snprintf(level, sizeof level, " L%d-%d", st->lod_min, st->lod_max);
         else if (st->lod_max >= 0)
             snprintf(level, sizeof level, " L%d", st->lod_max);

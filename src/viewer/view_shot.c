@@ -86,6 +86,10 @@ void view_shot_command(const struct view_state *s, const struct view_shot_info *
         put(&b, " --lod auto");
     else if (s->ro.lod == LOD_AUTO)
         put(&b, " --lod auto:%.9g", s->ro.lod_px);
+    else if (s->ro.lod == LOD_CLUSTERS && s->ro.lod_px == LOD_DEFAULT_PX)
+        put(&b, " --lod clusters");
+    else if (s->ro.lod == LOD_CLUSTERS)
+        put(&b, " --lod clusters:%.9g", s->ro.lod_px);
     if (s->glyphs != CELL_HALF) /* the framebuffer's pixels are that glyph set's shape */
         put(&b, " --glyphs %s", cell_glyphs_name(s->glyphs));
     if (s->ro.view != VIEW_COLOR)

@@ -6,8 +6,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "dag.h"
 #include "lod.h"
 #include "pipeline.h"
+#include "psnr.h"
 #include "scene.h"
 #include "test.h"
 
@@ -527,7 +529,7 @@ TEST(lod_background_build_makes_the_same_levels)
     REQUIRE(sphere(&ref, 64, 32) == 0);
     REQUIRE(lod_build(&ref, NULL) == 0);
     struct lod_job *j;
-    REQUIRE(lod_start(ms, 2, &j, NULL) == 0);
+    REQUIRE(lod_start(ms, 2, false, &j, NULL) == 0);
     lod_finish(j, false);
     REQUIRE(lod_level_count(&ms[0]) == lod_level_count(&ref));
     for (int k = 1; k < lod_level_count(&ref); k++) {
@@ -540,7 +542,7 @@ TEST(lod_background_build_makes_the_same_levels)
     /* cancelled at once: whatever was finished is whole; freeing is safe */
     struct mesh c;
     REQUIRE(sphere(&c, 64, 32) == 0);
-    REQUIRE(lod_start(&c, 1, &j, NULL) == 0);
+    REQUIRE(lod_start(&c, 1, false, &j, NULL) == 0);
     lod_finish(j, true);
     for (int k = 1; k < lod_level_count(&c); k++)
         CHECK(lod_level(&c, k)->n_tris > 0);
@@ -553,4 +555,149 @@ TEST(lod_background_build_makes_the_same_levels)
     mesh_free(&ms[1]);
     lod_free(&ref);
     mesh_free(&ref);
+}
+
+/* ---- the cluster hierarchy (dag.h) ---- */
+
+/* 2 * 128 * 69 = 17,664 triangles: past DAG_MIN_TRIS, with sphere_r's seams and materials */
+static int dag_sphere(struct mesh *m)
+{
+    return sphere_r(m, 128, 70, 1);
+}
+
+/* edges (by position) without their reverse: a crack; *folds: edges there twice */
+static int cracks(const struct mesh *l, int *folds)
+{
+    uint32_t *id = position_ids(l);
+    uint64_t *e = malloc((size_t)l->n_tris * 3 * sizeof *e);
+    if (!id || !e) {
+        free(id);
+        free(e);
+        return -1;
+    }
+    size_t n = 0;
+    for (uint32_t t = 0; t < l->n_tris; t++)
+        for (int k = 0; k < 3; k++)
+            e[n++] = (uint64_t)id[l->tris[t][k]] << 32 | id[l->tris[t][(k + 1) % 3]];
+    qsort(e, n, sizeof *e, by_u64);
+    int open = 0;
+    *folds = 0;
+    for (size_t i = 0; i < n; i++) {
+        uint64_t rev = e[i] << 32 | e[i] >> 32;
+        *folds += i + 1 < n && e[i + 1] == e[i];
+        open += !bsearch(&rev, e, n, sizeof *e, by_u64);
+    }
+    free(id);
+    free(e);
+    return open;
+}
+
+/* the cut for an eye at distance `dist` on +z looking at the origin (96 px high, fov 50,
+ * near 0.1) under bound max_px, as the front end chooses it: its triangles as a mesh over
+ * the hierarchy's vertices (tris owned by the caller), and a bit per level it takes */
+static struct mesh cut_at(const struct mesh_dag *d, double dist, double max_px, uint32_t *levels)
+{
+    struct mesh l = d->mesh;
+    l.tris = malloc((size_t)d->mesh.n_tris * sizeof *l.tris);
+    l.n_tris = 0;
+    *levels = 0;
+    for (uint32_t k = 0; l.tris && k < d->n; k++) {
+        const struct dag_cluster *c = &d->c[k];
+        double own = 96 / (2 * fmax(dist - c->center[2] - c->radius, 0.1) * tan(25 * M_PI / 180));
+        double par = 96 / (2 * fmax(dist - c->p_center[2] - c->p_radius, 0.1) * tan(25 * M_PI / 180));
+        if (!dag_cut_takes(c, c->error * own, c->p_error * par, max_px))
+            continue;
+        *levels |= 1u << c->level;
+        for (uint32_t t = 0; t < c->n_tris; t++)
+            memcpy(l.tris[l.n_tris++], d->mesh.tris[d->tris[c->tri_first + t]], sizeof *l.tris);
+    }
+    return l;
+}
+
+TEST(dag_every_cut_is_closed_at_every_level_mix)
+{
+    struct mesh m;
+    REQUIRE(dag_sphere(&m) == 0);
+    REQUIRE(dag_build(&m, NULL) == 0);
+    const struct mesh_dag *d = dag_of(&m);
+    REQUIRE(d && d->levels >= 3);
+    CHECK_EQ_INT(open_edges(&m), 0); /* (the source is closed) */
+    int mixes = 0, cuts = 0;
+    uint32_t seen = 0;
+    for (double dist = 1.2; dist < 400; dist *= 1.4)
+        for (double px = 0.05; px < 20; px *= 3) {
+            uint32_t levels;
+            struct mesh l = cut_at(d, dist, px, &levels);
+            REQUIRE(l.tris);
+            cuts++;
+            mixes += __builtin_popcount(levels) > 1;
+            seen |= levels;
+            /* every edge met by its reverse, by position: no crack (a group's simplification
+             * may fold a few edges onto each other: there twice, never open) */
+            int folds = 0;
+            CHECK_EQ_INT(cracks(&l, &folds), 0);
+            CHECK(folds <= 32); /* (20, where the poles' fans meet the uv seam) */
+            CHECK(l.n_tris <= m.n_tris);
+            free(l.tris);
+        }
+    CHECK(mixes > cuts / 4);                   /* most cuts mix levels */
+    CHECK_EQ_INT(seen, (1u << d->levels) - 1); /* and every level is in some cut */
+    lod_free(&m);
+    mesh_free(&m);
+}
+
+TEST(dag_draws_the_bytes_of_lod_off_with_no_level_coarsened_and_near_them_coarsened)
+{
+    struct mesh m, plain;
+    REQUIRE(dag_sphere(&m) == 0);
+    REQUIRE(dag_sphere(&plain) == 0);
+    REQUIRE(dag_build(&m, NULL) == 0);
+    REQUIRE(dag_of(&m));
+    struct fb a, b;
+    REQUIRE(fb_init(&a, 160, 96, false, NULL) == 0 && fb_init(&b, 160, 96, false, NULL) == 0);
+    struct pipeline *p = pipeline_new();
+    REQUIRE(p);
+    struct draw_item it = {.mesh = &m, .model = m4_identity()};
+    struct draw_item ip = {.mesh = &plain, .model = m4_identity()};
+    int same = 0, cases = 0, coarse = 0;
+    double worst = INFINITY;
+    for (int view = 0; view < 12; view++)
+        for (int split = SPLIT_TILES; split <= SPLIT_SLICES; split++) {
+            struct camera cam;
+            camera_default(&cam);
+            double dist = 1.6 * pow(1.4, view), th = 0.7 * view; /* (inside far: 100) */
+            cam.eye = v3(dist * sin(th), 0.3 * dist * cos(th), dist * cos(th));
+            struct render_opts o;
+            render_opts_default(&o);
+            o.split = (enum thread_split)split;
+            o.threads = 2;
+            o.cull = view % 2 ? CULL_BACK : CULL_NONE;
+            struct frame_stats st;
+            REQUIRE(pipeline_draw(p, &ip, 1, NULL, &cam, &o, &a, &st, NULL) == 0);
+            /* a bound no group's error meets: level 0 only, the same bytes */
+            o.lod = LOD_CLUSTERS;
+            o.lod_px = 1e-7f;
+            REQUIRE(pipeline_draw(p, &it, 1, NULL, &cam, &o, &b, &st, NULL) == 0);
+            CHECK_EQ_INT(st.dag_levels, 1);
+            CHECK_EQ_INT(st.dag_tris, m.n_tris);
+            cases++;
+            same += memcmp(a.rgb, b.rgb, (size_t)a.w * a.h * 3) == 0 &&
+                    memcmp(a.depth, b.depth, (size_t)a.w * a.h * sizeof *a.depth) == 0;
+            /* the default bound: coarser, and near the same picture */
+            o.lod_px = LOD_DEFAULT_PX;
+            REQUIRE(pipeline_draw(p, &it, 1, NULL, &cam, &o, &b, &st, NULL) == 0);
+            coarse += st.dag_levels > 1 && st.dag_tris < m.n_tris;
+            CHECK_EQ_INT(st.tris_full, m.n_tris);
+            double db = psnr_db(psnr_sse(a.rgb, b.rgb, (size_t)a.w * a.h * 3) / (a.w * a.h * 3.0));
+            worst = fmin(worst, db);
+        }
+    CHECK_EQ_INT(same, cases);
+    CHECK(coarse > cases / 2);
+    CHECK(worst >= 40);
+    pipeline_destroy(p);
+    fb_free(&a);
+    fb_free(&b);
+    lod_free(&m);
+    mesh_free(&m);
+    mesh_free(&plain);
 }
