@@ -23,6 +23,7 @@
  *   once), DB the decoded screen against the framebuffer ("inf" = identical).
  *   RASTTY_FRAME_PPM=DIR   each frame's framebuffer DIR/fb-NNNNN.ppm and the decoded screen
  *   DIR/screen-NNNNN.ppm (the picture's rows, as the terminal shows them).
+ *   The log has key and status-line lines too (view_frames_note).
  *   RASTTY_FRAME_FLOOR=off the floor off, and the demo's spin never paused for the link:
  *   the viewer as it was before them, for make bench's before/after. */
 #ifndef RASTTY_VIEW_FRAMES_H
@@ -67,6 +68,10 @@ void view_frames_free(struct view_frames *f);
 const char *view_frames_encode(struct view_frames *f, struct encode_screen *s,
                                const struct fb *fb, struct encode_opts *o, bool floor,
                                size_t *len_out, struct encode_stats *st, int *tries_out);
+/* For RASTTY_FRAME_LOG, where a key's time goes: "key t SECONDS" when a key is read, "hud t
+ * SECONDS bytes B" when a changed status line is written (bytes 0: with the next frame,
+ * ahead of it in the same write). */
+void view_frames_note(struct view_frames *f, const char *what, size_t bytes, double t);
 /* The frame's bytes were written (t: now): log it (when asked). */
 void view_frames_written(struct view_frames *f, const struct fb *fb, const struct encode_opts *o,
                          size_t bytes, size_t budget, int tries, bool full, double t);

@@ -332,6 +332,8 @@ static int draw_frame(struct view *v, double t, struct err *e)
      * the picture, with the frame count: "#N" on the screen means all of frame N is. */
     bool rest = still(v, t);
     if (!rest && (t >= v->next_hud_at || v->s.hud_dirty)) {
+        if (v->s.hud_dirty)
+            view_frames_note(&v->vf, "hud", 0, t);
         hud_draw(v, t);
         v->next_hud_at = t + HUD_PERIOD_S;
     }
@@ -535,6 +537,8 @@ static int loop(struct view *v, struct err *e)
             if (k == TTY_NONE)
                 break;
             double te = timing_now_s();
+            if (k == TTY_KEY)
+                view_frames_note(&v->vf, "key", 0, te);
             if (k == TTY_KEY && act(v, view_key(&v->s, input_command(ev.key), te), te, &quit, e))
                 return -1;
             else if (k == TTY_MOUSE)
@@ -565,8 +569,14 @@ static int loop(struct view *v, struct err *e)
         if (v->s.dirty && pace_ready(&v->pace, t, NULL)) {
             if (draw_frame(v, t, e))
                 return tty_signalled() ? 0 : -1; /* a quit signal cut the write short */
-        } else if (v->s.hud_dirty && !v->s.dirty) {
+        } else if (v->s.hud_dirty) {
+            /* a still picture's status line; or, while a frame is on its way, what a key
+             * changed: it goes out now, behind that frame, not after its answer (the next
+             * frame may wait for the link a while; the status line is a hundred bytes) */
+            size_t before = v->out_len;
             hud_draw(v, t);
+            if (v->out_len > before)
+                view_frames_note(&v->vf, "hud", v->out_len - before, timing_now_s());
             out_flush(v);
         }
     }

@@ -145,3 +145,14 @@ void view_frames_written(struct view_frames *f, const struct fb *fb, const struc
             write_ppm(f, "screen", f->dec.rgb, fb->w, fb->h);
     }
 }
+
+void view_frames_note(struct view_frames *f, const char *what, size_t bytes, double t)
+{
+    if (!f->log)
+        return;
+    if (bytes)
+        fprintf(f->log, "%s t %.4f bytes %zu\n", what, t - f->t0, bytes);
+    else
+        fprintf(f->log, "%s t %.4f\n", what, t - f->t0);
+    fflush(f->log);
+}
