@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # tests/bench_link.sh: what reaches the screen over a slow link (part of `make bench`; numbers,
 # never verdicts). The demo scene in a 160x48 tmux pane behind ../shared/tools/slowlink.py
-# (1 MB queue, the viewer told it is over ssh) for SECS seconds (default 10); the viewer
+# (1 MB queue, the viewer told it is over ssh) for SECS seconds (default 8); the viewer
 # decodes every frame it writes and logs its PSNR against the framebuffer it came from
 # (RASTTY_FRAME_LOG, include/viewer/view_frames.h). Per rate: frames written, the first
 # frame's arrival time (its bytes at the link's rate), PSNR min / median, and how many frames
@@ -13,7 +13,7 @@ BIN=${RASTTY_BIN:-./rastty}
 S=${RASTTY_SHARED:-../shared}
 LINK=$S/tools/slowlink.py
 D=build/bench/link
-SECS=${SECS:-10}
+SECS=${SECS:-8}
 mkdir -p "$D"
 if [ ! -f "$LINK" ] || ! command -v tmux >/dev/null; then
     echo "-- skipped link benchmark: no $LINK or tmux"
