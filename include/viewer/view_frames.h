@@ -7,8 +7,9 @@
  *
  * Quality floor. A frame with a byte budget (pace.h: a link, not a local terminal) that would
  * leave the screen below VIEW_MIN_DB is taken back (encode_screen_restore) and encoded again
- * with a larger budget: twice as large, at most VIEW_FLOOR_TRIES times, the last try the
- * frame's whole demand (every change exact). Over a link too slow for the motion frames
+ * with a larger budget: twice as large and at least an eighth of the frame's demand (its
+ * bytes without a budget), at most VIEW_FLOOR_TRIES times, the last try the whole demand
+ * (every change exact). Over a link too slow for the motion frames
  * therefore come fewer but whole (one frame in flight: a larger frame delays the next),
  * never as ghosts of two pictures. The floor is off where the decoded screen cannot be
  * compared with the framebuffer: no colours (PALETTE_NONE), braille (the terminal's own
@@ -38,7 +39,7 @@
 #include "fb.h"
 
 #define VIEW_MIN_DB 32.0     /* a frame on the screen is at least this close to its picture */
-#define VIEW_FLOOR_TRIES 4   /* encodes of one frame at most (the last: its whole demand) */
+#define VIEW_FLOOR_TRIES 5   /* encodes of one frame at most (the last: its whole demand) */
 
 struct view_frames {
     bool on;                  /* decoding (the floor or a log wants it) */

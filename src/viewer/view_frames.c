@@ -103,7 +103,9 @@ const char *view_frames_encode(struct view_frames *f, struct encode_screen *s,
         f->dec = f->keep_dec;
         f->dec.rgb = rgb;
         memcpy(f->dec.rgb, f->keep_rgb, px);
-        size_t next = o->budget * 2;
+        /* twice the budget, and at least an eighth of the whole demand: a frame far over
+         * its budget gets there in a few tries, near the bar rather than exact */
+        size_t next = o->budget * 2 > st->demand / 8 ? o->budget * 2 : st->demand / 8;
         o->budget = tries + 1 >= VIEW_FLOOR_TRIES || next >= st->demand ? 0 : next;
     }
     o->budget = budget;
