@@ -4,7 +4,8 @@
 #      2 deg/frame, 160x48 cells) on black, on the shared photo skybox, and on rastty's own sky;
 #   2. key -> screen latency of the viewer behind a slow link (256 kbit/s, 1 and 4 Mbit/s,
 #      unthrottled) in terminals that answer every query, only CPR and DA1 (st), only DA1,
-#      and none (tests/bench_latency.sh);
+#      and none (tests/bench_latency.sh); what reaches the screen there: each frame's decoded
+#      PSNR at 256 kbit/s and 1 Mbit/s, with and without the quality floor (tests/bench_link.sh);
 #   3. render time per frame of the demo scene and the big shared models;
 #   4. every rendering method: ms/frame and error against Mesa (tests/bench_methods.sh);
 #   5. mesh level of detail: --lod auto's bound against error and speed (tests/bench_lod.sh);
@@ -40,6 +41,8 @@ else
 fi
 echo
 tests/bench_latency.sh
+echo
+tests/bench_link.sh
 echo
 echo "-- render time: demo scene and shared models, 160x48 and 320x96 cells, 36 frames"
 models=("assets/demo.rsc")

@@ -29,6 +29,7 @@
 #include <stdint.h>
 
 #include "batch.h"
+#include "edges.h"
 #include "frame.h"
 #include "scene.h"
 #include "workers.h"
@@ -55,6 +56,9 @@ struct frontend {
         struct vertex_out *v;
         uint32_t cap;
         const struct mesh *level; /* the level of detail this frame draws (chosen once) */
+        struct edge_table edges;  /* wire outline: the level's edges (built when first drawn) */
+        uint8_t *facing;          /* wire outline: per triangle, scratch */
+        uint32_t facing_cap;
     } *items;
     int n_items;
     /* set-up triangles: front end -> back end. With a pool, the pool draws one batch while
@@ -108,10 +112,12 @@ int frontend_finish(struct frontend *fe, struct frame *f, struct err *e);
  * failure. */
 void frontend_abandon(struct frontend *fe, struct frame *f);
 
-/* Triangle edges of m (vertex records vo, positioned) as lines, depth-tested when asked.
- * `overlay` edges decorate a shaded frame: they are not counted as the frame's triangles. */
-void frontend_edges(const struct mesh *m, const struct vertex_out *vo,
-                    const struct render_opts *o, bool depth_test, bool overlay, struct fb *fb,
-                    struct frame_stats *stats);
+/* Triangle edges of m (item it's mesh at its level; vertex records vo, positioned) as
+ * lines, depth-tested when asked: every edge, or with o->wire the outline (render_opts.h,
+ * edges.h). `overlay` edges decorate a shaded frame: they are not counted as the frame's
+ * triangles, and are always every edge. */
+void frontend_edges(struct frontend *fe, int it, const struct mesh *m,
+                    const struct vertex_out *vo, const struct render_opts *o, bool depth_test,
+                    bool overlay, struct fb *fb, struct frame_stats *stats);
 
 #endif

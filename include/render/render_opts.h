@@ -35,6 +35,16 @@
 #define RENDER_MAX_LIGHTS SCENE_MAX_LIGHTS
 
 enum shade_mode { SHADE_UNLIT, SHADE_FLAT, SHADE_GOURAUD, SHADE_PHONG, SHADE_WIRE, SHADE_COUNT };
+/* --wire: which edges wireframe draws (frontend_edges, edges.h).
+ *   all     every triangle's three edges.
+ *   outline the edges a terminal can show: silhouettes (the faces on either side face
+ *           different ways from the eye), creases (they turn by more than EDGE_CREASE_DEG)
+ *           and the mesh's borders.
+ *   auto    all while they are readable: outline when the edges' projected length exceeds
+ *           WIRE_DENSITY_MAX pixels per pixel of the model's projected area (1-pixel lines
+ *           would light more than that fraction of it: a white blob). */
+enum wire_mode { WIRE_AUTO, WIRE_ALL, WIRE_OUTLINE, WIRE_COUNT };
+#define WIRE_DENSITY_MAX 0.5
 /* CULL_AUTO (the default): as the model's materials say — glTF's single-sided materials
  * (doubleSided false) drop their back faces, every other face is drawn (the conventions'
  * "no culling" for OBJ and the formats without a rule) */
@@ -104,6 +114,7 @@ struct render_opts {
     enum debug_view view;
     bool textures;       /* sample material / override textures (else albedo = kd) */
     bool hidden_lines;   /* wire: hide edges behind the model's surfaces (depth pre-pass) */
+    enum wire_mode wire; /* wire: which edges (auto: all while readable, else the outline) */
     uint8_t background[3];
     uint8_t wire_color[3];
     int n_lights;
@@ -138,7 +149,7 @@ struct render_enum {
 extern const struct render_enum render_shade_names, render_cull_names, render_filter_names,
     render_view_names, render_raster_names, render_persp_names, render_depth_names,
     render_ssaa_names, render_lod_names, render_split_names, render_kernel_names,
-    render_cluster_cull_names;
+    render_cluster_cull_names, render_wire_names;
 
 const char *render_shade_name(enum shade_mode m);
 const char *render_cull_name(enum cull_mode m);

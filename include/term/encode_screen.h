@@ -101,6 +101,22 @@ void encode_screen_invalidate(struct encode_screen *s);
 /* Cells in the rectangle were overwritten by someone else (a HUD): redraw them next frame. */
 void encode_screen_damage(struct encode_screen *s, int col, int row, int ncols, int nrows);
 
+/* A frame tried and taken back (its bytes never written; the viewer's quality floor,
+ * view_frames.h): encode_screen_keep copies what the model says the terminal shows into keep
+ * (s->cols * s->rows cells the caller owns) and the rest of the model's state (whether it
+ * is known, its colour mode, the last budgeted frame's price) into *kept;
+ * encode_screen_restore puts them back. The glyph set must be the same in between (the
+ * next encode_frame with the same options). */
+struct encode_kept {
+    bool valid;
+    enum palette_mode mode;
+    double lambda;
+};
+void encode_screen_keep(const struct encode_screen *s, struct encode_cell *keep,
+                        struct encode_kept *kept);
+void encode_screen_restore(struct encode_screen *s, const struct encode_cell *keep,
+                           const struct encode_kept *kept);
+
 /* The glyph set's UTF-8 for every pattern, kept in s (encode_frame calls it when the set
  * changes). */
 void encode_screen_glyphs(struct encode_screen *s, enum cell_glyphs g);

@@ -42,7 +42,9 @@
  *     bytes per cell in PACE_COLOUR_PERIOD (1/8 s), and comes back above PACE_256_ABOVE (hysteresis).
  *     make bench's curve: below ~0.3 byte/cell a frame, a 256-colour budgeted frame is as
  *     close to the picture as a truecolor one; above it truecolor wins.
- *   - --bandwidth RATE: rate <= RATE, and a frame of n bytes is followed by n / RATE s. */
+ *   - --bandwidth RATE: rate <= RATE, and a frame of n bytes is followed by n / RATE s.
+ *   - The budget is a wish, not a wall: the viewer spends more on a frame the budget would
+ *     leave below its quality floor (view_frames.h), and the next frame waits for it. */
 #ifndef RASTTY_PACE_H
 #define RASTTY_PACE_H
 
@@ -94,6 +96,9 @@ struct pace {
 void pace_init(struct pace *p, double fps, double cap_bytes_s, bool local);
 /* The terminal answers no query: pace by time from now on (until an answer comes). */
 void pace_no_answers(struct pace *p);
+/* The rate frames are sized for (measured, assumed or capped), bytes/s; 0 = not known yet
+ * or a local terminal. */
+double pace_rate(const struct pace *p);
 /* May a frame go out at time t? If not, *wait_out (may be NULL) is how long until it may,
  * or until the answer in flight is given up (never negative). */
 bool pace_ready(const struct pace *p, double t, double *wait_out);

@@ -83,6 +83,7 @@ static const struct flag flags[] = {
     ENUM_FLAG("--cull", C_DRAW | C_BENCH, "face culling", render_cull_names, render.cull),
     ENUM_FLAG("--cluster-cull", C_DRAW | C_BENCH, "drop whole clusters of triangles that cannot reach a pixel (outside the view, facing away when culled, between pixel centres) before their vertices are transformed; never changes a picture (default off: it does not pay yet)", render_cluster_cull_names, render.cluster_cull),
     {"--hidden-lines", F_HIDDEN_LINES, ARG_NONE, C_DRAW, NULL, "wire: hide edges behind the model's surfaces", NULL, 0},
+    ENUM_FLAG("--wire", C_DRAW | C_BENCH, "wire: which edges: all, outline (silhouettes, creases and borders) or auto (all while readable: outline when they would light over half of the model's area)", render_wire_names, render.wire),
     ENUM_FLAG("--view", C_DRAW, "what the picture shows", render_view_names, render.view),
     {"--out", F_OUT, ARG_VALUE, C_RENDER | C_DUMP | C_A2P, "FILE", "output file (.ppm/.png; dump: .ans or .cast); - is standard output (render, ansi2ppm: never a terminal)", NULL, 0},
     {"--format", F_FORMAT, ARG_VALUE, C_RENDER | C_A2P, "png|ppm", "the image format of --out - (default png); a file's is its extension", NULL, 0},

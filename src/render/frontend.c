@@ -29,8 +29,11 @@ int frontend_init(struct frontend *fe, uint32_t batch_cap, struct err *e)
 
 void frontend_free(struct frontend *fe)
 {
-    for (int i = 0; i < fe->n_items; i++)
+    for (int i = 0; i < fe->n_items; i++) {
         free(fe->items[i].v);
+        free(fe->items[i].facing);
+        edge_table_free(&fe->items[i].edges);
+    }
     free(fe->items);
     batch_free(&fe->batch[0]);
     batch_free(&fe->batch[1]);
@@ -646,9 +649,25 @@ int frontend_triangles(struct frontend *fe, struct frame *f, const struct draw_i
     return 0;
 }
 
-void frontend_edges(const struct mesh *m, const struct vertex_out *vo,
-                       const struct render_opts *o, bool depth_test, bool overlay, struct fb *fb,
-                       struct frame_stats *stats)
+/* A triangle's state for the outline (frontend_edges). */
+enum { TRI_GONE = 0, TRI_FRONT = 1, TRI_BACK = 2, TRI_SHOWN = 4 };
+
+static uint8_t tri_state(const struct vertex_out *const v[3], enum cull_mode cull)
+{
+    if ((v[0]->outcode | v[1]->outcode | v[2]->outcode) & VERTEX_INVALID)
+        return TRI_GONE;
+    int front = setup_front_facing(v[0], v[1], v[2]);
+    uint8_t s = front ? TRI_FRONT : TRI_BACK;
+    if (!(v[0]->outcode & v[1]->outcode & v[2]->outcode & VERTEX_OUT_FRUSTUM) &&
+        !(cull != CULL_NONE && setup_culled(cull, front)))
+        s |= TRI_SHOWN;
+    return s;
+}
+
+/* Every edge of every triangle drawn (the wireframe as it always was). */
+static void all_edges(const struct mesh *m, const struct vertex_out *vo,
+                      const struct render_opts *o, bool depth_test, bool overlay, struct fb *fb,
+                      struct frame_stats *stats)
 {
     for (uint32_t i = 0; i < m->n_tris; i++) {
         const struct vertex_out *v[3] = {&vo[m->tris[i][0]], &vo[m->tris[i][1]],
@@ -667,6 +686,87 @@ void frontend_edges(const struct mesh *m, const struct vertex_out *vo,
         for (int k = 0; k < 3; k++)
             line_draw_clip(fb, v[k]->clip, v[(k + 1) % 3]->clip, o->wire_color, depth_test);
         stats->tris_drawn += !overlay;
+    }
+}
+
+static double win_len(const struct vertex_out *a, const struct vertex_out *b)
+{
+    double dx = a->win[0] - b->win[0], dy = a->win[1] - b->win[1];
+    return sqrt(dx * dx + dy * dy);
+}
+
+void frontend_edges(struct frontend *fe, int it, const struct mesh *m,
+                    const struct vertex_out *vo, const struct render_opts *o, bool depth_test,
+                    bool overlay, struct fb *fb, struct frame_stats *stats)
+{
+    struct frontend_item *iv = it < fe->n_items ? &fe->items[it] : NULL;
+    if (overlay || o->wire == WIRE_ALL || !iv) {
+        all_edges(m, vo, o, depth_test, overlay, fb, stats);
+        return;
+    }
+    struct err ignored;
+    if (iv->edges.mesh != m || iv->edges.n_tris != m->n_tris)
+        edge_table_build(&iv->edges, m, &ignored); /* out of memory: every edge, below */
+    if (m->n_tris > iv->facing_cap) {
+        free(iv->facing);
+        iv->facing = malloc(m->n_tris);
+        iv->facing_cap = iv->facing ? m->n_tris : 0;
+    }
+    if (!iv->edges.e || !iv->facing) {
+        all_edges(m, vo, o, depth_test, overlay, fb, stats);
+        return;
+    }
+    enum cull_mode cull = o->cull == CULL_AUTO ? CULL_NONE : o->cull;
+    /* the model's projected area, front and back faces apart (a closed mesh: either is its
+     * silhouette's area, about; an open one: the larger) */
+    double area[2] = {0, 0};
+    for (uint32_t i = 0; i < m->n_tris; i++) {
+        const struct vertex_out *v[3] = {&vo[m->tris[i][0]], &vo[m->tris[i][1]],
+                                         &vo[m->tris[i][2]]};
+        uint8_t s = iv->facing[i] = tri_state(v, cull);
+        if ((s & TRI_SHOWN) && o->wire == WIRE_AUTO && v[0]->projected && v[1]->projected &&
+            v[2]->projected)
+            area[(s & TRI_BACK) != 0] +=
+                fabs((v[1]->win[0] - v[0]->win[0]) * (v[2]->win[1] - v[0]->win[1]) -
+                     (v[2]->win[0] - v[0]->win[0]) * (v[1]->win[1] - v[0]->win[1])) / 2;
+    }
+    bool outline = o->wire == WIRE_OUTLINE;
+    if (o->wire == WIRE_AUTO) { /* the edges' projected length per pixel of that area */
+        double len = 0;
+        for (uint32_t k = 0; k < iv->edges.n; k++) {
+            const struct edge *ed = &iv->edges.e[k];
+            bool shown = (iv->facing[ed->t0] & TRI_SHOWN) ||
+                         (ed->t1 != EDGE_NONE && (iv->facing[ed->t1] & TRI_SHOWN));
+            if (shown && vo[ed->v0].projected && vo[ed->v1].projected)
+                len += win_len(&vo[ed->v0], &vo[ed->v1]);
+        }
+        double a = area[0] > area[1] ? area[0] : area[1];
+        outline = len > WIRE_DENSITY_MAX * a;
+    }
+    if (!outline) { /* readable: every edge, exactly as --wire all draws them */
+        all_edges(m, vo, o, depth_test, overlay, fb, stats);
+        return;
+    }
+    for (uint32_t i = 0; i < m->n_tris; i++) {
+        uint8_t s = iv->facing[i];
+        stats->tris_in++;
+        if (s & TRI_SHOWN)
+            stats->tris_drawn++;
+        else if (s == TRI_GONE || !(s & (TRI_FRONT | TRI_BACK)) ||
+                 cull == CULL_NONE || !setup_culled(cull, s & TRI_FRONT))
+            stats->tris_rejected++;
+        else
+            stats->tris_culled++;
+    }
+    for (uint32_t k = 0; k < iv->edges.n; k++) {
+        const struct edge *ed = &iv->edges.e[k];
+        uint8_t s0 = iv->facing[ed->t0], s1 = ed->t1 != EDGE_NONE ? iv->facing[ed->t1] : 0;
+        if (!(s0 & TRI_SHOWN) && !(s1 & TRI_SHOWN))
+            continue;
+        if (outline && ed->t1 != EDGE_NONE && !ed->crease && s0 != TRI_GONE && s1 != TRI_GONE &&
+            (s0 & (TRI_FRONT | TRI_BACK)) == (s1 & (TRI_FRONT | TRI_BACK)))
+            continue; /* inside the outline: both faces turn the same way, no crease */
+        line_draw_clip(fb, vo[ed->v0].clip, vo[ed->v1].clip, o->wire_color, depth_test);
     }
 }
 

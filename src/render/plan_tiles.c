@@ -97,7 +97,8 @@ int plan_tiles_draw(struct plan_tiles *t, struct workers *w, const struct kernel
                 if (frontend_triangles(&t->fe, f, item, m, vo, wire, 0, m->n_opaque, 0, e))
                     goto fail;
             } else {
-                frontend_edges(m, vo, o, !wire || o->hidden_lines, !wire, fb, stats);
+                frontend_edges(&t->fe, it, m, vo, o, !wire || o->hidden_lines, !wire, fb,
+                               stats);
             }
         }
         if (pass == 1) {

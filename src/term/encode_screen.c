@@ -69,3 +69,19 @@ void encode_screen_damage(struct encode_screen *s, int col, int row, int ncols, 
             s->cells[(size_t)r * (size_t)s->cols + c] =
                 (struct encode_cell){ENCODE_CELL_UNKNOWN, ENCODE_CELL_UNKNOWN, 0};
 }
+
+void encode_screen_keep(const struct encode_screen *s, struct encode_cell *keep,
+                        struct encode_kept *kept)
+{
+    memcpy(keep, s->cells, (size_t)s->cols * (size_t)s->rows * sizeof *keep);
+    *kept = (struct encode_kept){.valid = s->valid, .mode = s->mode, .lambda = s->lambda};
+}
+
+void encode_screen_restore(struct encode_screen *s, const struct encode_cell *keep,
+                           const struct encode_kept *kept)
+{
+    memcpy(s->cells, keep, (size_t)s->cols * (size_t)s->rows * sizeof *keep);
+    s->valid = kept->valid;
+    s->mode = kept->mode;
+    s->lambda = kept->lambda;
+}

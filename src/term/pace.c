@@ -34,6 +34,11 @@ static double link_rate(const struct pace *p)
     return r;
 }
 
+double pace_rate(const struct pace *p)
+{
+    return p->local ? 0 : link_rate(p);
+}
+
 bool pace_ready(const struct pace *p, double t, double *wait_out)
 {
     double wait = 0;

@@ -24,6 +24,7 @@
 #include "termcaps.h"
 #include "timing.h"
 #include "tty.h"
+#include "view_frames.h"
 #include "view_hud.h"
 #include "view_shot.h"
 #include "view_state.h"
@@ -37,6 +38,8 @@
 #define DRAIN_S 1.0      /* Ctrl-Z: wait this long (+ the transfer) for the answer in flight */
 #define MAX_SHOTS 16
 #define FPS_GAP_S 0.5    /* frames further apart than this are not counted in the frame rate */
+#define LINK_SPIN_S 0.25 /* the demo's own spin pauses when a whole frame of it takes the link
+                          * longer than this (fewer than 4 frames a second: view_frames.h) */
 
 struct view {
     const struct options *o;
@@ -52,6 +55,11 @@ struct view {
     struct encode_opts eo;
     enum palette_mode mode; /* the terminal's colour mode (the pacing may draw in 256) */
     struct pace pace;
+    struct view_frames vf;  /* the decoded screen: the quality floor, RASTTY_FRAME_LOG */
+    bool link_paused;       /* the link paused the demo's spin once (Space spins it again) */
+    size_t last_bytes;      /* the last frame's bytes, and the camera it was drawn with */
+    struct camera last_cam;
+    bool cam_drawn;
     struct pipeline *pipe;
     struct ssaa ssaa;       /* --ssaa's big framebuffer */
     struct skybox default_sky;
@@ -194,6 +202,7 @@ static int resize(struct view *v, struct err *e)
         v->eo.glyphs = g.glyphs;
     }
     encode_screen_invalidate(&v->es);
+    view_frames_resize(&v->vf, cols, rows, g);
     out_add(v, "\033[0m\033[2J", 8);
     v->help_drawn = false;
     v->s.dirty = v->s.hud_dirty = true;
@@ -222,6 +231,10 @@ static void hud_draw(struct view *v, double t)
         .frames = still(v, t) ? v->frames : 0};
     char pacing[96];
     pace_describe(&v->pace, v->est.max_err, pacing, sizeof pacing);
+    if (v->link_paused && v->s.spin && v->s.paused) { /* link_spin: said for as long as it lasts */
+        size_t k = strlen(pacing);
+        snprintf(pacing + k, sizeof pacing - k, "%sspin paused", k ? " " : "slow link: ");
+    }
     in.pacing = pacing;
     view_hud_compose(&v->s, &in, v->tty.cols, t, text, sizeof text);
     if (!v->s.hud_dirty && strcmp(text, v->hud_text) == 0)
@@ -261,6 +274,22 @@ static void help_draw(struct view *v)
     v->help_drawn = true;
 }
 
+/* The demo's own spin (not --spin) over a link too slow to carry it whole: when the last
+ * frame took the link longer than LINK_SPIN_S, pause it and say so, once (Space spins it
+ * again, in fewer but whole frames). The motion since that frame was never shown: the camera
+ * goes back to where that frame saw the scene, so what follows only finishes it. */
+static void link_spin(struct view *v, double t)
+{
+    double rate = pace_rate(&v->pace);
+    if (v->o->spin >= 0 || !v->vf.floor || v->link_paused || !v->s.spin || v->s.paused ||
+        !v->cam_drawn || rate <= 0 || (double)v->last_bytes <= rate * LINK_SPIN_S)
+        return;
+    v->link_paused = true;
+    v->s.paused = true;
+    v->s.cam = v->last_cam;
+    view_message(&v->s, "auto-rotation paused: the link is too slow for it (Space resumes)", t);
+}
+
 static int draw_frame(struct view *v, double t, struct err *e)
 {
     if (v->fb_cols == 0) { /* no room for a picture (one row and a HUD): only the HUD */
@@ -270,6 +299,7 @@ static int draw_frame(struct view *v, double t, struct err *e)
         hud_draw(v, t);
         return out_flush(v) ? err_set(e, "rastty: cannot write to the terminal") : 0;
     }
+    link_spin(v, t);
     const struct scene *s = v->scenes[v->cur];
     struct render_opts ro;
     view_frame_opts(&v->s, &ro);
@@ -285,7 +315,9 @@ static int draw_frame(struct view *v, double t, struct err *e)
     v->eo.hold_cols = v->s.help ? help.cols : 0, v->eo.hold_rows = v->s.help ? help.rows : 0;
     double t0 = timing_now_s();
     size_t n;
-    const char *bytes = encode_fb(&v->es, &v->fb, &v->eo, &n, &v->est);
+    int tries;
+    const char *bytes = view_frames_encode(&v->vf, &v->es, &v->fb, &v->eo, !v->s.help, &n,
+                                           &v->est, &tries);
     v->encode_ms = (timing_now_s() - t0) * 1e3;
     /* the frame rate of motion: a frame after an idle pause (a key after a still picture)
      * says nothing about it, and would make the rate decay toward 0 while nothing moves */
@@ -303,6 +335,8 @@ static int draw_frame(struct view *v, double t, struct err *e)
      * the picture, with the frame count: "#N" on the screen means all of frame N is. */
     bool rest = still(v, t);
     if (!rest && (t >= v->next_hud_at || v->s.hud_dirty)) {
+        if (v->s.hud_dirty)
+            view_frames_note(&v->vf, "hud", 0, t);
         hud_draw(v, t);
         v->next_hud_at = t + HUD_PERIOD_S;
     }
@@ -322,6 +356,11 @@ static int draw_frame(struct view *v, double t, struct err *e)
     if (out_flush(v))
         return err_set(e, "rastty: cannot write to the terminal");
     pace_sent(&v->pace, sent_at, total, v->est.demand + (total - n), v->fb_cols * v->fb_rows);
+    if (n > 0)
+        view_frames_written(&v->vf, &v->fb, &v->eo, n, v->eo.budget, tries, v->est.full, sent_at);
+    v->last_bytes = n;
+    v->last_cam = v->s.cam;
+    v->cam_drawn = true;
     return 0;
 }
 
@@ -506,6 +545,8 @@ static int loop(struct view *v, struct err *e)
             if (k == TTY_NONE)
                 break;
             double te = timing_now_s();
+            if (k == TTY_KEY)
+                view_frames_note(&v->vf, "key", 0, te);
             if (k == TTY_KEY && act(v, view_key(&v->s, input_command(ev.key), te), te, &quit, e))
                 return -1;
             else if (k == TTY_MOUSE)
@@ -536,8 +577,14 @@ static int loop(struct view *v, struct err *e)
         if (v->s.dirty && pace_ready(&v->pace, t, NULL)) {
             if (draw_frame(v, t, e))
                 return tty_signalled() ? 0 : -1; /* a quit signal cut the write short */
-        } else if (v->s.hud_dirty && !v->s.dirty) {
+        } else if (v->s.hud_dirty) {
+            /* a still picture's status line; or, while a frame is on its way, what a key
+             * changed: it goes out now, behind that frame, not after its answer (the next
+             * frame may wait for the link a while; the status line is a hundred bytes) */
+            size_t before = v->out_len;
             hud_draw(v, t);
+            if (v->out_len > before)
+                view_frames_note(&v->vf, "hud", v->out_len - before, timing_now_s());
             out_flush(v);
         }
     }
@@ -675,6 +722,7 @@ int view_run(const struct options *o, struct err *e)
     v->eo.tolerance = o->tolerance >= 0 ? o->tolerance : ssh ? 3 : 0;
     v->eo.dither = o->dither;
     pace_init(&v->pace, o->fps, o->bandwidth, !ssh);
+    view_frames_init(&v->vf, !v->pace.local, timing_now_s());
     rc = 1;
     if (!(v->pipe = pipeline_new())) {
         err_set(e, "out of memory");
@@ -705,6 +753,7 @@ out:
             free(v->scenes[i]);
         }
     encode_screen_free(&v->es);
+    view_frames_free(&v->vf);
     fb_free(&v->fb);
     ssaa_free(&v->ssaa);
     pipeline_destroy(v->pipe);

@@ -96,6 +96,8 @@ void view_shot_command(const struct view_state *s, const struct view_shot_info *
         put(&b, " --view %s", render_view_name(s->ro.view));
     if (s->ro.hidden_lines)
         put(&b, " --hidden-lines");
+    if (s->ro.wire != WIRE_AUTO)
+        put(&b, " --wire %s", render_wire_names.names[s->ro.wire]);
     if (in->background_set)
         put(&b, " --background %d,%d,%d", in->background[0], in->background[1],
             in->background[2]);

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # cli.sh (issue 11): the command line's rough edges — textures found beside a model, the
-# light conventions of render and dump (the viewer's light), what dump writes to files.
+# light conventions of render and dump (the viewer's light), what dump writes to files,
+# wireframe at terminal sizes (--wire).
 source "$(dirname "$0")/lib/common.sh"
 
 HEAD=$SHARED/african_head
@@ -121,5 +122,26 @@ dump_light() {
     [ $((h2 * 10)) -ge $((h0 * 8)) ] && [ $((f2 * 10)) -lt $((f0 * 6)) ]
 }
 check dump_lights_an_orbit_from_every_side_as_the_viewer dump_light
+
+# Wireframe at terminal sizes (issue 25 item 7): the shared head's 2.5k triangles at 160x96
+# are a white blob with every edge (--wire all lights ~2100 pixels, all of its silhouette);
+# the default, auto, draws its outline (silhouettes, creases, borders: ~560): eyes, mouth,
+# jaw and neck are lines again. The cube keeps every edge, diagonals too (the same bytes).
+wire_auto() {
+    local h=$HEAD/african_head.obj w a
+    "$BIN" render assets/cube.obj --shade wire --size 160x96 --out $OUT/cube_auto.ppm &&
+        "$BIN" render assets/cube.obj --shade wire --wire all --size 160x96 --out $OUT/cube_all.ppm &&
+        cmp $OUT/cube_auto.ppm $OUT/cube_all.ppm || { echo "the cube lost edges in auto"; return 1; }
+    [ -f "$h" ] || { echo "(no shared head: the cube only)"; return 0; }
+    for w in all auto outline; do
+        "$BIN" render "$h" --shade wire --wire $w --size 160x96 --out $OUT/head_$w.ppm || return 1
+    done
+    cmp $OUT/head_auto.ppm $OUT/head_outline.ppm || { echo "auto is not the outline"; return 1; }
+    set -- $(ppmstat $OUT/head_all.ppm) ; w=$3
+    set -- $(ppmstat $OUT/head_auto.ppm); a=$3
+    echo "head 160x96: --wire all lights $w pixels, auto $a"
+    [ $((a * 3)) -lt "$w" ] && [ "$a" -gt 200 ]
+}
+check wire_auto_draws_what_a_terminal_can_show wire_auto
 
 finish

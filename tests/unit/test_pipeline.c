@@ -1,5 +1,8 @@
 /* test_pipeline.c: whole frames — culling a mesh by its bounding sphere, hidden lines,
  * near-plane crossing, and that a failed depth test changes nothing. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "light.h"
@@ -283,5 +286,97 @@ TEST(grey_lights_carry_one_channel_and_draw_the_same)
         CHECK(e == 1 || bright > 0);
     }
     fb_free(&grey);
+    frame_free(&f);
+}
+
+static int lit(const struct fb *fb)
+{
+    int n = 0;
+    for (int i = 0; i < fb->w * fb->h; i++)
+        n += fb->rgb[3 * i] != 0;
+    return n;
+}
+
+/* A UV sphere of `st` stacks and 2*st slices as OBJ text (a seam of split vertices where the
+ * slices close: welding must join it). */
+static char *sphere_obj(int st)
+{
+    size_t cap = 64 * (size_t)(st + 1) * (2 * st + 1) * 3, k = 0;
+    char *s = malloc(cap);
+    if (!s)
+        return NULL;
+    for (int i = 0; i <= st; i++)
+        for (int j = 0; j <= 2 * st; j++) { /* j = 2*st repeats j = 0's positions */
+            double th = 3.14159265358979 * i / st, ph = 3.14159265358979 * j / st;
+            k += (size_t)snprintf(s + k, cap - k, "v %.9f %.9f %.9f\n", sin(th) * cos(ph),
+                                  cos(th), sin(th) * sin(ph));
+        }
+    for (int i = 0; i < st; i++)
+        for (int j = 0; j < 2 * st; j++) {
+            int a = i * (2 * st + 1) + j + 1, b = a + 2 * st + 1;
+            k += (size_t)snprintf(s + k, cap - k, "f %d %d %d %d\n", a, a + 1, b + 1, b);
+        }
+    return s;
+}
+
+TEST(wire_auto_draws_the_outline_of_a_dense_mesh_and_every_edge_of_a_cube)
+{
+    /* 1. a sphere of 3200 triangles at 160x96: every edge is a white disc; auto draws what
+     *    outline draws (its silhouette: the UV seam and the poles' fans are no edges of it),
+     *    a small fraction of the pixels */
+    char *obj = sphere_obj(40);
+    REQUIRE(obj);
+    struct frame f;
+    REQUIRE(frame_init(&f, obj, 160, 96) == 0);
+    free(obj);
+    f.ro.shade = SHADE_WIRE;
+    f.ro.wire = WIRE_ALL;
+    REQUIRE(draw(&f) == 0);
+    int all = lit(&f.fb);
+    f.ro.wire = WIRE_OUTLINE;
+    REQUIRE(draw(&f) == 0);
+    int outline = lit(&f.fb);
+    uint8_t *keep = malloc((size_t)160 * 96 * 3);
+    REQUIRE(keep);
+    memcpy(keep, f.fb.rgb, (size_t)160 * 96 * 3);
+    f.ro.wire = WIRE_AUTO;
+    REQUIRE(draw(&f) == 0);
+    CHECK(memcmp(keep, f.fb.rgb, (size_t)160 * 96 * 3) == 0);
+    CHECK(outline > 50);       /* a circle around it */
+    CHECK(outline * 4 < all);  /* not the disc */
+    printf("    sphere 3200 triangles, 160x96: all %d px, auto = outline %d px\n", all, outline);
+    free(keep);
+    frame_free(&f);
+
+    /* 2. a cube at 64x64: auto keeps every edge (the same bytes as all, diagonals too);
+     *    outline drops the six face diagonals and keeps its 12 edges */
+    const char *cube = "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\n"
+                       "v 1 1 1\nv -1 1 1\nf 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 4 8 7 3\n"
+                       "f 1 5 8 4\nf 2 3 7 6\n";
+    REQUIRE(frame_init(&f, cube, 64, 64) == 0);
+    f.cam.eye = v3(3, 2.5, 4);
+    f.ro.shade = SHADE_WIRE;
+    f.ro.wire = WIRE_ALL;
+    REQUIRE(draw(&f) == 0);
+    keep = malloc((size_t)64 * 64 * 3);
+    REQUIRE(keep);
+    memcpy(keep, f.fb.rgb, (size_t)64 * 64 * 3);
+    all = lit(&f.fb);
+    f.ro.wire = WIRE_AUTO;
+    REQUIRE(draw(&f) == 0);
+    CHECK(memcmp(keep, f.fb.rgb, (size_t)64 * 64 * 3) == 0);
+    f.ro.wire = WIRE_OUTLINE;
+    REQUIRE(draw(&f) == 0);
+    outline = lit(&f.fb);
+    CHECK(outline < all);
+    CHECK(outline > all / 2);
+    /* every pixel outline lights, all lights too (the same edges, fewer of them) */
+    for (int i = 0; i < 64 * 64; i++)
+        CHECK(!f.fb.rgb[3 * i] || keep[3 * i]);
+    /* hidden lines still work on the outline: fewer pixels */
+    f.ro.hidden_lines = true;
+    REQUIRE(draw(&f) == 0);
+    CHECK(lit(&f.fb) < outline);
+    free(keep);
     frame_free(&f);
 }

@@ -307,6 +307,7 @@ TEST(the_screenshot_command_reproduces_the_camera_and_methods_exactly)
     view_key(&s, IN_DEPTH, 0);
     view_key(&s, IN_LOD, 0); /* auto */
     s.ro.lod_px = 0.3f;
+    s.ro.wire = WIRE_OUTLINE; /* --wire given to the viewer */
     char cmd[VIEW_SHOT_MAX];
     const uint8_t bg[3] = {1, 2, 3};
     struct view_shot_info in = {.model = "models/it's here.obj", .width = 160, .height = 94,
@@ -336,6 +337,7 @@ TEST(the_screenshot_command_reproduces_the_camera_and_methods_exactly)
     CHECK(o.render.raster == RASTER_TILED && o.render.persp == s.ro.persp &&
           o.render.depth == s.ro.depth && s.ro.persp != PERSP_CORRECT);
     CHECK(o.render.lod == LOD_AUTO && o.render.lod_px == s.ro.lod_px);
+    CHECK(o.render.wire == WIRE_OUTLINE);
     CHECK(o.light_camera && o.sky_procedural && o.background_set);
     CHECK(o.width == 160 && o.height == 94);
     CHECK(strcmp(o.out, "rastty-001.png") == 0);
