@@ -105,10 +105,12 @@ const struct mesh *frame_item_level(const struct draw_item *item, const struct c
 {
     const struct mesh *m = item->mesh;
     int level = 0;
-    /* the cluster hierarchy under clusters (not for wireframe: its edges and hidden-line pass
-     * read every triangle of the mesh they get); the front end chooses its cut */
-    const struct mesh_dag *dag = o->lod == LOD_CLUSTERS && o->shade != SHADE_WIRE &&
-                                         o->view != VIEW_WIRE_OVERLAY
+    /* the cluster hierarchy under clusters, and under auto where the mesh has a hierarchy
+     * and no chain (the background build makes one or the other: the viewer's L key goes
+     * from clusters to auto); not for wireframe: its edges and hidden-line pass read every
+     * triangle of the mesh they get. The front end chooses its cut */
+    const bool cut = o->lod == LOD_CLUSTERS || (o->lod == LOD_AUTO && lod_level_count(m) == 1);
+    const struct mesh_dag *dag = cut && o->shade != SHADE_WIRE && o->view != VIEW_WIRE_OVERLAY
                                      ? dag_of(m)
                                      : NULL;
     if (dag)

@@ -159,10 +159,12 @@ enum view_action view_key(struct view_state *s, enum input_cmd c, double t)
         s->ro.depth = (enum depth_mode)cycle_method(s, "depth buffer", &render_depth_names,
                                                     (int)s->ro.depth, t);
         break;
-    case IN_LOD: /* auto and off (a --lod RATIO goes to auto) */
-        s->ro.lod = s->ro.lod == LOD_AUTO ? LOD_OFF : LOD_AUTO;
-        view_message(s, s->ro.lod == LOD_AUTO ? "level of detail: auto  (L: off)"
-                                              : "level of detail: off  (L: auto)", t);
+    case IN_LOD: /* off -> auto -> clusters -> off (a --lod RATIO goes to auto) */
+        s->ro.lod = s->ro.lod == LOD_AUTO ? LOD_CLUSTERS : s->ro.lod == LOD_CLUSTERS ? LOD_OFF
+                                                                                  : LOD_AUTO;
+        view_message(s, s->ro.lod == LOD_AUTO       ? "level of detail: auto  (L: clusters)"
+                        : s->ro.lod == LOD_CLUSTERS ? "level of detail: clusters  (L: off)"
+                                                    : "level of detail: off  (L: auto)", t);
         break;
     case IN_GLYPHS:
         s->glyphs = (enum cell_glyphs)cycle_method(s, "glyphs", &options_glyphs_names,

@@ -701,3 +701,43 @@ TEST(dag_draws_the_bytes_of_lod_off_with_no_level_coarsened_and_near_them_coarse
     mesh_free(&m);
     mesh_free(&plain);
 }
+
+/* The viewer's L key goes from clusters to auto (and the viewer starts with auto): a mesh
+ * whose background build made the hierarchy has no chain, so auto draws the hierarchy's cut
+ * there, not the whole mesh; off still draws the source. */
+TEST(dag_auto_on_a_mesh_with_a_hierarchy_and_no_chain_draws_the_cut)
+{
+    struct mesh m;
+    REQUIRE(dag_sphere(&m) == 0);
+    struct lod_job *j;
+    struct err e = {0};
+    REQUIRE(lod_start(&m, 1, true, &j, &e) == 0);
+    lod_finish(j, false);
+    REQUIRE(dag_of(&m));
+    CHECK_EQ_INT(lod_level_count(&m), 1); /* (no chain: the hierarchy instead) */
+    struct fb fb;
+    REQUIRE(fb_init(&fb, 160, 96, false, NULL) == 0);
+    struct pipeline *p = pipeline_new();
+    REQUIRE(p);
+    struct draw_item it = {.mesh = &m, .model = m4_identity()};
+    struct camera cam;
+    camera_default(&cam);
+    cam.eye = v3(0, 0, 12); /* far: coarse levels meet the bound */
+    struct render_opts o;
+    render_opts_default(&o);
+    struct frame_stats st;
+    for (int mode = LOD_AUTO; mode <= LOD_CLUSTERS; mode += LOD_CLUSTERS - LOD_AUTO) {
+        o.lod = (enum lod_mode)mode;
+        REQUIRE(pipeline_draw(p, &it, 1, NULL, &cam, &o, &fb, &st, NULL) == 0);
+        CHECK(st.dag_levels > 1);
+        CHECK(st.dag_tris > 0 && st.dag_tris < m.n_tris / 2);
+    }
+    o.lod = LOD_OFF;
+    REQUIRE(pipeline_draw(p, &it, 1, NULL, &cam, &o, &fb, &st, NULL) == 0);
+    CHECK_EQ_INT(st.dag_tris, 0);
+    CHECK_EQ_INT(st.tris_full, m.n_tris);
+    pipeline_destroy(p);
+    fb_free(&fb);
+    lod_free(&m);
+    mesh_free(&m);
+}

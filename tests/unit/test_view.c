@@ -167,14 +167,17 @@ TEST(render_option_keys_cycle_through_every_value)
     CHECK_EQ_INT(s.ro.persp, PERSP_CORRECT);
     view_key(&s, IN_DEPTH, 1);
     CHECK_STR_CONTAINS(s.message, "depth buffer: w");
-    /* L: the level of detail between auto and off (a RATIO goes to auto) */
+    /* L: the level of detail cycles off -> auto -> clusters -> off (a RATIO goes to auto) */
     CHECK_EQ_INT(s.ro.lod, LOD_OFF);
     view_key(&s, IN_LOD, 1);
     CHECK_EQ_INT(s.ro.lod, LOD_AUTO);
-    CHECK_STR_CONTAINS(s.message, "level of detail: auto");
+    CHECK_STR_CONTAINS(s.message, "level of detail: auto  (L: clusters)");
+    view_key(&s, IN_LOD, 1);
+    CHECK_EQ_INT(s.ro.lod, LOD_CLUSTERS);
+    CHECK_STR_CONTAINS(s.message, "level of detail: clusters  (L: off)");
     view_key(&s, IN_LOD, 1);
     CHECK_EQ_INT(s.ro.lod, LOD_OFF);
-    CHECK_STR_CONTAINS(s.message, "level of detail: off");
+    CHECK_STR_CONTAINS(s.message, "level of detail: off  (L: auto)");
     s.ro.lod = LOD_RATIO;
     view_key(&s, IN_LOD, 1);
     CHECK_EQ_INT(s.ro.lod, LOD_AUTO);
