@@ -50,6 +50,9 @@ int cluster_build(struct mesh *m);
  * the rest untouched) of the triangles tri[0 .. n) of m, n > 0 (scene/dag.h uses it for its
  * clusters of every level). */
 void cluster_bounds(const struct mesh *m, const uint32_t *tri, uint32_t n, struct mesh_cluster *c);
+/* The 30-bit Morton code of a point quantised to q[a] in 0 .. 1023 on each axis (the order
+ * cluster_build's tree and scene/dag.h's groups sort by). */
+uint32_t cluster_morton3(const uint32_t q[3]);
 /* Bytes the clusters take. */
 size_t cluster_bytes(const struct mesh *m);
 

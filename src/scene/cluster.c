@@ -211,6 +211,11 @@ static uint32_t spread3(uint32_t x)
     return x;
 }
 
+uint32_t cluster_morton3(const uint32_t q[3])
+{
+    return spread3(q[0]) | spread3(q[1]) << 1 | spread3(q[2]) << 2;
+}
+
 /* keys[0 .. n) ascending, by 16-bit digits (tmp: n more) */
 static void radix_sort(uint64_t *keys, uint64_t *tmp, size_t n)
 {
@@ -424,7 +429,7 @@ int cluster_build(struct mesh *m)
             float u = size > 0 ? (leaves[k].center[a] - m->bbox_min[a]) / size * 1023.0f : 0;
             q[a] = u >= 0 && u <= 1023.0f ? (uint32_t)u : u > 1023.0f ? 1023 : 0; /* (NaN: 0) */
         }
-        uint64_t code = spread3(q[0]) | spread3(q[1]) << 1 | spread3(q[2]) << 2;
+        uint64_t code = cluster_morton3(q);
         keys[k] = code << 32 | k;
     }
     radix_sort(keys, tmp, nl);

@@ -221,17 +221,6 @@ out:
     return rc;
 }
 
-/* 10 bits of x spread to every third bit */
-static uint64_t spread3(uint64_t x)
-{
-    x &= 0x3ff;
-    x = (x | (x << 16)) & 0x030000ff;
-    x = (x | (x << 8)) & 0x0300f00f;
-    x = (x | (x << 4)) & 0x030c30c3;
-    x = (x | (x << 2)) & 0x09249249;
-    return x;
-}
-
 static int by_key(const void *a, const void *b)
 {
     uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
@@ -555,13 +544,13 @@ static int coarser(struct build *B, const atomic_bool *cancel, int *levels)
         keys = k2;
         for (size_t i = 0; i < cur.n; i++) {
             const float *p = B->c[cur.a[i]].center;
-            uint64_t q[3];
+            uint32_t q[3];
             for (int a = 0; a < 3; a++) {
                 double size = (double)m->bbox_max[a] - m->bbox_min[a];
                 double u = size > 0 ? (p[a] - m->bbox_min[a]) / size * 1023.0 : 0;
-                q[a] = u >= 0 && u <= 1023.0 ? (uint64_t)u : u > 1023.0 ? 1023 : 0;
+                q[a] = u >= 0 && u <= 1023.0 ? (uint32_t)u : u > 1023.0 ? 1023 : 0;
             }
-            keys[i] = (spread3(q[0]) | spread3(q[1]) << 1 | spread3(q[2]) << 2) << 32 | i;
+            keys[i] = (uint64_t)cluster_morton3(q) << 32 | i;
         }
         qsort(keys, cur.n, sizeof *keys, by_key);
         next.n = 0;
