@@ -228,6 +228,8 @@ int mesh_tangents(struct mesh *m, bool second);
  * (x, z, -y), the front (-Y) toward the default camera; X-up (x, y, z) -> (-y, x, z). The
  * bounds, tangents and the file's cameras follow. */
 void mesh_turn_up(struct mesh *m, char axis);
+/* Whether every vertex position is finite (the simplifiers of lod.h and dag.h need it). */
+bool mesh_positions_finite(const struct mesh *m);
 /* Frees everything the mesh owns (its textures) and zeroes it; a zeroed mesh is fine. Its
  * levels of detail, if any were built, are lod_free's (scene_free calls both). */
 void mesh_free(struct mesh *m);

@@ -603,11 +603,7 @@ static bool eligible(const struct mesh *m)
     if (m->n_tris < DAG_MIN_TRIS || m->n_opaque != m->n_tris || !m->vert_material ||
         m->features || m->uv1 || m->tangents)
         return false;
-    for (uint32_t v = 0; v < m->n_verts; v++)
-        for (int k = 0; k < 3; k++)
-            if (!isfinite(m->verts[v].pos[k]))
-                return false;
-    return true;
+    return mesh_positions_finite(m);
 }
 
 /* the hierarchy's own vertex array: the source's, then for each coarser cluster (their

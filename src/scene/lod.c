@@ -88,15 +88,6 @@ static int make_level(const struct mesh *root, const struct mesh *src, const uin
     return 0;
 }
 
-static bool finite_positions(const struct mesh *m)
-{
-    for (uint32_t v = 0; v < m->n_verts; v++)
-        for (int k = 0; k < 3; k++)
-            if (!isfinite(m->verts[v].pos[k]))
-                return false;
-    return true;
-}
-
 static float extent(const struct mesh *m)
 {
     return meshopt_simplifyScale(m->verts[0].pos, m->n_verts, sizeof *m->verts);
@@ -113,7 +104,7 @@ static bool eligible(const struct mesh *m)
 /* Level after level, each from the one before, until a stop rule of lod.h says no. */
 static int build_chain(struct mesh *m, struct mesh_lod *l, const atomic_bool *cancel)
 {
-    if (!finite_positions(m)) /* the simplifier's quadrics cannot hold them: no levels */
+    if (!mesh_positions_finite(m)) /* the simplifier's quadrics cannot hold them: no levels */
         return 0;
     float scale0 = extent(m);
     if (!(scale0 > 0) || !isfinite(scale0)) /* all at one point, or too far apart */

@@ -612,6 +612,15 @@ void mesh_free_clusters(struct mesh *m)
     m->clusters = NULL;
 }
 
+bool mesh_positions_finite(const struct mesh *m)
+{
+    for (uint32_t v = 0; v < m->n_verts; v++)
+        for (int k = 0; k < 3; k++)
+            if (!isfinite(m->verts[v].pos[k]))
+                return false;
+    return true;
+}
+
 void mesh_free(struct mesh *m)
 {
     mesh_free_clusters(m);

@@ -157,9 +157,10 @@ static int by_u64(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-/* Closed and consistently wound, by position: every directed edge once, its reverse once;
- * returns the number of faults */
-static int open_edges(const struct mesh *l)
+/* The directed edges of l by position, sorted: *folds edges there twice or more, *open
+ * edges without their reverse, *degenerate corners two of one triangle share a position;
+ * returns the edges that are a fold or open (each once), -1 out of memory */
+static int edge_faults(const struct mesh *l, int *degenerate, int *folds, int *open)
 {
     uint32_t *id = position_ids(l);
     uint64_t *e = malloc((size_t)l->n_tris * 3 * sizeof *e);
@@ -169,22 +170,35 @@ static int open_edges(const struct mesh *l)
         return -1;
     }
     size_t n = 0;
-    int bad = 0;
+    *degenerate = *folds = *open = 0;
     for (uint32_t t = 0; t < l->n_tris; t++)
         for (int k = 0; k < 3; k++) {
             uint32_t a = id[l->tris[t][k]], b = id[l->tris[t][(k + 1) % 3]];
-            if (a == b)
-                bad++; /* a triangle with two corners at one position */
+            *degenerate += a == b;
             e[n++] = (uint64_t)a << 32 | b;
         }
     qsort(e, n, sizeof *e, by_u64);
+    int either = 0;
     for (size_t i = 0; i < n; i++) {
         uint64_t rev = e[i] << 32 | e[i] >> 32;
-        bad += (i + 1 < n && e[i + 1] == e[i]) || !bsearch(&rev, e, n, sizeof *e, by_u64);
+        int fold = i + 1 < n && e[i + 1] == e[i];
+        int no_rev = !bsearch(&rev, e, n, sizeof *e, by_u64);
+        *folds += fold;
+        *open += no_rev;
+        either += fold || no_rev;
     }
     free(id);
     free(e);
-    return bad;
+    return either;
+}
+
+/* Closed and consistently wound, by position: every directed edge once, its reverse once;
+ * returns the number of faults */
+static int open_edges(const struct mesh *l)
+{
+    int degenerate, folds, open;
+    int either = edge_faults(l, &degenerate, &folds, &open);
+    return either < 0 ? -1 : degenerate + either;
 }
 
 /* the farthest any point of the level's surface lies inside the sphere of radius rad (its
@@ -568,28 +582,8 @@ static int dag_sphere(struct mesh *m)
 /* edges (by position) without their reverse: a crack; *folds: edges there twice */
 static int cracks(const struct mesh *l, int *folds)
 {
-    uint32_t *id = position_ids(l);
-    uint64_t *e = malloc((size_t)l->n_tris * 3 * sizeof *e);
-    if (!id || !e) {
-        free(id);
-        free(e);
-        return -1;
-    }
-    size_t n = 0;
-    for (uint32_t t = 0; t < l->n_tris; t++)
-        for (int k = 0; k < 3; k++)
-            e[n++] = (uint64_t)id[l->tris[t][k]] << 32 | id[l->tris[t][(k + 1) % 3]];
-    qsort(e, n, sizeof *e, by_u64);
-    int open = 0;
-    *folds = 0;
-    for (size_t i = 0; i < n; i++) {
-        uint64_t rev = e[i] << 32 | e[i] >> 32;
-        *folds += i + 1 < n && e[i + 1] == e[i];
-        open += !bsearch(&rev, e, n, sizeof *e, by_u64);
-    }
-    free(id);
-    free(e);
-    return open;
+    int degenerate, open;
+    return edge_faults(l, &degenerate, folds, &open) < 0 ? -1 : open;
 }
 
 /* the cut for an eye at distance `dist` on +z looking at the origin (96 px high, fov 50,
