@@ -1,6 +1,6 @@
 /* glbench.c: Mesa's time for the workloads `make bench` times rastty on (benchmarks only).
  *
- *   glbench MODEL.obj [--texture FILE] [--size WxH] [--shade gouraud|phong] [--cull back|none]
+ *   glbench MODEL.obj|MODEL.ply [--texture FILE] [--size WxH] [--shade gouraud|phong] [--cull back|none]
  *           [--eye x,y,z] [--target x,y,z] [--fov DEG] [--near N] [--far F] [--frames N]
  *           [--warmup N] [--float]
  *
@@ -13,12 +13,17 @@
  * prints
  * "median_ms=X min_ms=Y" over N frames after the warm-up. A tiny OBJ reader (v, vt, vn, f
  * with fans) is enough for the benchmark models; normals missing from the file are the
- * area-weighted vertex normals rastty computes too. */
+ * area-weighted vertex normals rastty computes too. A PLY is read if it is the binary one
+ * build/bench/gensphere writes (load_ply), and drawn indexed (glDrawElements: one vertex
+ * per position, as an OpenGL program draws a mesh with shared vertices); OBJ with
+ * glDrawArrays, three vertices a triangle. --out FILE.ppm writes the last frame (to check
+ * that both renderers see the same picture). */
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/osmesa.h>
 #include <GL/gl.h>
 #include <GL/glext.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -35,6 +40,8 @@ struct model {
     size_t np, nt, nn, cp, ct, cn;
     struct vtx *v;
     size_t nv, cv;
+    uint32_t *idx; /* PLY: v holds one vertex per position, idx the triangles' corners */
+    size_t ni;
 };
 
 static void *grow(void *a, size_t *cap, size_t need, size_t sz)
@@ -73,12 +80,20 @@ static void corner(const char *s, size_t np, size_t nt, size_t nn, long out[3])
         out[k] = v[k] > 0 ? v[k] - 1 : v[k] < 0 ? (long)n[k] + v[k] : -1;
 }
 
+static int load_ply(FILE *f, struct model *m);
+
 static int load(const char *path, struct model *m)
 {
-    FILE *f = fopen(path, "r");
+    FILE *f = fopen(path, "rb");
     if (!f)
         return -1;
     char line[4096];
+    if (fgets(line, sizeof line, f) && !strncmp(line, "ply", 3)) {
+        int r = load_ply(f, m);
+        fclose(f);
+        return r;
+    }
+    rewind(f);
     long (*face)[3] = NULL;
     size_t cap_face = 0;
     while (fgets(line, sizeof line, f)) {
@@ -122,6 +137,95 @@ static int load(const char *path, struct model *m)
     free(face);
     fclose(f);
     return m->nv ? 0 : -1;
+}
+
+/* The binary little-endian PLY that build/bench/gensphere writes (tests/bench_scale.sh's
+ * spheres): a vertex element of float properties (x, y, z among them) and a face element
+ * of one list (uchar count, int or uint indices), fanned. The file has no normals: each
+ * corner gets its position's area-weighted smooth normal (what rastty draws it with). */
+static int load_ply(FILE *f, struct model *m)
+{
+    char line[256];
+    long nv = -1, nf = -1, ix = -1, iy = -1, iz = -1, nprop = 0;
+    int in_vertex = 0, fmt_ok = 0, list_ok = 0;
+    while (fgets(line, sizeof line, f) && strncmp(line, "end_header", 10)) {
+        char a[64], b[64], c[64], d[64], e[64];
+        if (sscanf(line, "format %63s", a) == 1)
+            fmt_ok = !strcmp(a, "binary_little_endian");
+        else if (sscanf(line, "element %63s %63s", a, b) == 2) {
+            in_vertex = !strcmp(a, "vertex");
+            if (in_vertex)
+                nv = atol(b);
+            else if (!strcmp(a, "face"))
+                nf = atol(b);
+        } else if (sscanf(line, "property list %63s %63s %63s", a, b, c) == 3)
+            list_ok = !strcmp(a, "uchar") && (!strcmp(b, "uint") || !strcmp(b, "int"));
+        else if (in_vertex && sscanf(line, "property %63s %63s", d, e) == 2) {
+            if (strcmp(d, "float"))
+                return -1;
+            if (!strcmp(e, "x"))
+                ix = nprop;
+            else if (!strcmp(e, "y"))
+                iy = nprop;
+            else if (!strcmp(e, "z"))
+                iz = nprop;
+            nprop++;
+        }
+    }
+    if (!fmt_ok || !list_ok || nv < 1 || nf < 1 || ix < 0 || iy < 0 || iz < 0) {
+        fprintf(stderr, "glbench: PLY: only binary little-endian float x,y,z and uchar/uint "
+                        "faces (gensphere's)\n");
+        return -1;
+    }
+    float *rec = malloc((size_t)nprop * sizeof *rec);
+    m->np = (size_t)nv;
+    m->p = malloc(3 * m->np * sizeof *m->p);
+    float *n = calloc(3 * m->np, sizeof *n);
+    if (!rec || !m->p || !n)
+        return -1;
+    for (size_t i = 0; i < m->np; i++) {
+        if (fread(rec, sizeof *rec, (size_t)nprop, f) != (size_t)nprop)
+            return -1;
+        m->p[3 * i] = rec[ix], m->p[3 * i + 1] = rec[iy], m->p[3 * i + 2] = rec[iz];
+    }
+    free(rec);
+    uint32_t *idx = NULL;
+    size_t ni = 0, cap_i = 0;
+    for (long k = 0; k < nf; k++) {
+        unsigned char cnt;
+        uint32_t c[256];
+        if (fread(&cnt, 1, 1, f) != 1 || fread(c, sizeof *c, cnt, f) != cnt)
+            return -1;
+        for (unsigned j = 0; j < cnt; j++)
+            if (c[j] >= m->np)
+                return -1;
+        for (unsigned j = 1; j + 1 < cnt; j++) {
+            idx = grow(idx, &cap_i, ni + 3, sizeof *idx);
+            idx[ni++] = c[0], idx[ni++] = c[j], idx[ni++] = c[j + 1];
+        }
+    }
+    for (size_t i = 0; i + 2 < ni; i += 3) { /* area-weighted: the unnormalized cross product */
+        const float *a = &m->p[3 * idx[i]], *b = &m->p[3 * idx[i + 1]], *c = &m->p[3 * idx[i + 2]];
+        float e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+        float e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        float x[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                      e1[0] * e2[1] - e1[1] * e2[0]};
+        for (int j = 0; j < 3; j++)
+            for (int q = 0; q < 3; q++)
+                n[3 * idx[i + j] + q] += x[q];
+    }
+    m->v = calloc(m->np, sizeof *m->v);
+    if (!m->v)
+        return -1;
+    for (size_t i = 0; i < m->np; i++) {
+        memcpy(m->v[i].p, &m->p[3 * i], sizeof m->v[i].p);
+        memcpy(m->v[i].n, &n[3 * i], sizeof m->v[i].n); /* the shaders normalize */
+    }
+    m->nv = m->cv = m->np;
+    m->nn = m->np; /* normals made: main's flat fallback is for OBJ */
+    m->idx = idx, m->ni = ni;
+    free(n);
+    return ni ? 0 : -1;
 }
 
 static const char *vs_gouraud =
@@ -223,7 +327,7 @@ static void mvp_matrix(const float eye[3], const float target[3], float fov_deg,
 
 int main(int argc, char **argv)
 {
-    const char *model = NULL, *texture = NULL;
+    const char *model = NULL, *texture = NULL, *out = NULL;
     int w = 160, h = 96, frames = 100, warmup = 10, phong = 0, cull = 1, fbo_float = 0;
     float eye[3] = {0, 0, 3}, target[3] = {0, 0, 0}, fov = 50, znear = 0.1f, zfar = 100;
     for (int i = 1; i < argc; i++) {
@@ -259,6 +363,8 @@ int main(int argc, char **argv)
             ; /* +Y: the only up rastty's framing produces */
         else if (!strcmp(a, "--frames"))
             frames = atoi(v);
+        else if (!strcmp(a, "--out"))
+            out = v;
         else if (!strcmp(a, "--warmup"))
             warmup = atoi(v);
         else {
@@ -268,7 +374,7 @@ int main(int argc, char **argv)
     }
     struct model m = {0};
     if (!model || frames < 1 || load(model, &m)) {
-        fprintf(stderr, "usage: glbench MODEL.obj [options] (see the source)\n");
+        fprintf(stderr, "usage: glbench MODEL.obj|MODEL.ply [options] (see the source)\n");
         return 2;
     }
     if (!m.nn) { /* area-weighted smooth normals by position */
@@ -343,6 +449,13 @@ int main(int argc, char **argv)
     glVertexAttribPointer(2, 3, GL_FLOAT, GL_FALSE, sizeof *m.v, (void *)(5 * sizeof(float)));
     for (int k = 0; k < 3; k++)
         glEnableVertexAttribArray((GLuint)k);
+    if (m.idx) {
+        GLuint ebo;
+        glGenBuffers(1, &ebo);
+        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo);
+        glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(m.ni * sizeof *m.idx), m.idx,
+                     GL_STATIC_DRAW);
+    }
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     if (cull) {
@@ -354,13 +467,28 @@ int main(int argc, char **argv)
     for (int i = 0; i < warmup + frames; i++) {
         double t0 = now_ms();
         glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-        glDrawArrays(GL_TRIANGLES, 0, (GLsizei)m.nv);
+        if (m.idx)
+            glDrawElements(GL_TRIANGLES, (GLsizei)m.ni, GL_UNSIGNED_INT, (void *)0);
+        else
+            glDrawArrays(GL_TRIANGLES, 0, (GLsizei)m.nv);
         glFinish();
         if (i >= warmup)
             ms[i - warmup] = now_ms() - t0;
     }
     qsort(ms, (size_t)frames, sizeof *ms, cmp);
     printf("frames=%d median_ms=%.4f min_ms=%.4f\n", frames, ms[frames / 2], ms[0]);
+    if (out && !fbo_float) { /* GL's row 0 is the bottom one */
+        FILE *o = fopen(out, "wb");
+        if (!o) {
+            perror(out);
+            return 1;
+        }
+        fprintf(o, "P6\n%d %d\n255\n", w, h);
+        for (int y = h - 1; y >= 0; y--)
+            for (int x = 0; x < w; x++)
+                fwrite(&buf[4 * ((size_t)y * w + x)], 3, 1, o);
+        fclose(o);
+    }
     OSMesaDestroyContext(ctx);
     return 0;
 }
