@@ -4,7 +4,11 @@
 # same size on screen) and the dense shared models (lost_empire, sports car, bunny) at
 # 160x96 and 640x480, one thread and two. `make bench` prints it (issue 24's table).
 #
-#   tests/bench_scale.sh [--repeat N] [--sizes "10000 ..."] [--csv FILE]
+#   tests/bench_scale.sh [--repeat N] [--sizes "10000 ..."] [--screens "160x96 ..."]
+#                        [--threads "1 ..."] [--csv FILE]
+#
+# (--sizes: the spheres' triangle counts, default 10k 100k 1M 4M; --screens default 160x96
+# 640x480; --threads default 1 2.)
 #
 # Per model, size and thread count: `render --eye 0.5,0.364,0.8 --frame --repeat N --stats`
 # (median_ms) with --lod off (every triangle of the file: what must not change a pixel),
@@ -14,7 +18,13 @@
 # --cluster-cull on (cluster_ms; speedup = off_ms / cluster_ms; the clusters culled of
 # those tested; the pictures must be the same bytes: "same" or "DIFFER"). load_ms is
 # render's, rss_MB the peak resident memory of the --lod off run (/usr/bin/time), tris the
-# triangles drawn. The
+# triangles drawn. Mesa llvmpipe on the same mesh and camera (build/bench/glbench, OSMesa,
+# as tests/bench_speed.sh runs it: the camera rastty's --frame chose, from the --lod off
+# run's "camera:" line; per-pixel Phong, no culling, as rastty's defaults draw these
+# files; the spheres' PLY drawn indexed, OBJ as triangles; LP_NUM_THREADS=0 for one
+# thread, =2 for two; median of N frames after 2 of warm-up): gl_ms, and the ratios
+# rastty/llvmpipe of off, auto and clusters (issue 24's target: <= 0.2x at 160x96, one
+# thread). Without OSMesa (no glbench) those columns are "-". The
 # sphere's files are made once in build/bench/scale (never in the repository). Numbers,
 # never verdicts.
 set -u
@@ -23,14 +33,17 @@ BIN=${RASTTY_BIN:-./rastty}
 S=${RASTTY_SHARED:-../shared}/models
 GEN=build/bench/gensphere
 CMP=build/oracle/compare
+GL=build/bench/glbench
 D=build/bench/scale
-repeat=9 sizes="10000 100000 1000000 4000000" csv=
+repeat=9 sizes="10000 100000 1000000 4000000" screens="160x96 640x480" threads="1 2" csv=
 while [ $# -gt 0 ]; do
     case $1 in
     --repeat) repeat=$2; shift ;;
     --sizes) sizes=$2; shift ;;
+    --screens) screens=$2; shift ;;
+    --threads) threads=$2; shift ;;
     --csv) csv=$2; shift ;;
-    *) echo "usage: tests/bench_scale.sh [--repeat N] [--sizes \"N ...\"] [--csv FILE]" >&2
+    *) echo "usage: tests/bench_scale.sh [--repeat N] [--sizes \"N ...\"] [--screens \"WxH ...\"] [--threads \"N ...\"] [--csv FILE]" >&2
        exit 2 ;;
     esac
     shift
@@ -51,17 +64,25 @@ for m in lost_empire/lost_empire.obj sports_car/sportsCar.obj bunny/bunny.obj; d
 done
 cull=0
 "$BIN" --help 2>&1 | grep -q -- --cluster-cull && cull=1
+if [ ! -x "$GL" ]; then
+    echo "   (no llvmpipe columns: $GL missing; it needs OSMesa: apt-get install libosmesa6-dev, make oracle-build)"
+    GL=
+fi
+ratio() { [ -n "$2" ] && [ "$2" != - ] && [ -n "$1" ] && [ "$1" != - ] &&
+          awk -v a="$1" -v b="$2" 'BEGIN { printf "%.3fx", a / b }' || echo -; }
 TIME=
 [ -x /usr/bin/time ] && TIME="/usr/bin/time -f rss_kb=%M"
 ms_of() { sed -n 's/.*median_ms=\([0-9.]*\).*/\1/p' | tail -n 1; }
-echo "-- scale: median ms of $repeat frames, eye 0.5,0.364,0.8 framed; auto's PSNR against --lod off"
-printf '  %-20s %-8s %2s %9s %9s %9s %8s %9s %6s %9s %6s %8s %9s %7s %15s %5s\n' model size th load_ms rss_MB \
-    off_ms tris auto_ms PSNR dag_ms PSNR dag_tris cluster_ms speedup culled/tested bytes
-[ -n "$csv" ] && echo "model,size,threads,load_ms,rss_mb,off_ms,tris,auto_ms,auto_psnr,dag_ms,dag_psnr,dag_tris,cluster_ms,speedup,culled_tested,same_bytes" > "$csv"
+echo "-- scale: median ms of $repeat frames, eye 0.5,0.364,0.8 framed; auto's PSNR against --lod off;"
+echo "   gl_ms: Mesa llvmpipe on the same mesh and camera, x/gl: rastty's ms over llvmpipe's"
+printf '  %-20s %-8s %2s %9s %9s %9s %8s %9s %6s %9s %6s %8s %9s %7s %15s %5s %9s %8s %8s %8s\n' model size th load_ms rss_MB \
+    off_ms tris auto_ms PSNR dag_ms PSNR dag_tris cluster_ms speedup culled/tested bytes \
+    gl_ms off/gl auto/gl dag/gl
+[ -n "$csv" ] && echo "model,size,threads,load_ms,rss_mb,off_ms,tris,auto_ms,auto_psnr,dag_ms,dag_psnr,dag_tris,cluster_ms,speedup,culled_tested,same_bytes,gl_ms,off_gl,auto_gl,dag_gl" > "$csv"
 for m in "${models[@]}"; do
     name=$(basename "$m"); name=${name%.*}
-    for size in 160x96 640x480; do
-        for th in 1 2; do
+    for size in $screens; do
+        for th in $threads; do
             cam=(--eye 0.5,0.364,0.8 --frame --size "$size" --threads "$th" --repeat "$repeat" --stats)
             o=$D/$name.$size.$th
             st=$($TIME "$BIN" render "$m" "${cam[@]}" --lod off --out "$o.off.ppm" \
@@ -71,6 +92,16 @@ for m in "${models[@]}"; do
             tris=$(sed -n 's/^tris in .* drawn \([0-9]*\).*/\1/p' <<<"$st" | tail -n 1)
             rss=$(sed -n 's/^rss_kb=\([0-9]*\)/\1/p' <<<"$st")
             rss=$([ -n "$rss" ] && awk -v k="$rss" 'BEGIN { printf "%.0f", k / 1024 }' || echo -)
+            camv=()
+            read -r -a camv <<<"$(sed -n 's/^camera: //p' <<<"$st" | tail -n 1)"
+            gl=-
+            if [ -n "$GL" ] && [ ${#camv[@]} -gt 0 ]; then
+                lp=0
+                [ "$th" -gt 1 ] && lp=$th
+                gl=$(LP_NUM_THREADS=$lp "$GL" "$m" "${camv[@]}" --size "$size" --shade phong \
+                    --cull none --frames "$repeat" --warmup 2 2>/dev/null | ms_of)
+                gl=${gl:--}
+            fi
             st=$("$BIN" render "$m" "${cam[@]}" --lod auto --out "$o.auto.ppm" \
                 --depth-out "$o.auto.pfm" 2>&1)
             auto=$(ms_of <<<"$st")
@@ -97,9 +128,11 @@ for m in "${models[@]}"; do
                 eq=same
                 cmp -s "$o.nc.ppm" "$o.off.ppm" && cmp -s "$o.nc.pfm" "$o.off.pfm" || eq=DIFFER
             fi
-            printf '  %-20s %-8s %2s %9s %9s %9s %8s %9s %6s %9s %6s %8s %9s %7s %15s %5s\n' "$name" "$size" \
-                "$th" "$load" "$rss" "$off" "$tris" "$auto" "$psnr" "$dag" "$dpsnr" "$dtris" "$nc" "$sp" "$cl" "$eq"
-            [ -n "$csv" ] && echo "$name,$size,$th,$load,$rss,$off,$tris,$auto,$psnr,$dag,$dpsnr,$dtris,$nc,$sp,$cl,$eq" >> "$csv"
+            ro=$(ratio "$off" "$gl") ra=$(ratio "$auto" "$gl") rd=$(ratio "$dag" "$gl")
+            printf '  %-20s %-8s %2s %9s %9s %9s %8s %9s %6s %9s %6s %8s %9s %7s %15s %5s %9s %8s %8s %8s\n' "$name" "$size" \
+                "$th" "$load" "$rss" "$off" "$tris" "$auto" "$psnr" "$dag" "$dpsnr" "$dtris" "$nc" "$sp" "$cl" "$eq" \
+                "$gl" "$ro" "$ra" "$rd"
+            [ -n "$csv" ] && echo "$name,$size,$th,$load,$rss,$off,$tris,$auto,$psnr,$dag,$dpsnr,$dtris,$nc,$sp,$cl,$eq,$gl,$ro,$ra,$rd" >> "$csv"
         done
     done
 done
