@@ -82,6 +82,16 @@ static void corner(const char *s, size_t np, size_t nt, size_t nn, long out[3])
 
 static int load_ply(FILE *f, struct model *m);
 
+/* the triangle's unnormalized normal (its length twice the area: summed, area-weighted) */
+static void tri_normal(const float a[3], const float b[3], const float c[3], float out[3])
+{
+    float e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    float e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    out[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    out[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    out[2] = e1[0] * e2[1] - e1[1] * e2[0];
+}
+
 static int load(const char *path, struct model *m)
 {
     FILE *f = fopen(path, "rb");
@@ -204,12 +214,9 @@ static int load_ply(FILE *f, struct model *m)
             idx[ni++] = c[0], idx[ni++] = c[j], idx[ni++] = c[j + 1];
         }
     }
-    for (size_t i = 0; i + 2 < ni; i += 3) { /* area-weighted: the unnormalized cross product */
-        const float *a = &m->p[3 * idx[i]], *b = &m->p[3 * idx[i + 1]], *c = &m->p[3 * idx[i + 2]];
-        float e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-        float e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-        float x[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
-                      e1[0] * e2[1] - e1[1] * e2[0]};
+    for (size_t i = 0; i + 2 < ni; i += 3) {
+        float x[3];
+        tri_normal(&m->p[3 * idx[i]], &m->p[3 * idx[i + 1]], &m->p[3 * idx[i + 2]], x);
         for (int j = 0; j < 3; j++)
             for (int q = 0; q < 3; q++)
                 n[3 * idx[i + j] + q] += x[q];
@@ -379,11 +386,8 @@ int main(int argc, char **argv)
     }
     if (!m.nn) { /* area-weighted smooth normals by position */
         for (size_t i = 0; i + 2 < m.nv; i += 3) {
-            float *a = m.v[i].p, *b = m.v[i + 1].p, *c = m.v[i + 2].p;
-            float e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-            float e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-            float n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
-                          e1[0] * e2[1] - e1[1] * e2[0]};
+            float n[3];
+            tri_normal(m.v[i].p, m.v[i + 1].p, m.v[i + 2].p, n);
             for (int j = 0; j < 3; j++)
                 for (int k = 0; k < 3; k++)
                     m.v[i + j].n[k] = n[k];
