@@ -55,6 +55,20 @@ struct named {
     const char *what, *path;
 };
 
+/* The first of list[0 .. n) that names the file a does (standard output, "-", names none):
+ * its index, or -1. */
+static int first_same(const struct ident *a, const struct named *list, int n)
+{
+    for (int k = 0; k < n; k++) {
+        if (!list[k].path || strcmp(list[k].path, "-") == 0)
+            continue;
+        struct ident b = ident_of(list[k].path);
+        if (same(a, &b))
+            return k;
+    }
+    return -1;
+}
+
 int outputs_check(const struct options *o, struct err *e)
 {
     struct named out[] = {{"--out", o->out}, {"--depth-out", o->depth_out},
@@ -72,26 +86,18 @@ int outputs_check(const struct options *o, struct err *e)
             continue;
         struct ident a = ident_of(out[i].path);
         char q1[FILE_QUOTE_SIZE], q2[FILE_QUOTE_SIZE];
-        for (int k = 0; k < n_in; k++) {
-            if (!in[k].path || strcmp(in[k].path, "-") == 0)
-                continue;
-            struct ident b = ident_of(in[k].path);
-            if (same(&a, &b))
-                return err_set(e, "rastty: %s %s is the same file as %s %s: refusing to write "
-                                  "over an input",
-                               out[i].what, file_quote(out[i].path, q1, sizeof q1), in[k].what,
-                               file_quote(in[k].path, q2, sizeof q2));
-        }
-        for (int k = 0; k < i; k++) {
-            if (!out[k].path || strcmp(out[k].path, "-") == 0)
-                continue;
-            struct ident b = ident_of(out[k].path);
-            if (same(&a, &b))
-                return err_set(e, "rastty: %s %s and %s %s are the same file: each output "
-                                  "needs its own",
-                               out[k].what, file_quote(out[k].path, q2, sizeof q2), out[i].what,
-                               file_quote(out[i].path, q1, sizeof q1));
-        }
+        int k = first_same(&a, in, n_in);
+        if (k >= 0)
+            return err_set(e, "rastty: %s %s is the same file as %s %s: refusing to write "
+                              "over an input",
+                           out[i].what, file_quote(out[i].path, q1, sizeof q1), in[k].what,
+                           file_quote(in[k].path, q2, sizeof q2));
+        k = first_same(&a, out, i);
+        if (k >= 0)
+            return err_set(e, "rastty: %s %s and %s %s are the same file: each output "
+                              "needs its own",
+                           out[k].what, file_quote(out[k].path, q2, sizeof q2), out[i].what,
+                           file_quote(out[i].path, q1, sizeof q1));
     }
     return 0;
 }
