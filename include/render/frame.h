@@ -53,9 +53,10 @@ double frame_item_scale(mat4 model);
  * item here (its triangles toward tris_full either way). */
 bool frame_item_outside(const struct draw_item *item, mat4 mvp, double scale, bool counts,
                         struct frame_stats *stats);
-/* The item's mesh at the level of detail the frame draws (lod.h), noted in stats. */
+/* The item's mesh at the level of detail the frame draws (lod.h) on a fb_w x fb_h
+ * framebuffer, noted in stats. */
 const struct mesh *frame_item_level(const struct draw_item *item, const struct camera *cam,
-                                    int fb_h, const struct render_opts *o, double scale,
+                                    int fb_w, int fb_h, const struct render_opts *o, double scale,
                                     struct frame_stats *stats);
 
 /* Stages on every thread of the pool (the caller's included), in bands of rows or chunks of

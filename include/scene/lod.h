@@ -22,13 +22,31 @@
  * mesh's extent, or at LOD_MAX_LEVELS. Meshes smaller than 2 * LOD_MIN_TRIS, without
  * vert_material, or with non-finite positions get no levels.
  *
+ *   A level also has a shading error (lod_level_shade_error, lod_shade_error): the
+ * simplifier weighs positions only, but a level keeps the source's normals at the vertices
+ * it keeps and interpolates them across larger triangles, which moves the light and the
+ * highlights even where the surface barely moves (the displaced sphere of tests/bench
+ * loses 6 dB a level that way, the bunny's scanned bumps and the car's highlights too).
+ * It is the RMS angle, in radians, between the source's normals at up to 2048 of its
+ * vertices (one from each equal stretch of the vertex array) and the normal the level
+ * interpolates at the nearest point of its surface (of the nearest triangles, the one whose
+ * normal is nearest: the vertex's side of a crease), found through a grid of the level's
+ * triangles.
+ *
  * The choice (lod_choose, per frame and draw item):
  *   off   : level 0.
  *   auto  : the coarsest level whose error, projected at the nearest point of the item's
  *           bounding sphere (view depth, vertical fov, framebuffer height; orthographic: view
  *           height), is below o->lod_px pixels of the framebuffer being drawn (with --ssaa,
- *           the supersampled one). The default, LOD_DEFAULT_PX (render.h), comes from the
- *           methods chart (README).
+ *           the supersampled one), and whose shading error times the square root of the
+ *           item's share of the framebuffer (lod_share: the bounding sphere's disc or a quarter of
+ *           the surface area, projected at the centre's depth, over the framebuffer) is below LOD_SHADE_BOUND (times lod_px / LOD_DEFAULT_PX:
+ *           auto:PX scales both). Shading error does not shrink with distance as a
+ *           position error does; what shrinks is the part of the picture it covers, and
+ *           with it the picture's mean square error: an error of e (a fraction of full
+ *           intensity) over a share s of the pixels gives a PSNR of -10 log10(e^2 s). The
+ *           defaults, LOD_DEFAULT_PX and LOD_SHADE_BOUND, come from measurements (README,
+ *           "Level of detail": at least 40 dB against --lod off).
  *   RATIO : the level whose triangle count is nearest (by ratio) to RATIO x the source's.
  * Only complete levels are chosen: while a background build runs, the chain grows.
  *
@@ -52,6 +70,9 @@ enum lod_mode { LOD_OFF, LOD_AUTO, LOD_RATIO, LOD_CLUSTERS };
 #define LOD_NAMED 2
 /* auto's error bound in pixels, chosen from the methods chart (README, "Level of detail") */
 #define LOD_DEFAULT_PX 0.15f
+/* auto's shading bound: a level's shading error (radians) times sqrt(the item's share of the
+ * framebuffer) stays under it (README, "Level of detail") */
+#define LOD_SHADE_BOUND 0.025
 
 #define LOD_MAX_LEVELS 8   /* simplified levels after level 0 */
 #define LOD_MIN_TRIS 512   /* no level smaller than this */
@@ -80,13 +101,24 @@ int lod_level_count(const struct mesh *m);
 const struct mesh *lod_level(const struct mesh *m, int k);
 /* Level k's error in m's object-space units (0 for level 0). */
 double lod_level_error(const struct mesh *m, int k);
+/* Level k's shading error in radians (0 for level 0; see the top of this file). */
+double lod_level_shade_error(const struct mesh *m, int k);
+/* The shading error of level lvl of src (its vertices are some of src's): see the top of
+ * this file. -1 when out of memory. */
+double lod_shade_error(const struct mesh *src, const struct mesh *lvl);
 
 /* Pixels of the framebuffer per world unit at the nearest point of a sphere (world space),
  * for a framebuffer fb_h pixels high: where a level's error is largest on screen. */
 double lod_pixels_per_unit(const struct camera *cam, int fb_h, vec3 center, double radius);
 /* The level to draw (see the top of this file); px_per_unit: pixels per object-space unit
- * (lod_pixels_per_unit times the model matrix's largest scale). */
+ * (lod_pixels_per_unit times the model matrix's largest scale); share: the item's share of
+ * the framebuffer's pixels, 0..1 (lod_share). */
 int lod_choose(const struct mesh *m, enum lod_mode mode, float ratio, float max_px,
-               double px_per_unit);
+               double px_per_unit, double share);
+/* The share of a fb_w x fb_h framebuffer's pixels that m covers at px_per_unit (pixels per
+ * object unit at its centre's depth), at most 1: the smaller of its bounding sphere's disc
+ * and a quarter of its surface area (a convex body's mean projected area, Cauchy's
+ * formula; more than a folded or layered mesh shows). */
+double lod_share(const struct mesh *m, double px_per_unit, int fb_w, int fb_h);
 
 #endif

@@ -100,7 +100,7 @@ bool frame_item_outside(const struct draw_item *item, mat4 mvp, double scale, bo
 }
 
 const struct mesh *frame_item_level(const struct draw_item *item, const struct camera *cam,
-                                    int fb_h, const struct render_opts *o, double scale,
+                                    int fb_w, int fb_h, const struct render_opts *o, double scale,
                                     struct frame_stats *stats)
 {
     const struct mesh *m = item->mesh;
@@ -118,7 +118,8 @@ const struct mesh *frame_item_level(const struct draw_item *item, const struct c
     if (o->lod != LOD_OFF) {
         vec3 c = m4_mul_point(item->model, v3(m->center[0], m->center[1], m->center[2]));
         double px = lod_pixels_per_unit(cam, fb_h, c, m->radius * scale) * scale;
-        level = lod_choose(m, o->lod, o->lod_ratio, o->lod_px, px);
+        double px_c = lod_pixels_per_unit(cam, fb_h, c, 0) * scale; /* (at the centre) */
+        level = lod_choose(m, o->lod, o->lod_ratio, o->lod_px, px, lod_share(m, px_c, fb_w, fb_h));
     }
     stats->lod_min = stats->lod_min < 0 || level < stats->lod_min ? level : stats->lod_min;
     stats->lod_max = level > stats->lod_max ? level : stats->lod_max;

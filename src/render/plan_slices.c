@@ -227,7 +227,7 @@ int plan_slices_draw(struct plan_slices *s, struct workers *w, const struct kern
         double scale = frame_item_scale(item->model);
         if (frame_item_outside(item, m4_mul(pv, item->model), scale, true, stats))
             continue;
-        s->mesh[it] = frame_item_level(item, cam, fb->h, o, scale, stats);
+        s->mesh[it] = frame_item_level(item, cam, fb->w, fb->h, o, scale, stats);
         j->n_tris += s->mesh[it]->n_opaque;
     }
     if (j->n_tris != s->tris) { /* another scene: even slices to start from */

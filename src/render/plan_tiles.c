@@ -79,7 +79,7 @@ int plan_tiles_draw(struct plan_tiles *t, struct workers *w, const struct kernel
             if (!frontend_item_verts(&t->fe, it, m->n_verts, e)) /* (the item's record) */
                 goto fail;
             if (counts) /* once a frame: a background build may add levels meanwhile */
-                t->fe.items[it].level = frame_item_level(item, cam, fb->h, o, scale, stats);
+                t->fe.items[it].level = frame_item_level(item, cam, fb->w, fb->h, o, scale, stats);
             m = t->fe.items[it].level;
             /* room for the mesh in full (or the cluster hierarchy's, which has more):
              * changing levels never allocates (a batch the pool is drawing points into

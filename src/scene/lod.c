@@ -17,6 +17,8 @@ struct mesh_lod {
     atomic_int n_ready;                 /* levels[0 .. n_ready) are complete */
     struct mesh levels[LOD_MAX_LEVELS]; /* levels[k] is level k + 1 */
     double error[LOD_MAX_LEVELS];       /* levels[k]'s error, object-space units */
+    double shade[LOD_MAX_LEVELS];       /* levels[k]'s shading error, radians (lod_shade_error) */
+    double area;                        /* the source's surface area, object units squared */
 };
 
 struct lod_job {
@@ -88,6 +90,34 @@ static int make_level(const struct mesh *root, const struct mesh *src, const uin
     return 0;
 }
 
+/* the sum of the triangles' areas */
+static double mesh_area(const struct mesh *m)
+{
+    double sum = 0;
+    for (uint32_t t = 0; t < m->n_tris; t++) {
+        const float *a = m->verts[m->tris[t][0]].pos, *b = m->verts[m->tris[t][1]].pos,
+                    *c = m->verts[m->tris[t][2]].pos;
+        double e1[3] = {(double)b[0] - a[0], (double)b[1] - a[1], (double)b[2] - a[2]};
+        double e2[3] = {(double)c[0] - a[0], (double)c[1] - a[1], (double)c[2] - a[2]};
+        double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                       e1[0] * e2[1] - e1[1] * e2[0]};
+        sum += 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    }
+    return sum;
+}
+
+/* a level's own arrays (its materials and textures are the source's) */
+static void level_free(struct mesh *l)
+{
+    free(l->verts);
+    free(l->tris);
+    free(l->tri_material);
+    free(l->vert_material);
+    free(l->colors);
+    mesh_free_clusters(l);
+    memset(l, 0, sizeof *l);
+}
+
 static float extent(const struct mesh *m)
 {
     return meshopt_simplifyScale(m->verts[0].pos, m->n_verts, sizeof *m->verts);
@@ -112,6 +142,7 @@ static int build_chain(struct mesh *m, struct mesh_lod *l, const atomic_bool *ca
     uint32_t *idx = malloc((size_t)m->n_tris * 3 * sizeof *idx);
     if (!idx)
         return -1;
+    l->area = mesh_area(m);
     const struct mesh *src = m;
     double error = 0;
     int rc = 0;
@@ -131,8 +162,15 @@ static int build_chain(struct mesh *m, struct mesh_lod *l, const atomic_bool *ca
             rc = -1;
             break;
         }
+        double shade = lod_shade_error(m, &l->levels[k]);
+        if (shade < 0) {
+            level_free(&l->levels[k]);
+            rc = -1;
+            break;
+        }
         error += (double)rel * scale;
         l->error[k] = error;
+        l->shade[k] = shade;
         atomic_store_explicit(&l->n_ready, k + 1, memory_order_release);
         src = &l->levels[k];
     }
@@ -230,15 +268,8 @@ void lod_free(struct mesh *m)
     if (!m->lod)
         return;
     int n = atomic_load(&m->lod->n_ready);
-    for (int k = 0; k < n; k++) {
-        struct mesh *l = &m->lod->levels[k];
-        free(l->verts);
-        free(l->tris);
-        free(l->tri_material);
-        free(l->vert_material);
-        free(l->colors);
-        mesh_free_clusters(l);
-    }
+    for (int k = 0; k < n; k++)
+        level_free(&m->lod->levels[k]);
     free(m->lod);
     m->lod = NULL;
 }
@@ -258,6 +289,11 @@ double lod_level_error(const struct mesh *m, int k)
     return k == 0 ? 0 : m->lod->error[k - 1];
 }
 
+double lod_level_shade_error(const struct mesh *m, int k)
+{
+    return k == 0 ? 0 : m->lod->shade[k - 1];
+}
+
 double lod_pixels_per_unit(const struct camera *cam, int fb_h, vec3 center, double radius)
 {
     if (cam->ortho_height > 0)
@@ -268,8 +304,16 @@ double lod_pixels_per_unit(const struct camera *cam, int fb_h, vec3 center, doub
     return fb_h / (2 * z * tan(cam->fov_deg * (M_PI / 360.0)));
 }
 
+double lod_share(const struct mesh *m, double px_per_unit, int fb_w, int fb_h)
+{
+    double r = m->radius * px_per_unit, disc = M_PI * r * r;
+    double shadow = m->lod ? m->lod->area / 4 * px_per_unit * px_per_unit : disc;
+    double s = (disc < shadow ? disc : shadow) / ((double)fb_w * fb_h);
+    return s < 1 ? s : 1;
+}
+
 int lod_choose(const struct mesh *m, enum lod_mode mode, float ratio, float max_px,
-               double px_per_unit)
+               double px_per_unit, double share)
 {
     int n = lod_level_count(m);
     if (mode == LOD_OFF || n == 1)
@@ -285,8 +329,11 @@ int lod_choose(const struct mesh *m, enum lod_mode mode, float ratio, float max_
         }
         return best;
     }
+    /* the shading bound scales with the pixel bound (auto:PX) */
+    double shade_max = LOD_SHADE_BOUND * max_px / LOD_DEFAULT_PX / sqrt(share > 1e-9 ? share : 1e-9);
     int k = 0;
-    while (k + 1 < n && lod_level_error(m, k + 1) * px_per_unit < max_px)
+    while (k + 1 < n && lod_level_error(m, k + 1) * px_per_unit < max_px &&
+           lod_level_shade_error(m, k + 1) < shade_max)
         k++;
     return k;
 }

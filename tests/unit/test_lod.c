@@ -13,10 +13,11 @@
 #include "scene.h"
 #include "test.h"
 
-/* lod_choose with a render_opts' level-of-detail fields */
+/* lod_choose with a render_opts' level-of-detail fields (an item too small for its
+ * shading error to count) */
 static int choose(const struct mesh *m, const struct render_opts *o, double px)
 {
-    return lod_choose(m, o->lod, o->lod_ratio, o->lod_px, px);
+    return lod_choose(m, o->lod, o->lod_ratio, o->lod_px, px, 0);
 }
 
 /* A UV sphere of radius r around the origin: `slices` around, `stacks` from pole to pole,
@@ -459,6 +460,104 @@ TEST(lod_off_draws_the_same_bytes_and_every_level_culls_right)
     lod_free(&m);
     mesh_free(&m);
     mesh_free(&plain);
+}
+
+/* tests/bench/gensphere.c's displaced sphere, 4 rows (rows - 1) triangles (positions only,
+ * generated normals at the PLY loader's crease), one grey material: bumps that only a dense
+ * level resolves, which light and highlight show */
+static int bumpy_sphere(struct mesh *m, int rows)
+{
+    const int cols = 2 * rows, rings = rows - 1;
+    const uint32_t n_pos = (uint32_t)(rings * cols + 2), n_tris = (uint32_t)(4 * rows * (rows - 1));
+    float *pos = malloc((size_t)n_pos * 3 * sizeof *pos);
+    struct mesh_corner *c = malloc((size_t)n_tris * 3 * sizeof *c);
+    if (!pos || !c)
+        return -1;
+    for (int r = 0; r <= rows; r++) /* the poles (rings 0 and rows: one vertex each) */
+        for (int s = 0; s < (r == 0 || r == rows ? 1 : cols); s++) {
+            double lat = M_PI / 2 - M_PI * r / rows, lon = 2 * M_PI * s / cols;
+            double rad = 1.0 + 0.1 * sin(5 * lat) * cos(4 * lon) +
+                         0.04 * sin(13 * lat + 1) * sin(11 * lon);
+            uint32_t i = r == 0 ? 0 : r == rows ? n_pos - 1 : (uint32_t)(1 + (r - 1) * cols + s);
+            pos[3 * i] = (float)(rad * cos(lat) * cos(lon));
+            pos[3 * i + 1] = (float)(rad * sin(lat));
+            pos[3 * i + 2] = (float)(-rad * cos(lat) * sin(lon));
+        }
+#define V(r, s) ((r) == 0 ? 0u : (r) == rows ? n_pos - 1 : (uint32_t)(1 + ((r) - 1) * cols + (s) % cols))
+    uint32_t t = 0;
+    for (int r = 0; r < rows; r++)
+        for (int s = 0; s < cols; s++) {
+            uint32_t a = V(r, s), b = V(r + 1, s), d = V(r + 1, s + 1), e = V(r, s + 1);
+            uint32_t q[2][3] = {{a, b, e}, {e, b, d}};
+            for (int k = r == 0; k < (r == rows - 1 ? 1 : 2); k++) { /* (one at a pole) */
+                for (int j = 0; j < 3; j++)
+                    c[3 * t + (uint32_t)j] = (struct mesh_corner){q[k][j], MESH_NONE, MESH_NONE};
+                t++;
+            }
+        }
+#undef V
+    struct mesh_source src = {.pos = pos, .n_pos = n_pos, .corners = c, .n_tris = t,
+                              .crease_set = true, .crease_deg = MESH_CREASE_DEFAULT};
+    memset(m, 0, sizeof *m);
+    int rc = mesh_build(&src, m, NULL);
+    free(pos);
+    free(c);
+    if (rc || !(m->materials = calloc(1, sizeof *m->materials)))
+        return -1;
+    m->n_materials = 1;
+    for (int i = 0; i < 3; i++)
+        m->materials[0].kd[i] = 0.8f;
+    m->materials[0].ns = 32;
+    m->materials[0].texture = -1;
+    return 0;
+}
+
+/* Issue 24's bar for auto at its default bounds: at least 40 dB against --lod off, from
+ * four sides and at every distance from filling the screen to a few pixels, on a mesh whose
+ * normals carry detail its coarse levels lose: with the pixel bound alone the worst was
+ * 35.4 dB (level 2 at 2.9 units, the sphere filling the height), 39.6 even at 0.06 px. */
+TEST(lod_auto_at_the_default_bounds_keeps_40_db_against_off_at_every_distance)
+{
+    struct mesh m;
+    REQUIRE(bumpy_sphere(&m, 159) == 0); /* 100,488 triangles, as bench_scale's 100k */
+    REQUIRE(lod_build(&m, NULL) == 0);
+    REQUIRE(lod_level_count(&m) >= 5);
+    /* the shading error grows level by level */
+    for (int k = 1; k < lod_level_count(&m); k++)
+        CHECK(lod_level_shade_error(&m, k) > lod_level_shade_error(&m, k - 1));
+    struct fb a, b;
+    REQUIRE(fb_init(&a, 160, 96, false, NULL) == 0 && fb_init(&b, 160, 96, false, NULL) == 0);
+    struct pipeline *p = pipeline_new();
+    REQUIRE(p);
+    struct draw_item it = {.mesh = &m, .model = m4_identity()};
+    const double eyes[4][3] = {{0.5, 0.364, 0.8}, {-1, 0.2, 1}, {0, 1, 0.01}, {1, -0.1, -0.3}};
+    double worst = INFINITY;
+    int draws = 0, coarser = 0, deepest = 0;
+    for (int v = 0; v < 4; v++)
+        for (double dist = 2.5; dist < 30; dist *= 1.12) {
+            struct camera cam;
+            camera_default(&cam);
+            cam.eye = v3_scale(v3_norm(v3(eyes[v][0], eyes[v][1], eyes[v][2])), dist);
+            struct render_opts o;
+            render_opts_default(&o);
+            struct frame_stats st;
+            REQUIRE(pipeline_draw(p, &it, 1, NULL, &cam, &o, &a, &st, NULL) == 0);
+            o.lod = LOD_AUTO; /* (render_opts_default's bounds: LOD_DEFAULT_PX) */
+            REQUIRE(pipeline_draw(p, &it, 1, NULL, &cam, &o, &b, &st, NULL) == 0);
+            draws++;
+            coarser += st.lod_max > 0;
+            deepest = st.lod_max > deepest ? st.lod_max : deepest;
+            worst = fmin(worst, psnr_db(psnr_sse(a.rgb, b.rgb, (size_t)a.w * a.h * 3) /
+                                        (a.w * a.h * 3.0)));
+        }
+    CHECK(worst >= 40);
+    CHECK(coarser > draws / 2); /* (it still pays: most draws take a coarser level) */
+    CHECK(deepest >= 3);
+    pipeline_destroy(p);
+    fb_free(&a);
+    fb_free(&b);
+    lod_free(&m);
+    mesh_free(&m);
 }
 
 TEST(lod_small_or_broken_meshes_get_no_levels)
