@@ -56,6 +56,9 @@ n=${#names[@]}
 
 # the environment a suite runs in
 suite_env() { # tag
+    # no level-of-detail cache (lod_cache.h) unless a test asks for one: every suite builds
+    # its levels, and nothing is written under ~/.cache
+    export RASTTY_CACHE_DIR=
     if [ "$1" = asan ]; then
         export RASTTY_BIN=build/asan/rastty UNIT_BIN=build/asan/unit-tests RASTTY_ASAN=1
         export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}

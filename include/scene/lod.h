@@ -33,6 +33,11 @@
  * normal is nearest: the vertex's side of a crease), found through a grid of the level's
  * triangles.
  *
+ * The cache (lod_cache.h): a mesh of LOD_CACHE_MIN_TRIS triangles or more keeps its
+ * finished chain in a file per mesh content ($RASTTY_CACHE_DIR, else $XDG_CACHE_HOME/rastty
+ * or ~/.cache/rastty; RASTTY_CACHE_DIR set and empty: none), and the next build of the same
+ * mesh reads it instead of simplifying: the same levels, the same bytes drawn.
+ *
  * The choice (lod_choose, per frame and draw item):
  *   off   : level 0.
  *   auto  : the coarsest level whose error, projected at the nearest point of the item's
@@ -75,6 +80,7 @@ enum lod_mode { LOD_OFF, LOD_AUTO, LOD_RATIO, LOD_CLUSTERS };
 #define LOD_SHADE_BOUND 0.025
 
 #define LOD_MAX_LEVELS 8   /* simplified levels after level 0 */
+#define LOD_CACHE_MIN_TRIS 131072 /* meshes this large keep their chain in the cache */
 #define LOD_MIN_TRIS 512   /* no level smaller than this */
 #define LOD_MAX_ERROR 0.05 /* of meshopt_simplifyScale (the largest side of the box) */
 
@@ -101,6 +107,13 @@ int lod_level_count(const struct mesh *m);
 const struct mesh *lod_level(const struct mesh *m, int k);
 /* Level k's error in m's object-space units (0 for level 0). */
 double lod_level_error(const struct mesh *m, int k);
+/* Where m's chain came from: the cache's file (read), the simplifier and then the file
+ * (written), or the simplifier alone (none: a small mesh, no cache folder, a write that
+ * failed). */
+enum lod_cache_use { LOD_CACHE_NONE, LOD_CACHE_READ, LOD_CACHE_WRITTEN };
+int lod_cache_use(const struct mesh *m);
+/* The key of m's chain in the cache (its file: lod-KEY.bin, KEY in 16 hex digits). */
+uint64_t lod_chain_key(const struct mesh *m);
 /* Level k's shading error in radians (0 for level 0; see the top of this file). */
 double lod_level_shade_error(const struct mesh *m, int k);
 /* The shading error of level lvl of src (its vertices are some of src's): see the top of

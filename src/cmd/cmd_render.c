@@ -10,6 +10,7 @@
 #include "file.h"
 #include "image.h"
 #include "light.h"
+#include "lod.h"
 #include "pipeline.h"
 #include "prepare.h"
 #include "scene.h"
@@ -81,6 +82,13 @@ int cmd_render(const struct options *o, struct err *e)
                             "--fov %.9g --near %.9g --far %.9g\n",
                     cam.eye.x, cam.eye.y, cam.eye.z, cam.target.x, cam.target.y, cam.target.z,
                     cam.up.x, cam.up.y, cam.up.z, cam.fov_deg, cam.near, cam.far);
+            int read = 0, written = 0;
+            for (int i = 0; i < scene->n_meshes; i++) {
+                read += lod_cache_use(&scene->meshes[i]) == LOD_CACHE_READ;
+                written += lod_cache_use(&scene->meshes[i]) == LOD_CACHE_WRITTEN;
+            }
+            if (read || written)
+                fprintf(stderr, "lod cache: %d chains read, %d written\n", read, written);
             double med = timing_median(ms, drawn); /* sorts ms: ms[0] is the fastest */
             fprintf(stderr,
                     "frames=%d median_ms=%.4f min_ms=%.4f load_ms=%.2f simd=%s threads=%d "

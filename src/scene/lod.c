@@ -12,6 +12,7 @@
 #include <meshoptimizer.h>
 
 #include "dag.h"
+#include "lod_cache.h"
 
 struct mesh_lod {
     atomic_int n_ready;                 /* levels[0 .. n_ready) are complete */
@@ -19,6 +20,9 @@ struct mesh_lod {
     double error[LOD_MAX_LEVELS];       /* levels[k]'s error, object-space units */
     double shade[LOD_MAX_LEVELS];       /* levels[k]'s shading error, radians (lod_shade_error) */
     double area;                        /* the source's surface area, object units squared */
+    uint32_t *root[LOD_MAX_LEVELS];     /* levels[k]'s vertices as the source's (while the
+                                           chain is built, for the cache) */
+    int cache;                          /* enum lod_cache_use */
 };
 
 struct lod_job {
@@ -30,17 +34,25 @@ struct lod_job {
 };
 
 _Static_assert(sizeof(unsigned int) == sizeof(uint32_t), "meshoptimizer indices are ours");
+_Static_assert(LOD_CACHE_LEVELS == LOD_MAX_LEVELS, "a cache file holds a whole chain");
 
 /* A level's geometry: the triangles idx[0 .. n_idx) of src, with only the vertices they use,
  * in order of first use; materials, textures and bounds are the source mesh's (borrowed). */
 static int make_level(const struct mesh *root, const struct mesh *src, const uint32_t *idx,
-                      size_t n_idx, struct mesh *out)
+                      size_t n_idx, struct mesh *out, const uint32_t *src_root,
+                      uint32_t **root_out)
 {
     memset(out, 0, sizeof *out);
     uint32_t *remap = malloc((size_t)src->n_verts * sizeof *remap);
     if (!remap)
         return -1;
     size_t nv = meshopt_optimizeVertexFetchRemap(remap, idx, n_idx, src->n_verts);
+    /* (root_out: each new vertex as the root's, through src's own map; NULL: src is root) */
+    uint32_t *to_root = root_out ? malloc((nv ? nv : 1) * sizeof *to_root) : NULL;
+    if (root_out && !to_root) {
+        free(remap);
+        return -1;
+    }
     uint32_t nt = (uint32_t)(n_idx / 3);
     out->verts = malloc(nv * sizeof *out->verts);
     out->vert_material = malloc(nv * sizeof *out->vert_material);
@@ -51,6 +63,7 @@ static int make_level(const struct mesh *root, const struct mesh *src, const uin
     if (!out->verts || !out->vert_material || !out->tris || !out->tri_material ||
         (src->colors && !out->colors)) {
         free(remap);
+        free(to_root);
         free(out->verts);
         free(out->vert_material);
         free(out->tris);
@@ -65,6 +78,8 @@ static int make_level(const struct mesh *root, const struct mesh *src, const uin
             continue;
         out->verts[d] = src->verts[v];
         out->vert_material[d] = src->vert_material[v];
+        if (to_root)
+            to_root[d] = src_root ? src_root[v] : v;
         if (out->colors)
             memcpy(out->colors[d], src->colors[v], sizeof out->colors[d]);
     }
@@ -75,6 +90,8 @@ static int make_level(const struct mesh *root, const struct mesh *src, const uin
         out->tri_material[t] = out->vert_material[out->tris[t][0]];
     }
     free(remap);
+    if (root_out)
+        *root_out = to_root;
     out->n_verts = (uint32_t)nv;
     out->n_tris = out->n_opaque = nt;
     out->materials = root->materials;
@@ -131,7 +148,61 @@ static bool eligible(const struct mesh *m)
            !m->uv1 && !m->tangents && m->n_opaque == m->n_tris;
 }
 
-/* Level after level, each from the one before, until a stop rule of lod.h says no. */
+uint64_t lod_chain_key(const struct mesh *m)
+{
+    const double rules[] = {LOD_MAX_LEVELS, LOD_MIN_TRIS, LOD_MAX_ERROR};
+    return lod_cache_key(m, rules, (int)(sizeof rules / sizeof *rules));
+}
+
+/* The chain from the cache's file, made as the simplifier's output made it: 0, or -1 (no
+ * usable file, or out of memory: m has no levels then) */
+static int chain_from_cache(struct mesh *m, struct mesh_lod *l, uint64_t key)
+{
+    struct lod_cached c;
+    if (lod_cache_read(m, key, &c))
+        return -1;
+    int k = 0;
+    for (; k < c.n_levels; k++) {
+        if (make_level(m, m, c.idx[k], (size_t)c.n_tris[k] * 3, &l->levels[k], NULL, NULL))
+            break;
+        l->error[k] = c.error[k];
+        l->shade[k] = c.shade[k];
+    }
+    lod_cached_free(&c);
+    if (k < c.n_levels) {
+        while (k > 0)
+            level_free(&l->levels[--k]);
+        return -1;
+    }
+    l->cache = LOD_CACHE_READ;
+    atomic_store_explicit(&l->n_ready, k, memory_order_release);
+    return 0;
+}
+
+/* The finished chain into the cache: each level's triangles as the source's vertices */
+static void chain_to_cache(struct mesh *m, struct mesh_lod *l, uint64_t key, int n)
+{
+    struct lod_cached c = {.n_levels = n};
+    for (int k = 0; k < n; k++) {
+        const struct mesh *lv = &l->levels[k];
+        c.idx[k] = malloc((size_t)lv->n_tris * 3 * sizeof *c.idx[k]);
+        if (!c.idx[k] || !l->root[k]) {
+            lod_cached_free(&c);
+            return;
+        }
+        for (size_t i = 0; i < (size_t)lv->n_tris * 3; i++)
+            c.idx[k][i] = l->root[k][lv->tris[i / 3][i % 3]];
+        c.n_tris[k] = lv->n_tris;
+        c.error[k] = l->error[k];
+        c.shade[k] = l->shade[k];
+    }
+    if (lod_cache_write(m, key, &c) == 0)
+        l->cache = LOD_CACHE_WRITTEN;
+    lod_cached_free(&c);
+}
+
+/* Level after level, each from the one before, until a stop rule of lod.h says no (or, for
+ * a large mesh, from the cache: lod_cache.h). */
 static int build_chain(struct mesh *m, struct mesh_lod *l, const atomic_bool *cancel)
 {
     if (!mesh_positions_finite(m)) /* the simplifier's quadrics cannot hold them: no levels */
@@ -139,10 +210,14 @@ static int build_chain(struct mesh *m, struct mesh_lod *l, const atomic_bool *ca
     float scale0 = extent(m);
     if (!(scale0 > 0) || !isfinite(scale0)) /* all at one point, or too far apart */
         return 0;
+    l->area = mesh_area(m);
+    const bool cached = m->n_tris >= LOD_CACHE_MIN_TRIS && lod_cache_enabled();
+    const uint64_t key = cached ? lod_chain_key(m) : 0;
+    if (cached && chain_from_cache(m, l, key) == 0)
+        return 0;
     uint32_t *idx = malloc((size_t)m->n_tris * 3 * sizeof *idx);
     if (!idx)
         return -1;
-    l->area = mesh_area(m);
     const struct mesh *src = m;
     double error = 0;
     int rc = 0;
@@ -158,7 +233,8 @@ static int build_chain(struct mesh *m, struct mesh_lod *l, const atomic_bool *ca
                                     target * 3, (float)budget, 0, &rel);
         if (n / 3 > (size_t)src->n_tris * 3 / 4 || n / 3 < LOD_MIN_TRIS)
             break; /* stalled: seams and borders everywhere, or the error budget is spent */
-        if (make_level(m, src, idx, n, &l->levels[k])) {
+        if (make_level(m, src, idx, n, &l->levels[k], k ? l->root[k - 1] : NULL,
+                       cached ? &l->root[k] : NULL)) {
             rc = -1;
             break;
         }
@@ -175,6 +251,13 @@ static int build_chain(struct mesh *m, struct mesh_lod *l, const atomic_bool *ca
         src = &l->levels[k];
     }
     free(idx);
+    int n = atomic_load_explicit(&l->n_ready, memory_order_relaxed);
+    if (cached && rc == 0 && n > 0 && !(cancel && atomic_load(cancel)))
+        chain_to_cache(m, l, key, n); /* (a chain cut short by a cancel is not the chain) */
+    for (int k = 0; k < LOD_MAX_LEVELS; k++) {
+        free(l->root[k]);
+        l->root[k] = NULL;
+    }
     return rc;
 }
 
@@ -287,6 +370,11 @@ const struct mesh *lod_level(const struct mesh *m, int k)
 double lod_level_error(const struct mesh *m, int k)
 {
     return k == 0 ? 0 : m->lod->error[k - 1];
+}
+
+int lod_cache_use(const struct mesh *m)
+{
+    return m->lod ? m->lod->cache : LOD_CACHE_NONE;
 }
 
 double lod_level_shade_error(const struct mesh *m, int k)

@@ -2,7 +2,8 @@
 # lod.sh: mesh level of detail from the command line — off is the default of render and dump
 # and draws the same bytes as --lod off; RATIO draws the level it names; auto draws coarser
 # levels farther away and keeps the silhouette; --stats says which level; the viewer starts
-# in auto, says so on its status line, and L toggles it.
+# in auto, says so on its status line, and L toggles it; a large mesh's chain goes to the
+# cache and comes back from it (the same bytes).
 source "$(dirname "$0")/lib/common.sh"
 
 T=assets/teapot.obj # 6320 triangles: levels of about 3160, 1580 and 790
@@ -56,6 +57,41 @@ silhouette() { # where auto draws a coarser level, it covers the pixels the full
     [ "$a0" -gt 1500 ] && [ $(( (a1 - a0) * (a1 - a0) * 2500 )) -le $(( a0 * a0 )) ] # within 2%
 }
 check auto_keeps_the_silhouette silhouette
+
+# a 256x256 grid of 131,072 triangles (LOD_CACHE_MIN_TRIS): its chain goes to the cache
+grid_ply() {
+    python3 - "$1" <<'PY'
+import struct, sys
+n = 257
+with open(sys.argv[1], 'wb') as f:
+    f.write(b"ply\nformat binary_little_endian 1.0\nelement vertex %d\nproperty float x\n"
+            b"property float y\nproperty float z\nelement face %d\n"
+            b"property list uchar uint vertex_indices\nend_header\n" % (n * n, 2 * (n - 1) ** 2))
+    for j in range(n):
+        for i in range(n):
+            f.write(struct.pack('<3f', i / (n - 1) - 0.5, j / (n - 1) - 0.5, 0.02 * ((i * 7 + j * 13) % 5)))
+    for j in range(n - 1):
+        for i in range(n - 1):
+            a = j * n + i
+            f.write(struct.pack('<B3I', 3, a, a + 1, a + n + 1) + struct.pack('<B3I', 3, a, a + n + 1, a + n))
+PY
+}
+cache() {
+    grid_ply $OUT/grid.ply || return 1
+    local s1 s2 s3
+    s1=$(RASTTY_CACHE_DIR=$OUT/cache render $OUT/grid.ply --eye 0,0,6 --lod auto --stats --out $OUT/k1.ppm --depth-out $OUT/k1.pfm)
+    s2=$(RASTTY_CACHE_DIR=$OUT/cache render $OUT/grid.ply --eye 0,0,6 --lod auto --stats --out $OUT/k2.ppm --depth-out $OUT/k2.pfm)
+    echo "$s1" | grep '^lod'; echo "$s2" | grep '^lod'
+    echo "$s1" | grep -q '^lod cache: 0 chains read, 1 written$' &&
+        echo "$s2" | grep -q '^lod cache: 1 chains read, 0 written$' || return 1
+    echo "$s2" | grep -q '^lod: level [1-9]' || return 1 # (a coarser level drawn: from the file)
+    cmp $OUT/k1.ppm $OUT/k2.ppm && cmp $OUT/k1.pfm $OUT/k2.pfm || return 1
+    [ "$(ls $OUT/cache | grep -c '^lod-.*\.bin$')" = 1 ] || return 1
+    # RASTTY_CACHE_DIR empty: no cache, the same picture
+    s3=$(RASTTY_CACHE_DIR= render $OUT/grid.ply --eye 0,0,6 --lod auto --stats --out $OUT/k3.ppm)
+    ! echo "$s3" | grep -q '^lod cache' && cmp $OUT/k1.ppm $OUT/k3.ppm
+}
+check cache_reads_the_chain_a_render_wrote_and_draws_the_same_bytes cache
 
 viewer() {
     have_tmux || return 0

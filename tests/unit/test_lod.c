@@ -2,7 +2,10 @@
  * triangle's material, uvs and vertex colours, its error estimate is the size of the real one, auto picks
  * coarser levels farther away by the projected-error rule, RATIO picks the nearest level,
  * off draws the very same bytes, and meshes too small or broken get no levels. */
+#include <dirent.h>
 #include <math.h>
+#include <stdio.h>
+#include <unistd.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -558,6 +561,97 @@ TEST(lod_auto_at_the_default_bounds_keeps_40_db_against_off_at_every_distance)
     fb_free(&b);
     lod_free(&m);
     mesh_free(&m);
+}
+
+/* The cache (lod_cache.h): a large mesh's second build reads the first one's file and makes
+ * the very same levels; a damaged file, or another mesh, is not read (and the chain is
+ * built again, the same); RASTTY_CACHE_DIR empty: no file at all. */
+static bool same_levels(const struct mesh *a, const struct mesh *b)
+{
+    if (lod_level_count(a) != lod_level_count(b))
+        return false;
+    for (int k = 1; k < lod_level_count(a); k++) {
+        const struct mesh *x = lod_level(a, k), *y = lod_level(b, k);
+        if (x->n_verts != y->n_verts || x->n_tris != y->n_tris ||
+            memcmp(x->verts, y->verts, x->n_verts * sizeof *x->verts) ||
+            memcmp(x->tris, y->tris, x->n_tris * sizeof *x->tris) ||
+            memcmp(x->vert_material, y->vert_material, x->n_verts * sizeof *x->vert_material) ||
+            memcmp(x->tri_material, y->tri_material, x->n_tris * sizeof *x->tri_material) ||
+            lod_level_error(a, k) != lod_level_error(b, k) ||
+            lod_level_shade_error(a, k) != lod_level_shade_error(b, k))
+            return false;
+    }
+    return true;
+}
+
+TEST(lod_cache_gives_the_same_levels_and_ignores_damaged_files)
+{
+    char dir[] = "/tmp/rastty-lod-cache-XXXXXX";
+    REQUIRE(mkdtemp(dir));
+    const char *old = getenv("RASTTY_CACHE_DIR");
+    char *saved = old ? strdup(old) : NULL;
+    setenv("RASTTY_CACHE_DIR", dir, 1);
+    struct mesh a, b, c, d;
+    REQUIRE(bumpy_sphere(&a, 182) == 0); /* 131,768 triangles: LOD_CACHE_MIN_TRIS or more */
+    REQUIRE(a.n_tris >= LOD_CACHE_MIN_TRIS);
+    REQUIRE(bumpy_sphere(&b, 182) == 0 && bumpy_sphere(&c, 182) == 0 && bumpy_sphere(&d, 182) == 0);
+    REQUIRE(lod_build(&a, NULL) == 0);
+    CHECK_EQ_INT(lod_cache_use(&a), LOD_CACHE_WRITTEN);
+    REQUIRE(lod_level_count(&a) >= 4);
+    REQUIRE(lod_build(&b, NULL) == 0);
+    CHECK_EQ_INT(lod_cache_use(&b), LOD_CACHE_READ);
+    CHECK(same_levels(&a, &b));
+    /* one index of the last level out of the mesh: ignored, built again, written again */
+    char path[512];
+    snprintf(path, sizeof path, "%s/lod-%016llx.bin", dir, (unsigned long long)lod_chain_key(&a));
+    FILE *f = fopen(path, "r+b");
+    REQUIRE(f);
+    REQUIRE(fseek(f, -4, SEEK_END) == 0);
+    uint32_t big = a.n_verts;
+    REQUIRE(fwrite(&big, sizeof big, 1, f) == 1);
+    fclose(f);
+    REQUIRE(lod_build(&c, NULL) == 0);
+    CHECK_EQ_INT(lod_cache_use(&c), LOD_CACHE_WRITTEN);
+    CHECK(same_levels(&a, &c));
+    /* cut short: ignored too */
+    REQUIRE(truncate(path, 1000) == 0);
+    lod_free(&c);
+    REQUIRE(lod_build(&c, NULL) == 0);
+    CHECK_EQ_INT(lod_cache_use(&c), LOD_CACHE_WRITTEN);
+    CHECK(same_levels(&a, &c));
+    /* another mesh (one vertex moved) has another key: its own chain */
+    d.verts[7].pos[0] += 0.01f;
+    CHECK(lod_chain_key(&d) != lod_chain_key(&a));
+    REQUIRE(lod_build(&d, NULL) == 0);
+    CHECK_EQ_INT(lod_cache_use(&d), LOD_CACHE_WRITTEN);
+    /* no folder: no file, built as before */
+    setenv("RASTTY_CACHE_DIR", "", 1);
+    lod_free(&d);
+    REQUIRE(lod_build(&d, NULL) == 0);
+    CHECK_EQ_INT(lod_cache_use(&d), LOD_CACHE_NONE);
+    CHECK(lod_level_count(&d) >= 4);
+    if (saved)
+        setenv("RASTTY_CACHE_DIR", saved, 1);
+    else
+        unsetenv("RASTTY_CACHE_DIR");
+    free(saved);
+    DIR *dd = opendir(dir); /* (the two files written) */
+    REQUIRE(dd);
+    int files = 0;
+    for (struct dirent *de; (de = readdir(dd));)
+        if (de->d_name[0] != '.') {
+            char p[600];
+            snprintf(p, sizeof p, "%s/%s", dir, de->d_name);
+            files += unlink(p) == 0;
+        }
+    closedir(dd);
+    CHECK_EQ_INT(files, 2);
+    CHECK(rmdir(dir) == 0);
+    struct mesh *all[] = {&a, &b, &c, &d};
+    for (int i = 0; i < 4; i++) {
+        lod_free(all[i]);
+        mesh_free(all[i]);
+    }
 }
 
 TEST(lod_small_or_broken_meshes_get_no_levels)
