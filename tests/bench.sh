@@ -19,6 +19,9 @@
 # Needs ../shared (or $RASTTY_SHARED) for the shared models; skips those parts without it.
 set -eu
 cd "$(dirname "$0")/.."
+# the levels of detail built every time, never read from the cache (lod_cache.h): load times
+# stay the simplifier's (tests/bench_scale.sh measures the cache on its own)
+export RASTTY_CACHE_DIR=
 BIN=${RASTTY_BIN:-./rastty}
 S=${RASTTY_SHARED:-../shared}/models
 S=$(cd "$(dirname "$S")" 2>/dev/null && echo "$PWD/$(basename "$S")" || echo "$S")
