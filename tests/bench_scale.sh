@@ -136,3 +136,20 @@ for m in "${models[@]}"; do
         done
     done
 done
+# the cache of chains (lod_cache.h): render's load_ms with --lod off, with --lod auto
+# building the chain (an empty cache folder), and with --lod auto reading the file the run
+# before wrote
+echo "-- the level cache: load_ms of --lod off / auto, building / auto, from the cache"
+ld_of() { sed -n 's/.*load_ms=\([0-9.]*\).*/\1/p' | tail -n 1; }
+for m in "${models[@]}"; do
+    name=$(basename "$m"); name=${name%.*}
+    c=$D/cache.$$
+    rm -rf "$c"
+    off=$(RASTTY_CACHE_DIR= "$BIN" render "$m" --lod off --stats --out $D/c.ppm 2>&1 | ld_of)
+    build=$(RASTTY_CACHE_DIR=$c "$BIN" render "$m" --lod auto --stats --out $D/c.ppm 2>&1 | ld_of)
+    st=$(RASTTY_CACHE_DIR=$c "$BIN" render "$m" --lod auto --stats --out $D/c.ppm 2>&1)
+    read=$(ld_of <<<"$st")
+    grep -q 'chains read' <<<"$st" || read="$read (no file: no chain, or under 131072 triangles)"
+    printf '  %-20s %9s %9s %9s\n' "$name" "$off" "$build" "$read"
+    rm -rf "$c"
+done
