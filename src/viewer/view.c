@@ -357,7 +357,8 @@ static int draw_frame(struct view *v, double t, struct err *e)
         return err_set(e, "rastty: cannot write to the terminal");
     pace_sent(&v->pace, sent_at, total, v->est.demand + (total - n), v->fb_cols * v->fb_rows);
     if (n > 0)
-        view_frames_written(&v->vf, &v->fb, &v->eo, n, v->eo.budget, tries, v->est.full, sent_at);
+        view_frames_written(&v->vf, &v->fb, &v->eo, n, v->eo.budget, tries, v->est.full,
+                            v->lod_pending ? "building" : "ready", sent_at);
     v->last_bytes = n;
     v->last_cam = v->s.cam;
     v->cam_drawn = true;
@@ -531,6 +532,7 @@ static int loop(struct view *v, struct err *e)
         }
         if (v->lod_pending && scene_lod_done(v->scenes[v->cur])) {
             v->lod_pending = false; /* the levels are in: draw with them */
+            view_frames_note(&v->vf, "levels-ready", 0, timing_now_s());
             v->s.dirty = v->s.hud_dirty = true;
             timeout = 0;
         } else if (v->lod_pending && (timeout < 0 || timeout > 50)) {
@@ -691,6 +693,7 @@ static void ask_terminal(struct view *v, bool ask)
 
 int view_run(const struct options *o, struct err *e)
 {
+    double t_start = timing_now_s(); /* the frame log's times count from here */
     struct view *v = calloc(1, sizeof *v);
     if (!v)
         return err_set(e, "out of memory"), 1;
@@ -700,6 +703,7 @@ int view_run(const struct options *o, struct err *e)
     int rc = 2;
     if (load_scenes(v, e))
         goto out;
+    double t_loaded = timing_now_s();
     for (int i = 0; i < o->n_inputs; i++) /* the model came on stdin: keys from the terminal */
         if (strcmp(o->inputs[i], "-") == 0 && tty_keys_from_terminal(e))
             goto out;
@@ -722,7 +726,8 @@ int view_run(const struct options *o, struct err *e)
     v->eo.tolerance = o->tolerance >= 0 ? o->tolerance : ssh ? 3 : 0;
     v->eo.dither = o->dither;
     pace_init(&v->pace, o->fps, o->bandwidth, !ssh);
-    view_frames_init(&v->vf, !v->pace.local, timing_now_s());
+    view_frames_init(&v->vf, !v->pace.local, t_start);
+    view_frames_note(&v->vf, "loaded", 0, t_loaded);
     rc = 1;
     if (!(v->pipe = pipeline_new())) {
         err_set(e, "out of memory");
@@ -733,6 +738,7 @@ int view_run(const struct options *o, struct err *e)
         goto out_tty;
     }
     ask_terminal(v, ask);
+    view_frames_note(&v->vf, "terminal", 0, timing_now_s());
     v->eo.mode = v->mode;
     if (resize(v, e) == 0) {
         enter_scene(v);
