@@ -68,6 +68,8 @@ struct view {
     bool help_drawn;        /* the help overlay is on the screen */
     bool drawn;             /* fb holds a frame (for screenshots) */
     bool lod_pending;       /* the scene's levels of detail are still being built */
+    bool lod_started;       /* every scene's build has been started (start_levels) */
+    bool written;           /* a frame has been written: the level builds may start */
     /* stats for the status line */
     struct frame_stats st;
     struct encode_stats est;
@@ -153,7 +155,7 @@ static void enter_scene(struct view *v)
     else if (k == 0)
         camera_frame_box(&cam, s->bound_lo, s->bound_hi, aspect);
     view_state_scene(&v->s, &cam, &ro, v3_len(v3_sub(s->bound_hi, s->bound_lo)));
-    v->lod_pending = !scene_lod_done(s);
+    v->lod_pending = v->lod_started && !scene_lod_done(s);
     skybox_free(&v->default_sky); /* its sun follows the scene's first light */
     /* the load's warnings went to stderr, which the alternate screen hides until the exit:
      * say the first on the status line (all of them are on the screen after q) */
@@ -209,11 +211,49 @@ static int resize(struct view *v, struct err *e)
     return 0;
 }
 
+/* Are levels of detail still to come for the current scene: being built, or to be built
+ * after the first frame (a mode that draws them, the build not started yet)? The status line
+ * says so ("lod auto..."). */
+static bool lod_coming(const struct view *v)
+{
+    return v->lod_pending || (!v->lod_started && v->s.ro.lod != LOD_OFF);
+}
+
+/* The frame log's word for it (view_frames.h): none, pending, building or ready. */
+static const char *lod_state(const struct view *v)
+{
+    if (!v->lod_started)
+        return v->s.ro.lod != LOD_OFF ? "pending" : "none";
+    return v->lod_pending ? "building" : "ready";
+}
+
+/* Start building every scene's levels of detail on background threads (scene_build_lod),
+ * once: after the first frame has been written, so the build does not share the cores with
+ * it, and under --lod off only when L first asks for levels. A build that cannot start
+ * (out of memory) leaves the meshes drawn in full, and says so. */
+static void start_levels(struct view *v, double t)
+{
+    if (v->lod_started || !v->written || v->s.ro.lod == LOD_OFF)
+        return;
+    v->lod_started = true;
+    for (int i = 0; i < v->n_scenes; i++) {
+        struct err e = {""};
+        if (scene_build_lod(v->scenes[i], false, v->o->render.lod == LOD_CLUSTERS, &e)) {
+            char msg[sizeof v->s.message];
+            snprintf(msg, sizeof msg, "no levels of detail: %.*s", (int)sizeof msg - 24, e.msg);
+            view_message(&v->s, msg, t);
+        }
+    }
+    v->lod_pending = !scene_lod_done(v->scenes[v->cur]);
+    v->s.hud_dirty = true;
+    view_frames_note(&v->vf, "levels", 0, timing_now_s());
+}
+
 /* Does the picture stand still at t: the last frame written in full, nothing moving (a held
  * key, the spin), no levels of detail still to come? Then the status line shows "#N". */
 static bool still(struct view *v, double t)
 {
-    return !v->s.dirty && !v->lod_pending && !view_animating(&v->s, t);
+    return !v->s.dirty && !lod_coming(v) && !view_animating(&v->s, t);
 }
 
 static void hud_draw(struct view *v, double t)
@@ -227,7 +267,7 @@ static void hud_draw(struct view *v, double t)
         .scene = v->scenes[v->cur]->name, .scene_i = v->cur, .n_scenes = v->n_scenes,
         .texture = v->texture[v->cur][0] ? v->texture[v->cur] : NULL, .mode = v->eo.mode,
         .fps = v->fps, .render_ms = v->st.render_ms, .encode_ms = v->encode_ms,
-        .bytes = v->est.bytes, .st = &v->st, .lod_building = v->lod_pending,
+        .bytes = v->est.bytes, .st = &v->st, .lod_building = lod_coming(v),
         .frames = still(v, t) ? v->frames : 0};
     char pacing[96];
     pace_describe(&v->pace, v->est.max_err, pacing, sizeof pacing);
@@ -296,6 +336,7 @@ static int draw_frame(struct view *v, double t, struct err *e)
         v->s.dirty = false;
         v->last_frame_at = t;
         v->frames++;
+        v->written = true;
         hud_draw(v, t);
         return out_flush(v) ? err_set(e, "rastty: cannot write to the terminal") : 0;
     }
@@ -358,7 +399,8 @@ static int draw_frame(struct view *v, double t, struct err *e)
     pace_sent(&v->pace, sent_at, total, v->est.demand + (total - n), v->fb_cols * v->fb_rows);
     if (n > 0)
         view_frames_written(&v->vf, &v->fb, &v->eo, n, v->eo.budget, tries, v->est.full,
-                            v->lod_pending ? "building" : "ready", sent_at);
+                            lod_state(v), sent_at);
+    v->written = true;
     v->last_bytes = n;
     v->last_cam = v->s.cam;
     v->cam_drawn = true;
@@ -530,6 +572,7 @@ static int loop(struct view *v, struct err *e)
             v->s.message[0] = '\0';
             v->s.hud_dirty = true;
         }
+        start_levels(v, t); /* after the first frame; under --lod off, after L */
         if (v->lod_pending && scene_lod_done(v->scenes[v->cur])) {
             v->lod_pending = false; /* the levels are in: draw with them */
             view_frames_note(&v->vf, "levels-ready", 0, timing_now_s());
