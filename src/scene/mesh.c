@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "mem.h"
 
 /* How many vertices of one position a corner compares with before making its own: keeps a
  * file that gives one position thousands of different uvs linear, at the price of a few
@@ -97,6 +98,9 @@ static int crease_fans(const struct mesh_source *s, double cos_crease, bool smoo
     int rc = -1;
     if (!fn || !off || !inc || !fan)
         goto done;
+    mem_big(fn, (size_t)nt * 3 * sizeof *fn);
+    mem_big(inc, nc * sizeof *inc);
+    mem_big(fan, nc * sizeof *fan);
     for (uint32_t t = 0; t < nt; t++)
         face_normal(s, t, &fn[(size_t)t * 3]);
     for (size_t i = 0; i < nc; i++)
@@ -176,6 +180,7 @@ static int crease_fans(const struct mesh_source *s, double cos_crease, bool smoo
         }
     }
     sums = calloc(n_fans ? n_fans : 1, 3 * sizeof *sums);
+    mem_big(sums, (size_t)n_fans * 3 * sizeof *sums);
     if (!sums)
         goto done;
     for (size_t i = 0; i < nc; i++) { /* triangle by triangle: the order of the smooth sum */
@@ -309,6 +314,10 @@ int mesh_build(const struct mesh_source *s, struct mesh *out, struct err *e)
     out->tri_material = malloc((size_t)s->n_tris * sizeof *out->tri_material);
     if (!keys || !next || !head || !out->tris || !out->tri_material)
         goto oom;
+    mem_big(keys, cap_v * sizeof *keys);
+    mem_big(next, cap_v * sizeof *next);
+    mem_big(head, (size_t)s->n_pos * sizeof *head);
+    mem_big(out->tris, (size_t)s->n_tris * sizeof *out->tris);
 
     uint32_t n = 0;
     for (uint32_t t = 0; t < s->n_tris; t++) {
@@ -359,6 +368,7 @@ int mesh_build(const struct mesh_source *s, struct mesh *out, struct err *e)
         goto oom;
     if (!out->verts || !out->vert_material)
         goto oom;
+    mem_big(out->verts, (size_t)n * sizeof *out->verts);
     for (uint32_t i = 0; i < n; i++) {
         const struct vkey *k = &keys[i];
         struct mesh_vertex *v = &out->verts[i];

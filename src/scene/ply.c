@@ -24,6 +24,7 @@
 #include "file.h"
 #include "lex.h"
 #include "material.h"
+#include "mem.h"
 #include "model.h"
 #include "mtl.h"
 #include "polygon.h"
@@ -412,6 +413,7 @@ static int read_vertices(struct pparse *P, const struct element *el)
     P->rgb = calloc(n ? n * 3 : 1, 1);
     if (!P->pos || !P->nrm || !P->uv || !P->rgb)
         return err_set(P->e, "%s: out of memory for %zu vertices", P->where, n);
+    mem_big(P->pos, n * 3 * sizeof *P->pos);
     bool has[R_TEXCOORD + 1] = {false};
     for (int k = 0; k < el->n_props; k++)
         has[el->props[k].role] = true;
@@ -466,7 +468,7 @@ static int add_tri(struct pparse *P, const struct mesh_corner *a, const struct m
         struct mesh_corner *nc = realloc(P->corners, cap * 3 * sizeof *nc);
         if (!nc)
             return err_set(P->e, "%s: out of memory", P->where);
-        P->corners = nc;
+        P->corners = mem_big(nc, cap * 3 * sizeof *nc);
         P->cap_tris = cap;
     }
     struct mesh_corner *t = &P->corners[P->n_tris++ * 3];
