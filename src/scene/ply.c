@@ -458,19 +458,24 @@ static int read_vertices(struct pparse *P, const struct element *el)
     return 0;
 }
 
+/* room for cap triangles' corners */
+static int reserve_tris(struct pparse *P, size_t cap)
+{
+    struct mesh_corner *nc = realloc(P->corners, cap * 3 * sizeof *nc);
+    if (!nc)
+        return err_set(P->e, "%s: out of memory", P->where);
+    P->corners = mem_big(nc, cap * 3 * sizeof *nc);
+    P->cap_tris = cap;
+    return 0;
+}
+
 static int add_tri(struct pparse *P, const struct mesh_corner *a, const struct mesh_corner *b,
                    const struct mesh_corner *c)
 {
     if (P->n_tris >= UINT32_MAX / 3)
         return data_err(P, "too many triangles");
-    if (P->n_tris == P->cap_tris) {
-        size_t cap = P->cap_tris ? P->cap_tris * 2 : 1024;
-        struct mesh_corner *nc = realloc(P->corners, cap * 3 * sizeof *nc);
-        if (!nc)
-            return err_set(P->e, "%s: out of memory", P->where);
-        P->corners = mem_big(nc, cap * 3 * sizeof *nc);
-        P->cap_tris = cap;
-    }
+    if (P->n_tris == P->cap_tris && reserve_tris(P, P->cap_tris ? P->cap_tris * 2 : 1024))
+        return -1;
     struct mesh_corner *t = &P->corners[P->n_tris++ * 3];
     t[0] = *a;
     t[1] = *b;
@@ -491,6 +496,12 @@ static int read_faces(struct pparse *P, const struct element *el, long index)
         if (!P->face || !P->face_pos || !P->scratch || !P->tris || !P->face_tc)
             return err_set(P->e, "%s: out of memory", P->where);
     }
+    /* a triangle per face at least (check_room bounded the count by the file's size): a
+     * file of triangles fills one allocation, never copied by a growing realloc */
+    size_t want = P->n_tris + (size_t)el->count;
+    want = want < UINT32_MAX / 3 ? want : UINT32_MAX / 3;
+    if (want > P->cap_tris && reserve_tris(P, want))
+        return -1;
     (void)index;
     for (long i = 0; i < el->count; i++) {
         long n = -1, n_tc = -1;
@@ -601,20 +612,21 @@ static int finish(struct pparse *P, struct mesh *out)
         return err_set(P->e, "%s: no faces", P->where);
     /* uvs: the per-vertex ones, then the per-corner texcoords after them */
     size_t n_uv = (size_t)P->n_verts + P->n_corner_uv;
-    float *uv = malloc((n_uv ? n_uv : 1) * 2 * sizeof *uv);
+    float *uv = NULL; /* without per-corner texcoords: the vertices' own, not copied */
+    if (P->n_corner_uv && (uv = malloc(n_uv * 2 * sizeof *uv))) {
+        memcpy(uv, P->uv, (size_t)P->n_verts * 2 * sizeof *uv);
+        memcpy(uv + 2 * (size_t)P->n_verts, P->corner_uv, P->n_corner_uv * 2 * sizeof *uv);
+    }
     out->materials = malloc(sizeof *out->materials);
-    if (!uv || !out->materials) {
+    if ((P->n_corner_uv && !uv) || !out->materials) {
         free(uv);
         return err_set(P->e, "%s: out of memory", P->where);
     }
-    memcpy(uv, P->uv, (size_t)P->n_verts * 2 * sizeof *uv);
-    if (P->n_corner_uv)
-        memcpy(uv + 2 * (size_t)P->n_verts, P->corner_uv, P->n_corner_uv * 2 * sizeof *uv);
     mtl_default(&out->materials[0], "default");
     out->materials[0].implicit = true; /* PLY names no material: light.h's 0.8 */
     out->n_materials = 1;
     struct mesh_source src = {
-        .pos = P->pos, .uv = uv, .nrm = P->nrm, .n_pos = (uint32_t)P->n_verts,
+        .pos = P->pos, .uv = uv ? uv : P->uv, .nrm = P->nrm, .n_pos = (uint32_t)P->n_verts,
         .n_uv = (uint32_t)n_uv, .n_nrm = (uint32_t)P->n_verts,
         .rgb = P->has_rgb ? P->rgb : NULL, .corners = P->corners, .n_tris = (uint32_t)P->n_tris,
     };
