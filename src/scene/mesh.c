@@ -324,6 +324,8 @@ int mesh_build(const struct mesh_source *s, struct mesh *out, struct err *e)
      * arrays are walked in the file's order, which keeps them in cache (a hash table
      * probed at random cost twice as much on the 300k-triangle sports car). */
     size_t cap_v = s->n_pos < n_corners ? s->n_pos : n_corners;
+    if (need_generated && cap_v < n_fans) /* each fan is a vertex at least: no realloc (it */
+        cap_v = n_fans;                   /* copied the arrays of the 1M sphere) */
     cap_v = cap_v < 16 ? 16 : cap_v;
     struct vkey *keys = malloc(cap_v * sizeof *keys);
     uint32_t *next = malloc(cap_v * sizeof *next);
