@@ -10,6 +10,7 @@
 #include <errno.h>
 #include <math.h>
 #include <pthread.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -151,7 +152,12 @@ static void sky_guess_start(struct view *v)
     if (v->o->background_set)
         return; /* no default sky anywhere */
     v->guess.sun = v->o->render.lights[0].dir;
+    /* no signals on it (nor on the pool it starts): they are the terminal loop's */
+    sigset_t all, old;
+    sigfillset(&all);
+    pthread_sigmask(SIG_SETMASK, &all, &old);
     v->guess.running = pthread_create(&v->guess.thread, NULL, sky_guess_main, v) == 0;
+    pthread_sigmask(SIG_SETMASK, &old, NULL);
 }
 
 /* The guess, once finished: into v->default_sky when its sun is sun, else dropped. */
