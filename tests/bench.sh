@@ -10,7 +10,8 @@
 #   4. every rendering method: ms/frame and error against Mesa (tests/bench_methods.sh);
 #   5. mesh level of detail: --lod auto's bound against error and speed (tests/bench_lod.sh);
 #      cost against triangles: one sphere from 10k to 4M triangles and the dense shared
-#      models, clusters on and off (tests/bench_scale.sh);
+#      models, clusters on and off (tests/bench_scale.sh); the viewer's first frame of the
+#      1M-triangle sphere, by phase (tests/bench_first_frame.sh);
 #   6. rastty against Mesa llvmpipe on the speed workloads, side by side (tests/bench_speed.sh),
 #      and where the time of the head's frame goes (tests/bench_floor.sh);
 #   7. the glyph sets: error, bytes and encode time, rastty against chafa (tests/bench_glyphs.sh);
@@ -63,6 +64,8 @@ echo
 tests/bench_lod.sh
 echo
 tests/bench_scale.sh
+echo
+tests/bench_first_frame.sh
 echo
 tests/bench_speed.sh
 tests/bench_floor.sh

@@ -19,12 +19,21 @@
  * Measuring (debugging and tests/bench_link.sh, e2e slow_link.sh), from the environment:
  *   RASTTY_FRAME_LOG=FILE  one line per frame written, appended:
  *     frame N t SECONDS bytes B budget B0 tries K psnr DB mode truecolor|256|16 full 0|1
- *   SECONDS from the viewer's start, B the frame's bytes (status line and query not
- *   counted), B0 the pacing's budget (0 = none), K encodes tried (1 = the floor was met at
- *   once), DB the decoded screen against the framebuffer ("inf" = identical).
+ *           lod none|pending|building|ready
+ *   SECONDS from the viewer's start (view_run entered, before the models are loaded), B the
+ *   frame's bytes (status line and query not counted), B0 the pacing's budget (0 = none), K
+ *   encodes tried (1 = the floor was met at once), DB the decoded screen against the
+ *   framebuffer ("inf" = identical); lod: the levels of detail of the current scene are
+ *   not wanted yet (none: --lod off before the first L), wanted but not started (pending:
+ *   they start after the first frame), being built (building), or in (ready); the status
+ *   line's "lod auto..." is pending or building. First a line "start clock C": the start
+ *   on CLOCK_MONOTONIC, in seconds.
  *   RASTTY_FRAME_PPM=DIR   each frame's framebuffer DIR/fb-NNNNN.ppm and the decoded screen
  *   DIR/screen-NNNNN.ppm (the picture's rows, as the terminal shows them).
- *   The log has key and status-line lines too (view_frames_note).
+ *   The log has key and status-line lines too (view_frames_note), and the start's phases:
+ *   "loaded t" (the models are in), "terminal t" (its probes answered), "levels t" (every
+ *   scene's levels of detail started building) and "levels-ready t" (the current scene's
+ *   are in).
  *   RASTTY_FRAME_FLOOR=off the floor off, and the demo's spin never paused for the link:
  *   the viewer as it was before them, for make bench's before/after. */
 #ifndef RASTTY_VIEW_FRAMES_H
@@ -73,8 +82,10 @@ const char *view_frames_encode(struct view_frames *f, struct encode_screen *s,
  * SECONDS bytes B" when a changed status line is written (bytes 0: with the next frame,
  * ahead of it in the same write). */
 void view_frames_note(struct view_frames *f, const char *what, size_t bytes, double t);
-/* The frame's bytes were written (t: now): log it (when asked). */
+/* The frame's bytes were written (t: now): log it (when asked); lod: "none", "pending",
+ * "building" or "ready" (see above). */
 void view_frames_written(struct view_frames *f, const struct fb *fb, const struct encode_opts *o,
-                         size_t bytes, size_t budget, int tries, bool full, double t);
+                         size_t bytes, size_t budget, int tries, bool full, const char *lod,
+                         double t);
 
 #endif

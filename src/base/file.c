@@ -12,6 +12,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "mem.h"
+
 const char *file_quote(const char *path, char *buf, size_t size)
 {
     return err_quote(path, strlen(path), 160, buf, size);
@@ -66,7 +68,7 @@ static int kind_error(mode_t m)
 static int read_all(int fd, size_t size, size_t max, char **buf_out, size_t *len_out)
 {
     size_t cap = size + 2; /* the NUL, and one byte to see EOF at once */
-    char *buf = malloc(cap);
+    char *buf = mem_big(malloc(cap), cap);
     if (!buf)
         return ENOMEM;
     size_t len = 0;
@@ -83,7 +85,7 @@ static int read_all(int fd, size_t size, size_t max, char **buf_out, size_t *len
                 rc = ENOMEM;
                 break;
             }
-            buf = nb;
+            buf = mem_big(nb, ncap);
             cap = ncap;
         }
         ssize_t got = read(fd, buf + len, cap - 1 - len);

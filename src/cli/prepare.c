@@ -157,10 +157,10 @@ int prepare_scene(const struct options *o, const char *path, struct scene *s, ch
             scene_set_normal_map(s, found, &why))
             fprintf(stderr, "warning: %s (found beside the model; drawn without it)\n", why.msg);
     }
-    /* levels of detail when they may be drawn: the viewer builds them in the background
-     * (its first frames draw the meshes in full), the others before the first frame */
-    bool view = o->cmd == CMD_VIEW;
-    if ((view || o->render.lod != LOD_OFF) && scene_build_lod(s, !view, o->render.lod == LOD_CLUSTERS, e)) {
+    /* levels of detail when they may be drawn, before the first frame; the viewer starts
+     * them itself, in the background after its first frame (view.c start_levels) */
+    if (o->cmd != CMD_VIEW && o->render.lod != LOD_OFF &&
+        scene_build_lod(s, true, o->render.lod == LOD_CLUSTERS, e)) {
         scene_free(s);
         return -1;
     }

@@ -11,6 +11,7 @@
 #include "cluster_cull.h"
 #include "dag.h"
 #include "line.h"
+#include "mem.h"
 #include "lod.h"
 #include "setup.h"
 
@@ -785,6 +786,7 @@ struct vertex_out *frontend_item_verts(struct frontend *fe, int it, uint32_t n, 
         void *nv = NULL;
         if (posix_memalign(&nv, 64, (size_t)n * sizeof *iv->v))
             return err_set(e, "out of memory for %u vertices", n), NULL;
+        mem_big(nv, (size_t)n * sizeof *iv->v);
         free(iv->v); /* the vertex stage rewrites every vertex each frame: nothing to keep */
         iv->v = nv;
         iv->cap = n;

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "mem.h"
 
 /* How many vertices of one position a corner compares with before making its own: keeps a
  * file that gives one position thousands of different uvs linear, at the price of a few
@@ -74,6 +75,24 @@ static int fan_edge_cmp(const void *a, const void *b)
     return x->q != y->q ? (x->q < y->q ? -1 : 1) : (x->j < y->j ? -1 : x->j > y->j);
 }
 
+/* Sort by (q, j). Equal keys are equal edges, so any sort gives the same list; most
+ * positions have a dozen edges, where insertion beats qsort's calls (5% of the 1M
+ * sphere's load). */
+static void sort_edges(struct fan_edge *e, size_t n)
+{
+    if (n > 32) {
+        qsort(e, n, sizeof *e, fan_edge_cmp);
+        return;
+    }
+    for (size_t i = 1; i < n; i++) {
+        struct fan_edge x = e[i];
+        size_t k = i;
+        for (; k > 0 && fan_edge_cmp(&x, &e[k - 1]) < 0; k--)
+            e[k] = e[k - 1];
+        e[k] = x;
+    }
+}
+
 static uint32_t uf_find(uint32_t *up, uint32_t i)
 {
     while (up[i] != i)
@@ -97,6 +116,9 @@ static int crease_fans(const struct mesh_source *s, double cos_crease, bool smoo
     int rc = -1;
     if (!fn || !off || !inc || !fan)
         goto done;
+    mem_big(fn, (size_t)nt * 3 * sizeof *fn);
+    mem_big(inc, nc * sizeof *inc);
+    mem_big(fan, nc * sizeof *fan);
     for (uint32_t t = 0; t < nt; t++)
         face_normal(s, t, &fn[(size_t)t * 3]);
     for (size_t i = 0; i < nc; i++)
@@ -140,7 +162,7 @@ static int crease_fans(const struct mesh_source *s, double cos_crease, bool smoo
             edges[2 * j + 1] = (struct fan_edge){s->corners[(size_t)t * 3 + (k + 2) % 3].pos, j};
             up[j] = j;
         }
-        qsort(edges, 2 * (size_t)deg, sizeof *edges, fan_edge_cmp);
+        sort_edges(edges, 2 * (size_t)deg);
         bool crease = false;
         for (size_t e = 1; e < 2 * (size_t)deg; e++) {
             if (edges[e].q != edges[e - 1].q || edges[e].q == p)
@@ -176,6 +198,7 @@ static int crease_fans(const struct mesh_source *s, double cos_crease, bool smoo
         }
     }
     sums = calloc(n_fans ? n_fans : 1, 3 * sizeof *sums);
+    mem_big(sums, (size_t)n_fans * 3 * sizeof *sums);
     if (!sums)
         goto done;
     for (size_t i = 0; i < nc; i++) { /* triangle by triangle: the order of the smooth sum */
@@ -301,6 +324,8 @@ int mesh_build(const struct mesh_source *s, struct mesh *out, struct err *e)
      * arrays are walked in the file's order, which keeps them in cache (a hash table
      * probed at random cost twice as much on the 300k-triangle sports car). */
     size_t cap_v = s->n_pos < n_corners ? s->n_pos : n_corners;
+    if (need_generated && cap_v < n_fans) /* each fan is a vertex at least: no realloc (it */
+        cap_v = n_fans;                   /* copied the arrays of the 1M sphere) */
     cap_v = cap_v < 16 ? 16 : cap_v;
     struct vkey *keys = malloc(cap_v * sizeof *keys);
     uint32_t *next = malloc(cap_v * sizeof *next);
@@ -309,6 +334,10 @@ int mesh_build(const struct mesh_source *s, struct mesh *out, struct err *e)
     out->tri_material = malloc((size_t)s->n_tris * sizeof *out->tri_material);
     if (!keys || !next || !head || !out->tris || !out->tri_material)
         goto oom;
+    mem_big(keys, cap_v * sizeof *keys);
+    mem_big(next, cap_v * sizeof *next);
+    mem_big(head, (size_t)s->n_pos * sizeof *head);
+    mem_big(out->tris, (size_t)s->n_tris * sizeof *out->tris);
 
     uint32_t n = 0;
     for (uint32_t t = 0; t < s->n_tris; t++) {
@@ -359,6 +388,7 @@ int mesh_build(const struct mesh_source *s, struct mesh *out, struct err *e)
         goto oom;
     if (!out->verts || !out->vert_material)
         goto oom;
+    mem_big(out->verts, (size_t)n * sizeof *out->verts);
     for (uint32_t i = 0; i < n; i++) {
         const struct vkey *k = &keys[i];
         struct mesh_vertex *v = &out->verts[i];

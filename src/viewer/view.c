@@ -8,6 +8,9 @@
 #include "view.h"
 
 #include <errno.h>
+#include <math.h>
+#include <pthread.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -63,11 +66,21 @@ struct view {
     struct pipeline *pipe;
     struct ssaa ssaa;       /* --ssaa's big framebuffer */
     struct skybox default_sky;
+    /* the default sky made ahead, while the models load (sky_guess_start) */
+    struct {
+        pthread_t thread;
+        bool running;
+        vec3 sun;
+        struct skybox sky;
+        int rc;
+    } guess;
     int fb_cols, fb_rows;   /* cells used by the picture */
     enum cell_glyphs glyphs; /* the glyph set fb was sized for */
     bool help_drawn;        /* the help overlay is on the screen */
     bool drawn;             /* fb holds a frame (for screenshots) */
     bool lod_pending;       /* the scene's levels of detail are still being built */
+    bool lod_started;       /* every scene's build has been started (start_levels) */
+    bool written;           /* a frame has been written: the level builds may start */
     /* stats for the status line */
     struct frame_stats st;
     struct encode_stats est;
@@ -121,6 +134,48 @@ static bool default_sky_used(const struct view *v)
     return !s->has_sky && !s->has_background && !v->o->background_set;
 }
 
+/* The default sky takes 0.1-0.15 s of CPU (skybox_procedural: 1.6M samples): made on a
+ * thread of its own while the models load, toward the command line's first light (the sun
+ * a model without lights of its own gets), it is ready for the first frame. A scene that
+ * turns out to want another sun (its own lights) or none (its own sky or background) drops
+ * it: the same bytes either way. */
+static void *sky_guess_main(void *arg)
+{
+    struct view *v = arg;
+    struct err ignored;
+    v->guess.rc = skybox_procedural(&v->guess.sky, v->guess.sun, &ignored);
+    return NULL;
+}
+
+static void sky_guess_start(struct view *v)
+{
+    if (v->o->background_set)
+        return; /* no default sky anywhere */
+    v->guess.sun = v->o->render.lights[0].dir;
+    /* no signals on it (nor on the pool it starts): they are the terminal loop's */
+    sigset_t all, old;
+    sigfillset(&all);
+    pthread_sigmask(SIG_SETMASK, &all, &old);
+    v->guess.running = pthread_create(&v->guess.thread, NULL, sky_guess_main, v) == 0;
+    pthread_sigmask(SIG_SETMASK, &old, NULL);
+}
+
+/* The guess, once finished: into v->default_sky when its sun is sun, else dropped. */
+static void sky_guess_take(struct view *v, vec3 sun)
+{
+    if (!v->guess.running)
+        return;
+    pthread_join(v->guess.thread, NULL);
+    v->guess.running = false;
+    if (v->guess.rc == 0 && v->default_sky.n_levels == 0 && v->guess.sun.x == sun.x &&
+        v->guess.sun.y == sun.y && v->guess.sun.z == sun.z) {
+        v->default_sky = v->guess.sky;
+        memset(&v->guess.sky, 0, sizeof v->guess.sky);
+    } else if (v->guess.rc == 0) {
+        skybox_free(&v->guess.sky);
+    }
+}
+
 /* The sky for the current scene; the default one has its sun toward the first world light. */
 static const struct skybox *scene_sky(struct view *v)
 {
@@ -129,6 +184,8 @@ static const struct skybox *scene_sky(struct view *v)
         return &s->sky;
     if (!default_sky_used(v))
         return NULL;
+    if (v->default_sky.n_levels == 0)
+        sky_guess_take(v, v->s.ro.lights[0].dir);
     if (v->default_sky.n_levels == 0) {
         struct err ignored;
         if (skybox_procedural(&v->default_sky, v->s.ro.lights[0].dir, &ignored))
@@ -153,7 +210,7 @@ static void enter_scene(struct view *v)
     else if (k == 0)
         camera_frame_box(&cam, s->bound_lo, s->bound_hi, aspect);
     view_state_scene(&v->s, &cam, &ro, v3_len(v3_sub(s->bound_hi, s->bound_lo)));
-    v->lod_pending = !scene_lod_done(s);
+    v->lod_pending = v->lod_started && !scene_lod_done(s);
     skybox_free(&v->default_sky); /* its sun follows the scene's first light */
     /* the load's warnings went to stderr, which the alternate screen hides until the exit:
      * say the first on the status line (all of them are on the screen after q) */
@@ -209,11 +266,49 @@ static int resize(struct view *v, struct err *e)
     return 0;
 }
 
+/* Are levels of detail still to come for the current scene: being built, or to be built
+ * after the first frame (a mode that draws them, the build not started yet)? The status line
+ * says so ("lod auto..."). */
+static bool lod_coming(const struct view *v)
+{
+    return v->lod_pending || (!v->lod_started && v->s.ro.lod != LOD_OFF);
+}
+
+/* The frame log's word for it (view_frames.h): none, pending, building or ready. */
+static const char *lod_state(const struct view *v)
+{
+    if (!v->lod_started)
+        return v->s.ro.lod != LOD_OFF ? "pending" : "none";
+    return v->lod_pending ? "building" : "ready";
+}
+
+/* Start building every scene's levels of detail on background threads (scene_build_lod),
+ * once: after the first frame has been written, so the build does not share the cores with
+ * it, and under --lod off only when L first asks for levels. A build that cannot start
+ * (out of memory) leaves the meshes drawn in full, and says so. */
+static void start_levels(struct view *v, double t)
+{
+    if (v->lod_started || !v->written || v->s.ro.lod == LOD_OFF)
+        return;
+    v->lod_started = true;
+    for (int i = 0; i < v->n_scenes; i++) {
+        struct err e = {""};
+        if (scene_build_lod(v->scenes[i], false, v->o->render.lod == LOD_CLUSTERS, &e)) {
+            char msg[sizeof v->s.message];
+            snprintf(msg, sizeof msg, "no levels of detail: %.*s", (int)sizeof msg - 24, e.msg);
+            view_message(&v->s, msg, t);
+        }
+    }
+    v->lod_pending = !scene_lod_done(v->scenes[v->cur]);
+    v->s.hud_dirty = true;
+    view_frames_note(&v->vf, "levels", 0, timing_now_s());
+}
+
 /* Does the picture stand still at t: the last frame written in full, nothing moving (a held
  * key, the spin), no levels of detail still to come? Then the status line shows "#N". */
 static bool still(struct view *v, double t)
 {
-    return !v->s.dirty && !v->lod_pending && !view_animating(&v->s, t);
+    return !v->s.dirty && !lod_coming(v) && !view_animating(&v->s, t);
 }
 
 static void hud_draw(struct view *v, double t)
@@ -227,7 +322,7 @@ static void hud_draw(struct view *v, double t)
         .scene = v->scenes[v->cur]->name, .scene_i = v->cur, .n_scenes = v->n_scenes,
         .texture = v->texture[v->cur][0] ? v->texture[v->cur] : NULL, .mode = v->eo.mode,
         .fps = v->fps, .render_ms = v->st.render_ms, .encode_ms = v->encode_ms,
-        .bytes = v->est.bytes, .st = &v->st, .lod_building = v->lod_pending,
+        .bytes = v->est.bytes, .st = &v->st, .lod_building = lod_coming(v),
         .frames = still(v, t) ? v->frames : 0};
     char pacing[96];
     pace_describe(&v->pace, v->est.max_err, pacing, sizeof pacing);
@@ -296,6 +391,7 @@ static int draw_frame(struct view *v, double t, struct err *e)
         v->s.dirty = false;
         v->last_frame_at = t;
         v->frames++;
+        v->written = true;
         hud_draw(v, t);
         return out_flush(v) ? err_set(e, "rastty: cannot write to the terminal") : 0;
     }
@@ -357,7 +453,9 @@ static int draw_frame(struct view *v, double t, struct err *e)
         return err_set(e, "rastty: cannot write to the terminal");
     pace_sent(&v->pace, sent_at, total, v->est.demand + (total - n), v->fb_cols * v->fb_rows);
     if (n > 0)
-        view_frames_written(&v->vf, &v->fb, &v->eo, n, v->eo.budget, tries, v->est.full, sent_at);
+        view_frames_written(&v->vf, &v->fb, &v->eo, n, v->eo.budget, tries, v->est.full,
+                            lod_state(v), sent_at);
+    v->written = true;
     v->last_bytes = n;
     v->last_cam = v->s.cam;
     v->cam_drawn = true;
@@ -529,8 +627,10 @@ static int loop(struct view *v, struct err *e)
             v->s.message[0] = '\0';
             v->s.hud_dirty = true;
         }
+        start_levels(v, t); /* after the first frame; under --lod off, after L */
         if (v->lod_pending && scene_lod_done(v->scenes[v->cur])) {
             v->lod_pending = false; /* the levels are in: draw with them */
+            view_frames_note(&v->vf, "levels-ready", 0, timing_now_s());
             v->s.dirty = v->s.hud_dirty = true;
             timeout = 0;
         } else if (v->lod_pending && (timeout < 0 || timeout > 50)) {
@@ -691,6 +791,7 @@ static void ask_terminal(struct view *v, bool ask)
 
 int view_run(const struct options *o, struct err *e)
 {
+    double t_start = timing_now_s(); /* the frame log's times count from here */
     struct view *v = calloc(1, sizeof *v);
     if (!v)
         return err_set(e, "out of memory"), 1;
@@ -698,8 +799,10 @@ int view_run(const struct options *o, struct err *e)
     for (int i = 0; i < VIEW_MAX_SCENES; i++)
         v->camera_k[i] = -1;
     int rc = 2;
+    sky_guess_start(v);
     if (load_scenes(v, e))
         goto out;
+    double t_loaded = timing_now_s();
     for (int i = 0; i < o->n_inputs; i++) /* the model came on stdin: keys from the terminal */
         if (strcmp(o->inputs[i], "-") == 0 && tty_keys_from_terminal(e))
             goto out;
@@ -722,7 +825,8 @@ int view_run(const struct options *o, struct err *e)
     v->eo.tolerance = o->tolerance >= 0 ? o->tolerance : ssh ? 3 : 0;
     v->eo.dither = o->dither;
     pace_init(&v->pace, o->fps, o->bandwidth, !ssh);
-    view_frames_init(&v->vf, !v->pace.local, timing_now_s());
+    view_frames_init(&v->vf, !v->pace.local, t_start);
+    view_frames_note(&v->vf, "loaded", 0, t_loaded);
     rc = 1;
     if (!(v->pipe = pipeline_new())) {
         err_set(e, "out of memory");
@@ -733,6 +837,7 @@ int view_run(const struct options *o, struct err *e)
         goto out_tty;
     }
     ask_terminal(v, ask);
+    view_frames_note(&v->vf, "terminal", 0, timing_now_s());
     v->eo.mode = v->mode;
     if (resize(v, e) == 0) {
         enter_scene(v);
@@ -747,6 +852,7 @@ out_tty:
     for (int i = 0; i < v->n_shots; i++)
         printf("screenshot: %s\n", v->shots[i]);
 out:
+    sky_guess_take(v, v3(NAN, NAN, NAN)); /* (not taken: a NaN equals nothing) */
     for (int i = 0; i < v->n_scenes; i++)
         if (v->scenes[i]) {
             scene_free(v->scenes[i]);

@@ -17,6 +17,10 @@ void view_frames_init(struct view_frames *f, bool floor, double t0)
     const char *dir = getenv("RASTTY_FRAME_PPM");
     if (log && *log)
         f->log = fopen(log, "a");
+    if (f->log) { /* the viewer's start on CLOCK_MONOTONIC: for tests/bench_first_frame.sh */
+        fprintf(f->log, "start clock %.6f\n", t0);
+        fflush(f->log);
+    }
     if (dir && *dir)
         f->ppm_dir = dir;
     const char *off = getenv("RASTTY_FRAME_FLOOR");
@@ -124,7 +128,8 @@ static void write_ppm(const struct view_frames *f, const char *what, const uint8
 }
 
 void view_frames_written(struct view_frames *f, const struct fb *fb, const struct encode_opts *o,
-                         size_t bytes, size_t budget, int tries, bool full, double t)
+                         size_t bytes, size_t budget, int tries, bool full, const char *lod,
+                         double t)
 {
     if (!f->log && !f->ppm_dir)
         return;
@@ -137,8 +142,9 @@ void view_frames_written(struct view_frames *f, const struct fb *fb, const struc
             snprintf(db, sizeof db, "inf");
         else
             snprintf(db, sizeof db, "%.2f", f->db);
-        fprintf(f->log, "frame %lu t %.3f bytes %zu budget %zu tries %d psnr %s mode %s full %d\n",
-                f->n, t - f->t0, bytes, budget, tries, db, palette_mode_name(o->mode), full);
+        fprintf(f->log,
+                "frame %lu t %.4f bytes %zu budget %zu tries %d psnr %s mode %s full %d lod %s\n",
+                f->n, t - f->t0, bytes, budget, tries, db, palette_mode_name(o->mode), full, lod);
         fflush(f->log);
     }
     if (f->ppm_dir) {
