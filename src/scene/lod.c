@@ -85,6 +85,7 @@ static int make_level(const struct mesh *root, const struct mesh *src, const uin
     memcpy(out->bbox_max, root->bbox_max, sizeof out->bbox_max);
     memcpy(out->center, root->center, sizeof out->center);
     out->radius = root->radius;
+    mesh_share_positions(out); /* (out of memory: NULL, each vertex positioned alone) */
     return 0;
 }
 
@@ -237,6 +238,8 @@ void lod_free(struct mesh *m)
         free(l->tri_material);
         free(l->vert_material);
         free(l->colors);
+        free(l->pos_id);
+        free(l->pos_xyz);
         mesh_free_clusters(l);
     }
     free(m->lod);
