@@ -146,7 +146,8 @@ struct mesh {
      * tests a triangle against its corners' positions, each projected once a frame
      * (frontend.c), before it makes any of its vertices. Whoever reorders or edits verts
      * calls mesh_share_positions again (or frees both and sets them NULL). */
-    uint32_t *pos_id;   /* per vertex, its position (n_verts long), or NULL: none kept */
+    uint32_t *pos_id;   /* per vertex, its position (n_verts long), or NULL: none kept (a
+                           mesh with more than one position for every two vertices) */
     float (*pos_xyz)[3]; /* per position, its coordinates (n_pos long): read together */
     uint32_t n_pos;
     struct material *materials; /* at least one */
@@ -227,8 +228,10 @@ struct mesh_source {
 int mesh_build(const struct mesh_source *src, struct mesh *out, struct err *e);
 /* Fill m's positions (pos_id, pos_xyz, n_pos above) for its vertices as they are now,
  * replacing any it had: a hash of the positions' bits, O(n_verts); 4 bytes a vertex and 12 a
- * position. mesh_build, mesh_tangents and the levels of lod.h and dag.h call it. -1 when
- * out of memory (pos_id and pos_xyz are then NULL). */
+ * position, kept only when they are at most half as many as the vertices (where walking by
+ * position pays, frontend.h; else pos_id is NULL). mesh_build, mesh_tangents and the
+ * levels of lod.h and dag.h call it. -1 when out of memory (pos_id and pos_xyz are then
+ * NULL). */
 int mesh_share_positions(struct mesh *m);
 /* Tangents for tangent-space normal maps (mesh.tangents), from uv set 0 (or uv1 when
  * `second`): as MikkTSpace makes them — per triangle corner dP/du projected onto the

@@ -456,6 +456,11 @@ int mesh_share_positions(struct mesh *m)
         }
     }
     free(slot);
+    if (2 * (uint64_t)np > n) { /* (walking by position would not pay: none kept) */
+        free(id);
+        free(first);
+        return 0;
+    }
     float(*xyz)[3] = malloc((size_t)np * sizeof *xyz);
     if (!xyz) {
         free(id);
