@@ -11,9 +11,11 @@
  *       450k vertices), read ahead in the same chunks
  *     trivial reject (all corners outside one frustum plane, or a corner not finite)
  *     its pixel box (setup_box): no pixel centre in it, dropped (most triangles of a dense
- *       mesh at terminal sizes); by position both from the corners' positions, and only a
- *       triangle that passes them has its vertices' records made (their position's bytes
- *       copied into the next free records: those drawn triangles read lie together)
+ *       mesh at terminal sizes); by position both from the corners' positions, and the
+ *       corners' records made (vertex_run's bytes, from the position, into the next free
+ *       records: those drawn triangles read lie together) only once setup draws the
+ *       triangle (setup.c reads the snapped corners alone) — before culling when culling
+ *       reads their clip positions, for clipping
  *     facing and culling, once per source triangle
  *     setup.c: edge equations and the tie rule; covering no centre of a box of a few
  *       pixels, dropped before its vertices are lit

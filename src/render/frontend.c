@@ -361,6 +361,8 @@ walk(struct frontend *fe, struct frame *f, struct tri_walk *w, uint32_t i0, uint
      * memory update the compiler must keep in order with the batch's stores */
     uint64_t n_rejected = 0, n_culled = 0, n_no_centre = 0;
     const int fb_w = f->fb->w, fb_h = f->fb->h;
+    const bool culls = !depth_only && (cull != CULL_NONE || by_material); /* (reads clip) */
+    struct vertex_out snapped[3]; /* by position: a triangle's snapped corners for setup */
     for (uint32_t i = i0; i < i1; i++) {
         const uint32_t *c = m->tris[i];
         if (verts_done < m->n_verts) { /* the vertex stage just ahead of the triangles */
@@ -409,9 +411,18 @@ walk(struct frontend *fe, struct frame *f, struct tri_walk *w, uint32_t i0, uint
                 n_no_centre++;
                 continue;
             }
-            v[0] = make_vertex(f, w, c[0]);
-            v[1] = make_vertex(f, w, c[1]);
-            v[2] = make_vertex(f, w, c[2]);
+            if (unclipped && !culls) { /* setup reads the snapped corners alone: the
+                                          records wait until it draws the triangle */
+                for (int k = 0; k < 3; k++)
+                    v[k] = &snapped[k];
+                snapped[0].fx = p0->fx, snapped[0].fy = p0->fy;
+                snapped[1].fx = p1->fx, snapped[1].fy = p1->fy;
+                snapped[2].fx = p2->fx, snapped[2].fy = p2->fy;
+            } else {
+                v[0] = make_vertex(f, w, c[0]);
+                v[1] = make_vertex(f, w, c[1]);
+                v[2] = make_vertex(f, w, c[2]);
+            }
         } else {
             all = v[0]->outcode & v[1]->outcode & v[2]->outcode;
             any = v[0]->outcode | v[1]->outcode | v[2]->outcode;
@@ -428,7 +439,7 @@ walk(struct frontend *fe, struct frame *f, struct tri_walk *w, uint32_t i0, uint
             }
         }
         /* culling: once per source triangle, never per clipped piece */
-        if (!depth_only && (cull != CULL_NONE || by_material) &&
+        if (culls &&
             setup_culled(by_material && m->materials[m->tri_material[i]].sides == MAT_ONE_SIDED
                              ? CULL_BACK
                              : cull,
@@ -449,6 +460,9 @@ walk(struct frontend *fe, struct frame *f, struct tri_walk *w, uint32_t i0, uint
                 n_no_centre++;
                 continue;
             }
+            if (by_pos && !culls) /* (the corners' records, made now: see above) */
+                for (int k = 0; k < 3; k++)
+                    t->v[k] = v[k] = make_vertex(f, w, c[k]);
             shade_vertices(fe, m, f, i, v, false);
             t->shade = depth_only ? bt->n_shades : add_shade(bt, f, item, m, i, v, &w->proto);
             t->rich = rich;
