@@ -4,10 +4,18 @@
  *
  * For each triangle of an item, in order:
  *     the vertex stage just ahead of it (kernel.h's vertex_run, in chunks of at least
- *       FRONTEND_VERTEX_CHUNK vertices: each unique vertex positioned once a frame)
+ *       FRONTEND_VERTEX_CHUNK vertices: each unique vertex positioned once a frame) — or,
+ *       walking by position (a mesh with mesh.h's pos_id, drawn from its first vertex, not
+ *       by clusters, not as wireframe or its pre-pass), each distinct position projected
+ *       once instead (outcode, snapped window position; lost_empire: 97k positions for
+ *       450k vertices), read ahead in the same chunks
  *     trivial reject (all corners outside one frustum plane, or a corner not finite)
  *     its pixel box (setup_box): no pixel centre in it, dropped (most triangles of a dense
- *       mesh at terminal sizes)
+ *       mesh at terminal sizes); by position both from the corners' positions, and the
+ *       corners' records made (vertex_run's bytes, from the position, into the next free
+ *       records: those drawn triangles read lie together) only once setup draws the
+ *       triangle (setup.c reads the snapped corners alone) — before culling when culling
+ *       reads their clip positions, for clipping
  *     facing and culling, once per source triangle
  *     setup.c: edge equations and the tie rule; covering no centre of a box of a few
  *       pixels, dropped before its vertices are lit
@@ -84,6 +92,17 @@ struct frontend {
     uint8_t *vdone;
     uint64_t *marks;
     size_t vdone_cap, marks_cap;
+    /* positions (mesh.h's pos_id), for the item being walked by position: each projected
+     * once (n_pos of them), and per vertex where its record is (slot + 1, 0: not made) */
+    struct frontend_pos *pos;
+    uint32_t *vslot;
+    size_t pos_cap, vslot_cap;
+};
+/* A position's share of a vertex record (struct vertex_out): what rejection and the pixel
+ * box read */
+struct frontend_pos {
+    int32_t fx, fy; /* valid when outcode has no VERTEX_NEEDS_CLIP bit */
+    uint32_t outcode;
 };
 
 /* Batches of batch_cap set-up triangles (tests: the picture must not depend on it). 0 or

@@ -107,10 +107,9 @@ static inline int setup_culled(enum cull_mode cull, int front)
  * corners' snapped bounds, clipped to the framebuffer; false when it holds no pixel centre.
  * Inline: the front end asks it first of every triangle (most triangles of a dense mesh hold
  * no pixel centre), before anything else is read or written. */
-static inline bool setup_box(const struct vertex_out *a, const struct vertex_out *b,
-                             const struct vertex_out *c, int fb_w, int fb_h, int64_t box[4])
+static inline bool setup_box_xy(int64_t x0, int64_t y0, int64_t x1, int64_t y1, int64_t x2,
+                                int64_t y2, int fb_w, int fb_h, int64_t box[4])
 {
-    int64_t x0 = a->fx, x1 = b->fx, x2 = c->fx, y0 = a->fy, y1 = b->fy, y2 = c->fy;
     int64_t minx = x0 < x1 ? x0 : x1, maxx = x0 < x1 ? x1 : x0;
     int64_t miny = y0 < y1 ? y0 : y1, maxy = y0 < y1 ? y1 : y0;
     minx = x2 < minx ? x2 : minx, maxx = x2 > maxx ? x2 : maxx;
@@ -124,6 +123,11 @@ static inline bool setup_box(const struct vertex_out *a, const struct vertex_out
     box[2] = px1 > fb_w - 1 ? fb_w - 1 : px1;
     box[3] = py1 > fb_h - 1 ? fb_h - 1 : py1;
     return box[0] <= box[2] && box[1] <= box[3];
+}
+static inline bool setup_box(const struct vertex_out *a, const struct vertex_out *b,
+                             const struct vertex_out *c, int fb_w, int fb_h, int64_t box[4])
+{
+    return setup_box_xy(a->fx, a->fy, b->fx, b->fy, c->fx, c->fy, fb_w, fb_h, box);
 }
 
 /* Coverage setup of one triangle whose corners are projected (vertex_out.projected). */

@@ -1,4 +1,7 @@
-/* vertex.h: the vertex stage — each unique mesh vertex transformed once per frame.
+/* vertex.h: the vertex stage — each unique mesh vertex transformed once per frame (or, when
+ * the front end walks a mesh by position (frontend.h), each distinct position projected
+ * once and the records of the vertices of triangles that reach a pixel centre made from
+ * it: the same bytes).
  *
  * In:  a mesh, the frame's uniforms (matrices, eye, lights, shading mode).
  * Out: one struct vertex_out per mesh vertex: clip-space position (double), frustum/guard-band

@@ -2,7 +2,8 @@
  *
  * Loaded once (a loader of model.h fills it), never modified by rendering. Vertices are unique
  * (position, uv, normal, material) combinations, like a GPU vertex buffer, so the vertex stage
- * transforms each one once per frame and every triangle is three indices into them.
+ * transforms each one once per frame and every triangle is three indices into them; the
+ * positions they share (pos_id) let the front end project each position once instead.
  *
  * Spaces and units: object space, whatever units the file uses. Normals are unit length.
  * Missing normals (a corner without `vn`) are the area-weighted average of the face normals
@@ -140,6 +141,15 @@ struct mesh {
     uint16_t *tri_material; /* per triangle, index into materials */
     uint16_t *vert_material; /* per vertex (vertices are unique per material), n_verts long */
     uint32_t n_tris;
+    /* Positions: vertices whose position has the same bits (a uv or material seam makes
+     * several) are one position, numbered in order of their first vertex: the front end
+     * tests a triangle against its corners' positions, each projected once a frame
+     * (frontend.c), before it makes any of its vertices. Whoever reorders or edits verts
+     * calls mesh_share_positions again (or frees both and sets them NULL). */
+    uint32_t *pos_id;   /* per vertex, its position (n_verts long), or NULL: none kept (a
+                           mesh with more than one position for every two vertices) */
+    float (*pos_xyz)[3]; /* per position, its coordinates (n_pos long): read together */
+    uint32_t n_pos;
     struct material *materials; /* at least one */
     uint32_t n_materials;
     struct texture *textures; /* map_Kd images, loaded (owned, or borrowed from a cache) */
@@ -207,8 +217,8 @@ struct mesh_source {
  * angle); glTF 0, flat faces (its specification's rule). */
 #define MESH_CREASE_DEFAULT 30.0f
 
-/* Fill out's geometry (verts, tris, tri_material, vert_material, n_verts, n_tris, has_uvs,
- * has_normals, bounds) from src: one vertex per distinct (pos, uv, nrm, material) corner
+/* Fill out's geometry (verts, tris, tri_material, vert_material, positions, n_verts, n_tris,
+ * has_uvs, has_normals, bounds) from src: one vertex per distinct (pos, uv, nrm, material) corner
  * (chained per position, O(corners); a position with more than 32 distinct corners may get
  * duplicate vertices), in order of first use; triangles keep their winding;
  * missing normals and uvs as described at the top of this file; a zero-length given normal
@@ -216,6 +226,13 @@ struct mesh_source {
  * tri_material value must index them). Errors: no triangles, an index out of range, out of
  * memory; on failure the geometry fields are NULL/0. */
 int mesh_build(const struct mesh_source *src, struct mesh *out, struct err *e);
+/* Fill m's positions (pos_id, pos_xyz, n_pos above) for its vertices as they are now,
+ * replacing any it had: a hash of the positions' bits, O(n_verts); 4 bytes a vertex and 12 a
+ * position, kept only when they are at most half as many as the vertices (where walking by
+ * position pays, frontend.h; else pos_id is NULL). mesh_build, mesh_tangents and the
+ * levels of lod.h and dag.h call it. -1 when out of memory (pos_id and pos_xyz are then
+ * NULL). */
+int mesh_share_positions(struct mesh *m);
 /* Tangents for tangent-space normal maps (mesh.tangents), from uv set 0 (or uv1 when
  * `second`): as MikkTSpace makes them — per triangle corner dP/du projected onto the
  * corner's normal plane, weighted by the corner's angle, summed per vertex and

@@ -653,6 +653,7 @@ static int own_vertices(struct build *B, struct mesh_dag *d)
     hm->n_verts = nv;
     struct mesh_vertex *g = realloc(hm->verts, (size_t)nv * sizeof *g);
     hm->verts = g ? g : hm->verts;
+    mesh_share_positions(hm); /* (out of memory: NULL, each vertex positioned alone) */
     return 0;
 }
 
@@ -685,6 +686,8 @@ int dag_build(struct mesh *m, const atomic_bool *cancel)
     /* the hierarchy's mesh: the source's, with every level's triangles */
     struct mesh *hm = &d->mesh;
     *hm = *m;
+    hm->pos_id = NULL, hm->pos_xyz = NULL; /* (own_vertices makes its own) */
+    hm->n_pos = 0;
     hm->lod = NULL;
     hm->clusters = NULL;
     hm->dag = d;
@@ -749,6 +752,8 @@ fail:
         free(d->mesh.vert_material);
         free(d->mesh.colors);
     }
+    free(d->mesh.pos_id);
+    free(d->mesh.pos_xyz);
     free(d->verts);
     free(d);
 out:
@@ -780,6 +785,8 @@ void dag_free(struct mesh *m)
     free(d->mesh.verts);
     free(d->mesh.vert_material);
     free(d->mesh.colors);
+    free(d->mesh.pos_id);
+    free(d->mesh.pos_xyz);
     free(d->c);
     free(d->tris);
     free(d->verts);

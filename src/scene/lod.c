@@ -104,6 +104,7 @@ static int make_level(const struct mesh *root, const struct mesh *src, const uin
     memcpy(out->bbox_max, root->bbox_max, sizeof out->bbox_max);
     memcpy(out->center, root->center, sizeof out->center);
     out->radius = root->radius;
+    mesh_share_positions(out); /* (out of memory: NULL, each vertex positioned alone) */
     return 0;
 }
 
@@ -131,6 +132,8 @@ static void level_free(struct mesh *l)
     free(l->tri_material);
     free(l->vert_material);
     free(l->colors);
+    free(l->pos_id);
+    free(l->pos_xyz);
     mesh_free_clusters(l);
     memset(l, 0, sizeof *l);
 }

@@ -266,6 +266,11 @@ static void drop_geometry(struct mesh *m)
     free(m->colors);
     free(m->uv1);
     free(m->tangents);
+    free(m->pos_id);
+    free(m->pos_xyz);
+    m->pos_id = NULL;
+    m->pos_xyz = NULL;
+    m->n_pos = 0;
     m->colors = NULL;
     m->uv1 = NULL;
     m->tangents = NULL;
@@ -285,6 +290,9 @@ int mesh_build(const struct mesh_source *s, struct mesh *out, struct err *e)
     out->colors = NULL;
     out->uv1 = NULL;
     out->tangents = NULL;
+    out->pos_id = NULL;
+    out->pos_xyz = NULL;
+    out->n_pos = 0;
     out->n_verts = out->n_tris = out->n_opaque = 0;
     out->has_uvs = out->has_normals = false;
     if (s->n_tris == 0)
@@ -422,6 +430,8 @@ int mesh_build(const struct mesh_source *s, struct mesh *out, struct err *e)
     free(fan);
     free(keys);
     set_bounds(out);
+    if (mesh_share_positions(out))
+        goto oom;
     return 0;
 
 oom:
@@ -432,6 +442,68 @@ oom:
     free(head);
     drop_geometry(out);
     return err_set(e, "out of memory building a mesh of %u triangles", (unsigned)s->n_tris);
+}
+
+int mesh_share_positions(struct mesh *m)
+{
+    free(m->pos_id);
+    free(m->pos_xyz);
+    m->pos_id = NULL;
+    m->pos_xyz = NULL;
+    m->n_pos = 0;
+    const uint32_t n = m->n_verts;
+    if (n == 0)
+        return 0;
+    size_t cap = 16;
+    while (cap < 2 * (size_t)n)
+        cap *= 2;
+    uint32_t *id = malloc((size_t)n * sizeof *id), *first = malloc((size_t)n * sizeof *first);
+    uint32_t *slot = calloc(cap, sizeof *slot); /* position + 1, 0 empty */
+    if (!id || !first || !slot) {
+        free(id);
+        free(first);
+        free(slot);
+        return -1;
+    }
+    uint32_t np = 0;
+    for (uint32_t i = 0; i < n; i++) {
+        uint32_t b[3];
+        memcpy(b, m->verts[i].pos, sizeof b);
+        uint64_t h = ((uint64_t)b[0] * 0x9E3779B97F4A7C15ull) ^
+                     ((uint64_t)b[1] * 0xC2B2AE3D27D4EB4Full) ^
+                     ((uint64_t)b[2] * 0x165667B19E3779F9ull);
+        for (size_t k = (size_t)(h ^ (h >> 29)) & (cap - 1);; k = (k + 1) & (cap - 1)) {
+            if (!slot[k]) {
+                first[np] = i;
+                id[i] = np++;
+                slot[k] = np;
+                break;
+            }
+            if (!memcmp(m->verts[first[slot[k] - 1]].pos, b, sizeof b)) {
+                id[i] = slot[k] - 1;
+                break;
+            }
+        }
+    }
+    free(slot);
+    if (2 * (uint64_t)np > n) { /* (walking by position would not pay: none kept) */
+        free(id);
+        free(first);
+        return 0;
+    }
+    float(*xyz)[3] = malloc((size_t)np * sizeof *xyz);
+    if (!xyz) {
+        free(id);
+        free(first);
+        return -1;
+    }
+    for (uint32_t p = 0; p < np; p++)
+        memcpy(xyz[p], m->verts[first[p]].pos, sizeof xyz[p]);
+    free(first);
+    m->pos_id = id;
+    m->pos_xyz = xyz;
+    m->n_pos = np;
+    return 0;
 }
 
 /* v with axis `axis` turned to +Y (mesh_turn_up) */
@@ -625,6 +697,12 @@ int mesh_tangents(struct mesh *m, bool second)
         }
     }
     m->n_verts = nv + extra;
+    if (extra && mesh_share_positions(m)) { /* (the twins share their vertex's position) */
+        free(twin);
+        free(acc);
+        free(tri_sign);
+        return -1;
+    }
     free(twin);
     free(acc);
     free(tri_sign);

@@ -72,7 +72,7 @@ static int reorder(struct mesh *m, int order)
     free(a);
     free(b);
     free(remap);
-    return 0;
+    return mesh_share_positions(m); /* (mesh.h: after moving vertices) */
 }
 
 int main(int argc, char **argv)

@@ -873,6 +873,7 @@ TEST(vertex_order_never_changes_the_picture)
         for (uint32_t ti = 0; ti < b.m.n_tris; ti++)
             for (int k = 0; k < 3; k++)
                 b.m.tris[ti][k] = perm[b.m.tris[ti][k]];
+        REQUIRE(mesh_share_positions(&b.m) == 0); /* (mesh.h: after moving vertices) */
         for (int run = 0; run < 3; run++) { /* one thread; two by tiles; two by slices */
             o.threads = run ? 2 : 1;
             o.split = run == 2 ? SPLIT_SLICES : SPLIT_TILES;
@@ -889,4 +890,83 @@ TEST(vertex_order_never_changes_the_picture)
         scene1_free(&b);
     }
     scene1_free(&a);
+}
+
+/* an n x n grid over [-s,s]^2 at y = 0 whose every cell has its own four uvs (a seam along
+ * every edge: each inner position is the corner of four vertices, lost_empire's shape), the
+ * heights a little bumpy */
+static char *seam_grid_obj(int n, double s)
+{
+    size_t cap = (size_t)(n + 1) * (n + 1) * 64 + (size_t)n * n * 200 + 64, len = 0;
+    char *o = malloc(cap);
+    if (!o)
+        return NULL;
+    for (int j = 0; j <= n; j++)
+        for (int i = 0; i <= n; i++)
+            len += (size_t)snprintf(o + len, cap - len, "v %g %g %g\n", -s + 2 * s * i / n,
+                                    0.01 * ((i * 7 + j * 3) % 5), -s + 2 * s * j / n);
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++)
+            len += (size_t)snprintf(o + len, cap - len, "vt %g %g\nvt %g %g\nvt %g %g\nvt %g %g\n",
+                                    0.1 * (i % 3), 0.2, 0.9, 0.1 * (j % 4), 0.5, 1.0, 0.0,
+                                    0.3 + 0.1 * (i % 2));
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            int a = j * (n + 1) + i + 1, b = a + 1, c = a + n + 2, d = a + n + 1;
+            int t = 4 * (j * n + i) + 1;
+            len += (size_t)snprintf(o + len, cap - len,
+                                    "f %d/%d %d/%d %d/%d\nf %d/%d %d/%d %d/%d\n", a, t, c,
+                                    t + 2, b, t + 1, a, t, d, t + 3, c, t + 2);
+        }
+    return o;
+}
+
+TEST(walking_by_position_draws_the_vertex_stage_bytes)
+{
+    /* the front end tests triangles against their corners' positions, each projected once
+     * (mesh.h's pos_id, frontend.c's walk by position), and makes only the vertices of the
+     * triangles that pass: on a grid with a uv seam along every edge, low over it through
+     * the near plane (clipped triangles near, most far ones holding no pixel centre), every
+     * shading mode on one and two threads draws the same colour and depth bytes as with
+     * every vertex positioned by the vertex stage (pos_id NULL) */
+    enum { N = 90 };
+    char *obj = seam_grid_obj(N, 6);
+    struct scene1 a, b;
+    REQUIRE(scene1_init(&a, obj, 160, 96, 0) == 0);
+    REQUIRE(scene1_init(&b, obj, 160, 96, 0) == 0);
+    free(obj);
+    /* the positions: one per grid point, each vertex's its own bits */
+    CHECK_EQ_INT(a.m.n_verts, 4 * N * N);
+    CHECK_EQ_INT(a.m.n_pos, (N + 1) * (N + 1));
+    REQUIRE(a.m.pos_id && a.m.pos_xyz);
+    int wrong = 0;
+    for (uint32_t i = 0; i < a.m.n_verts; i++)
+        wrong += a.m.pos_id[i] >= a.m.n_pos ||
+                 memcmp(a.m.pos_xyz[a.m.pos_id[i]], a.m.verts[i].pos, sizeof a.m.verts[i].pos);
+    CHECK_EQ_INT(wrong, 0);
+    free(b.m.pos_id);
+    free(b.m.pos_xyz);
+    b.m.pos_id = NULL, b.m.pos_xyz = NULL, b.m.n_pos = 0;
+    struct camera cam = grid_camera(0.03);
+    struct render_opts o;
+    render_opts_default(&o);
+    static const enum shade_mode modes[] = {SHADE_PHONG, SHADE_GOURAUD, SHADE_FLAT, SHADE_UNLIT};
+    const size_t np = (size_t)160 * 96;
+    for (int mi = 0; mi < 4; mi++)
+        for (int run = 0; run < 3; run++) { /* one thread; two by tiles; two by slices */
+            o.shade = modes[mi];
+            o.threads = run ? 2 : 1;
+            o.split = run == 2 ? SPLIT_SLICES : SPLIT_TILES;
+            struct frame_stats sa, sb;
+            REQUIRE(pipeline_draw(a.p, &a.item, 1, NULL, &cam, &o, &a.fb, &sa, NULL) == 0);
+            REQUIRE(pipeline_draw(b.p, &b.item, 1, NULL, &cam, &o, &b.fb, &sb, NULL) == 0);
+            CHECK(sa.tris_clipped > 5 && sa.tris_no_centre > 5000 && sa.pixels_shaded > 3000);
+            CHECK_EQ_INT(sa.tris_drawn, sb.tris_drawn);
+            if (run < 2) /* (slices follow the last frame's times: their vertices too) */
+                CHECK_EQ_INT(sa.verts_lit, sb.verts_lit);
+            CHECK(memcmp(a.fb.rgb, b.fb.rgb, np * 3) == 0);
+            CHECK(memcmp(a.fb.depth, b.fb.depth, np * sizeof *a.fb.depth) == 0);
+        }
+    scene1_free(&a);
+    scene1_free(&b);
 }
