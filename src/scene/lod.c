@@ -113,13 +113,12 @@ static double mesh_area(const struct mesh *m)
 {
     double sum = 0;
     for (uint32_t t = 0; t < m->n_tris; t++) {
-        const float *a = m->verts[m->tris[t][0]].pos, *b = m->verts[m->tris[t][1]].pos,
-                    *c = m->verts[m->tris[t][2]].pos;
-        double e1[3] = {(double)b[0] - a[0], (double)b[1] - a[1], (double)b[2] - a[2]};
-        double e2[3] = {(double)c[0] - a[0], (double)c[1] - a[1], (double)c[2] - a[2]};
-        double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
-                       e1[0] * e2[1] - e1[1] * e2[0]};
-        sum += 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        vec3 p[3];
+        for (int k = 0; k < 3; k++) {
+            const float *q = m->verts[m->tris[t][k]].pos;
+            p[k] = v3(q[0], q[1], q[2]);
+        }
+        sum += 0.5 * v3_len(v3_cross(v3_sub(p[1], p[0]), v3_sub(p[2], p[0])));
     }
     return sum;
 }

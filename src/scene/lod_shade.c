@@ -7,27 +7,24 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vecmath.h"
+
 /* the source's vertices sampled (at most; every vertex of a smaller mesh) */
 #define SHADE_SAMPLES 2048
 
-static void sub3(const float *a, const float *b, double *o)
+static vec3 at(const float *p)
 {
-    o[0] = (double)a[0] - b[0], o[1] = (double)a[1] - b[1], o[2] = (double)a[2] - b[2];
-}
-
-static double dot3(const double *a, const double *b)
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    return v3(p[0], p[1], p[2]);
 }
 
 /* the point of triangle abc closest to p, as barycentrics bc; its squared distance (the
  * Voronoi-region walk of Ericson's Real-Time Collision Detection, 5.1.5) */
-static double closest(const float *p, const float *a, const float *b, const float *c, double bc[3])
+static double closest(vec3 p, vec3 a, vec3 b, vec3 c, double bc[3])
 {
-    double ab[3], ac[3], ap[3], bp[3], cp[3];
-    sub3(b, a, ab), sub3(c, a, ac), sub3(p, a, ap), sub3(p, b, bp), sub3(p, c, cp);
-    double d1 = dot3(ab, ap), d2 = dot3(ac, ap), d3 = dot3(ab, bp), d4 = dot3(ac, bp);
-    double d5 = dot3(ab, cp), d6 = dot3(ac, cp);
+    vec3 ab = v3_sub(b, a), ac = v3_sub(c, a), ap = v3_sub(p, a), bp = v3_sub(p, b),
+         cp = v3_sub(p, c);
+    double d1 = v3_dot(ab, ap), d2 = v3_dot(ac, ap), d3 = v3_dot(ab, bp), d4 = v3_dot(ac, bp);
+    double d5 = v3_dot(ab, cp), d6 = v3_dot(ac, cp);
     double va = d3 * d6 - d5 * d4, vb = d5 * d2 - d1 * d6, vc = d1 * d4 - d3 * d2;
     if (d1 <= 0 && d2 <= 0)
         bc[0] = 1, bc[1] = 0, bc[2] = 0;
@@ -46,10 +43,8 @@ static double closest(const float *p, const float *a, const float *b, const floa
         bc[1] = s > 0 ? vb / s : 1.0 / 3, bc[2] = s > 0 ? vc / s : 1.0 / 3;
         bc[0] = 1 - bc[1] - bc[2];
     }
-    double q[3];
-    for (int i = 0; i < 3; i++)
-        q[i] = bc[0] * a[i] + bc[1] * b[i] + bc[2] * c[i] - p[i];
-    return dot3(q, q);
+    vec3 q = v3_sub(v3_add(v3_add(v3_scale(a, bc[0]), v3_scale(b, bc[1])), v3_scale(c, bc[2])), p);
+    return v3_dot(q, q);
 }
 
 /* a uniform grid over the source's box, each cell listing the level's triangles whose box
@@ -169,16 +164,15 @@ static double nearest_cos(const struct grid *g, const struct mesh *l, const floa
                     for (uint32_t k = g->start[ci]; k < g->start[ci + 1]; k++) {
                         const uint32_t *tv = l->tris[g->list[k]];
                         double bc[3];
-                        double d = closest(p, l->verts[tv[0]].pos, l->verts[tv[1]].pos,
-                                           l->verts[tv[2]].pos, bc);
+                        double d = closest(at(p), at(l->verts[tv[0]].pos), at(l->verts[tv[1]].pos),
+                                           at(l->verts[tv[2]].pos), bc);
                         if (d > best + tol)
                             continue;
-                        double in[3] = {0, 0, 0};
+                        vec3 in = v3(0, 0, 0);
                         for (int j = 0; j < 3; j++)
-                            for (int i = 0; i < 3; i++)
-                                in[i] += bc[j] * l->verts[tv[j]].nrm[i];
-                        double len = sqrt(dot3(in, in));
-                        double cs = len > 0 ? (in[0] * n[0] + in[1] * n[1] + in[2] * n[2]) / len : -1;
+                            in = v3_add(in, v3_scale(at(l->verts[tv[j]].nrm), bc[j]));
+                        double len = v3_len(in);
+                        double cs = len > 0 ? v3_dot(in, at(n)) / len : -1;
                         if (d < best - tol || cs > best_cos)
                             best_cos = cs;
                         best = d < best ? d : best;
