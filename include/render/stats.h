@@ -19,6 +19,8 @@ struct frame_stats {
                               * lit, no shading record); unclipped, in = rejected + culled +
                               * no_centre + drawn */
     uint64_t verts_lit;     /* vertices lit (vertex_shade): only those of triangles drawn */
+    uint64_t tris_by_position; /* of tris_in, walked by position (frontend.c: a mesh whose
+                                  vertices share positions, denser than the framebuffer) */
     uint64_t pixels_tested; /* fragments inside a triangle */
     uint64_t pixels_shaded; /* fragments that passed the depth test */
     uint64_t meshes_culled; /* whole meshes outside the frustum (bounding sphere) */

@@ -255,6 +255,7 @@ int plan_slices_draw(struct plan_slices *s, struct workers *w, const struct kern
         stats->tris_empty += st->tris_empty;
         stats->tris_no_centre += st->tris_no_centre;
         stats->verts_lit += st->verts_lit;
+        stats->tris_by_position += st->tris_by_position;
         stats->pixels_tested += st->pixels_tested;
         stats->pixels_shaded += st->pixels_shaded;
         stats->clusters_tested += st->clusters_tested;

@@ -962,11 +962,27 @@ TEST(walking_by_position_draws_the_vertex_stage_bytes)
             REQUIRE(pipeline_draw(b.p, &b.item, 1, NULL, &cam, &o, &b.fb, &sb, NULL) == 0);
             CHECK(sa.tris_clipped > 5 && sa.tris_no_centre > 5000 && sa.pixels_shaded > 3000);
             CHECK_EQ_INT(sa.tris_drawn, sb.tris_drawn);
+            /* (walked by position: all of it on one thread, the first slice's share on
+             * two; never without positions) */
+            CHECK(run == 0 ? sa.tris_by_position == a.m.n_tris : sa.tris_by_position > 0);
+            CHECK_EQ_INT(sb.tris_by_position, 0);
             if (run < 2) /* (slices follow the last frame's times: their vertices too) */
                 CHECK_EQ_INT(sa.verts_lit, sb.verts_lit);
             CHECK(memcmp(a.fb.rgb, b.fb.rgb, np * 3) == 0);
             CHECK(memcmp(a.fb.depth, b.fb.depth, np * sizeof *a.fb.depth) == 0);
         }
+    /* a framebuffer with more pixels than the grid has triangles: the vertex stage (most
+     * triangles then hold a pixel centre, and walking by position does not pay) */
+    struct scene1 c;
+    obj = seam_grid_obj(N, 6);
+    REQUIRE(scene1_init(&c, obj, 200, 100, 0) == 0);
+    free(obj);
+    struct frame_stats sc;
+    o.threads = 1;
+    REQUIRE(pipeline_draw(c.p, &c.item, 1, NULL, &cam, &o, &c.fb, &sc, NULL) == 0);
+    CHECK(c.m.n_tris < 200 * 100 && sc.tris_in == c.m.n_tris);
+    CHECK_EQ_INT(sc.tris_by_position, 0);
     scene1_free(&a);
     scene1_free(&b);
+    scene1_free(&c);
 }
