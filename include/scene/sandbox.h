@@ -41,4 +41,12 @@ typedef int (*sandbox_job)(void *arg, struct sandbox_blob *reply, char msg[220])
 int sandbox_run(sandbox_job job, void *arg, const char *where, const char *who,
                 uint8_t **reply_out, size_t *n_out, struct err *e);
 
+/* Before each fork, sandbox_run calls fn(arg) (NULL: nothing), on its own thread. The child
+ * starts with one thread and every lock as the parent's threads held it at fork(): a lock
+ * another thread held then — in its allocator, or its exit's clean-up (not glibc's malloc,
+ * which fork keeps whole, but AddressSanitizer's) — is never released in the child, and the
+ * job waits on it for ever. A program that runs a thread beside a load (the viewer's sky
+ * made while the models load) ends it there. */
+void sandbox_before_fork(void (*fn)(void *), void *arg);
+
 #endif

@@ -94,6 +94,15 @@ static void child(sandbox_job job, void *arg, int fd)
     _exit(0);
 }
 
+static void (*before_fork)(void *);
+static void *before_fork_arg;
+
+void sandbox_before_fork(void (*fn)(void *), void *arg)
+{
+    before_fork = fn;
+    before_fork_arg = arg;
+}
+
 int sandbox_run(sandbox_job job, void *arg, const char *where, const char *who,
                 uint8_t **reply_out, size_t *n_out, struct err *e)
 {
@@ -103,6 +112,8 @@ int sandbox_run(sandbox_job job, void *arg, const char *where, const char *who,
     if (pipe(fds) != 0)
         return err_set(e, "%s: cannot start the %s: %s", where, who, strerror(errno));
     fflush(NULL);
+    if (before_fork)
+        before_fork(before_fork_arg);
     pid_t pid = fork();
     if (pid < 0) {
         close(fds[0]);

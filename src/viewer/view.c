@@ -22,6 +22,7 @@
 #include "input.h"
 #include "pace.h"
 #include "pipeline.h"
+#include "sandbox.h"
 #include "scene.h"
 #include "ssaa.h"
 #include "termcaps.h"
@@ -69,7 +70,7 @@ struct view {
     /* the default sky made ahead, while the models load (sky_guess_start) */
     struct {
         pthread_t thread;
-        bool running;
+        bool running, joined;
         vec3 sun;
         struct skybox sky;
         int rc;
@@ -147,6 +148,15 @@ static void *sky_guess_main(void *arg)
     return NULL;
 }
 
+/* The guess's thread ended (its sky kept for sky_guess_take). */
+static void sky_guess_join(void *arg)
+{
+    struct view *v = arg;
+    if (v->guess.running && !v->guess.joined)
+        pthread_join(v->guess.thread, NULL);
+    v->guess.joined = true;
+}
+
 static void sky_guess_start(struct view *v)
 {
     if (v->o->background_set)
@@ -158,6 +168,8 @@ static void sky_guess_start(struct view *v)
     pthread_sigmask(SIG_SETMASK, &all, &old);
     v->guess.running = pthread_create(&v->guess.thread, NULL, sky_guess_main, v) == 0;
     pthread_sigmask(SIG_SETMASK, &old, NULL);
+    if (v->guess.running) /* an importer's fork waits for it to end (sandbox.h) */
+        sandbox_before_fork(sky_guess_join, v);
 }
 
 /* The guess, once finished: into v->default_sky when its sun is sun, else dropped. */
@@ -165,7 +177,8 @@ static void sky_guess_take(struct view *v, vec3 sun)
 {
     if (!v->guess.running)
         return;
-    pthread_join(v->guess.thread, NULL);
+    sandbox_before_fork(NULL, NULL);
+    sky_guess_join(v);
     v->guess.running = false;
     if (v->guess.rc == 0 && v->default_sky.n_levels == 0 && v->guess.sun.x == sun.x &&
         v->guess.sun.y == sun.y && v->guess.sun.z == sun.z) {
