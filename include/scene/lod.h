@@ -36,7 +36,8 @@
  * The cache (lod_cache.h): a mesh of LOD_CACHE_MIN_TRIS triangles or more keeps its
  * finished chain in a file per mesh content ($RASTTY_CACHE_DIR, else $XDG_CACHE_HOME/rastty
  * or ~/.cache/rastty; RASTTY_CACHE_DIR set and empty: none), and the next build of the same
- * mesh reads it instead of simplifying: the same levels, the same bytes drawn.
+ * mesh reads it instead of simplifying: the same levels, the same bytes drawn. The folder
+ * keeps under LOD_CACHE_MAX_MB (lod_cache.h): the files used least recently go first.
  *
  * The choice (lod_choose, per frame and draw item):
  *   off   : level 0.

@@ -18,6 +18,10 @@
 
 #include "mesh.h"
 
+/* The folder's limit: past it, writing a file removes the files used least recently (by
+ * their times: a read marks a file used). $RASTTY_CACHE_MAX_MB sets another. */
+#define LOD_CACHE_MAX_MB 1024
+
 /* the most levels a file holds (lod.h's LOD_MAX_LEVELS: lod.c checks) */
 #define LOD_CACHE_LEVELS 8
 

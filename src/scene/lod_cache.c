@@ -2,6 +2,7 @@
  * content, read instead of simplifying again. */
 #include "lod_cache.h"
 
+#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <math.h>
@@ -150,6 +151,8 @@ done:
     free(buf);
     if (rc)
         lod_cached_free(out);
+    else
+        utimensat(AT_FDCWD, path, NULL, 0); /* used now: the last to go (evict) */
     return rc;
 }
 
@@ -177,6 +180,74 @@ static int make_dirs(char *dir)
 static bool put(FILE *f, const void *p, size_t n)
 {
     return fwrite(p, 1, n, f) == n;
+}
+
+/* the folder's size limit in bytes: $RASTTY_CACHE_MAX_MB, else LOD_CACHE_MAX_MB */
+static uint64_t cache_max(void)
+{
+    const char *v = getenv("RASTTY_CACHE_MAX_MB");
+    char *end;
+    unsigned long long mb = v && *v ? strtoull(v, &end, 10) : LOD_CACHE_MAX_MB;
+    if (v && *v && *end)
+        mb = LOD_CACHE_MAX_MB;
+    return (uint64_t)mb << 20;
+}
+
+struct entry {
+    struct timespec used;
+    uint64_t size;
+    char name[32];
+};
+
+static int older(const void *a, const void *b)
+{
+    const struct entry *x = a, *y = b;
+    if (x->used.tv_sec != y->used.tv_sec)
+        return x->used.tv_sec < y->used.tv_sec ? -1 : 1;
+    return (x->used.tv_nsec > y->used.tv_nsec) - (x->used.tv_nsec < y->used.tv_nsec);
+}
+
+/* Past the limit, the files used least recently go (by their times: written, or last read),
+ * keep's (the one just written) last of all. Only lod-*.bin files are touched. */
+static void evict(const char *dir, const char *keep)
+{
+    DIR *d = opendir(dir);
+    if (!d)
+        return;
+    struct entry *e = NULL;
+    size_t n = 0, cap = 0;
+    uint64_t total = 0;
+    for (struct dirent *de; (de = readdir(d));) {
+        size_t l = strlen(de->d_name);
+        if (l >= sizeof e->name || l < 8 || strncmp(de->d_name, "lod-", 4) ||
+            strcmp(de->d_name + l - 4, ".bin"))
+            continue;
+        struct stat st;
+        if (fstatat(dirfd(d), de->d_name, &st, AT_SYMLINK_NOFOLLOW) || !S_ISREG(st.st_mode))
+            continue;
+        if (n == cap) {
+            struct entry *g = realloc(e, (cap = cap ? 2 * cap : 64) * sizeof *e);
+            if (!g)
+                break;
+            e = g;
+        }
+        e[n].used = st.st_mtim;
+        e[n].size = (uint64_t)st.st_size;
+        memcpy(e[n].name, de->d_name, l + 1);
+        if (strcmp(e[n].name, keep) == 0)
+            e[n].used.tv_sec = INT64_MAX; /* (never before the others) */
+        total += e[n].size;
+        n++;
+    }
+    const uint64_t max = cache_max();
+    if (total > max && e) {
+        qsort(e, n, sizeof *e, older);
+        for (size_t i = 0; i < n && total > max; i++)
+            if (strcmp(e[i].name, keep) && unlinkat(dirfd(d), e[i].name, 0) == 0)
+                total -= e[i].size;
+    }
+    free(e);
+    closedir(d);
 }
 
 int lod_cache_write(const struct mesh *m, uint64_t key, const struct lod_cached *c)
@@ -214,5 +285,6 @@ int lod_cache_write(const struct mesh *m, uint64_t key, const struct lod_cached 
         unlink(tmp);
         return -1;
     }
+    evict(dir, path + strlen(dir) + 1);
     return 0;
 }

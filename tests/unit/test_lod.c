@@ -3,8 +3,11 @@
  * coarser levels farther away by the projected-error rule, RATIO picks the nearest level,
  * off draws the very same bytes, and meshes too small or broken get no levels. */
 #include <dirent.h>
+#include <fcntl.h>
 #include <math.h>
 #include <stdio.h>
+#include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 #include <stdlib.h>
 #include <string.h>
@@ -619,11 +622,22 @@ TEST(lod_cache_gives_the_same_levels_and_ignores_damaged_files)
     REQUIRE(lod_build(&c, NULL) == 0);
     CHECK_EQ_INT(lod_cache_use(&c), LOD_CACHE_WRITTEN);
     CHECK(same_levels(&a, &c));
-    /* another mesh (one vertex moved) has another key: its own chain */
+    /* another mesh (one vertex moved) has another key: its own chain; with room for one
+     * file (each is about 1.6 MB), a's, used longer ago, goes */
+    struct stat st;
+    REQUIRE(stat(path, &st) == 0 && st.st_size > (1 << 20) && st.st_size < (2 << 20));
+    struct timespec ago[2] = {{.tv_sec = time(NULL) - 3600}, {.tv_sec = time(NULL) - 3600}};
+    REQUIRE(utimensat(AT_FDCWD, path, ago, 0) == 0);
+    setenv("RASTTY_CACHE_MAX_MB", "2", 1);
     d.verts[7].pos[0] += 0.01f;
     CHECK(lod_chain_key(&d) != lod_chain_key(&a));
     REQUIRE(lod_build(&d, NULL) == 0);
     CHECK_EQ_INT(lod_cache_use(&d), LOD_CACHE_WRITTEN);
+    CHECK(access(path, F_OK) != 0); /* a's file evicted */
+    char path_d[512];
+    snprintf(path_d, sizeof path_d, "%s/lod-%016llx.bin", dir, (unsigned long long)lod_chain_key(&d));
+    CHECK(access(path_d, F_OK) == 0);
+    unsetenv("RASTTY_CACHE_MAX_MB");
     /* no folder: no file, built as before */
     setenv("RASTTY_CACHE_DIR", "", 1);
     lod_free(&d);
@@ -635,7 +649,7 @@ TEST(lod_cache_gives_the_same_levels_and_ignores_damaged_files)
     else
         unsetenv("RASTTY_CACHE_DIR");
     free(saved);
-    DIR *dd = opendir(dir); /* (the two files written) */
+    DIR *dd = opendir(dir);
     REQUIRE(dd);
     int files = 0;
     for (struct dirent *de; (de = readdir(dd));)
@@ -645,7 +659,7 @@ TEST(lod_cache_gives_the_same_levels_and_ignores_damaged_files)
             files += unlink(p) == 0;
         }
     closedir(dd);
-    CHECK_EQ_INT(files, 2);
+    CHECK_EQ_INT(files, 1); /* (d's: a's was evicted) */
     CHECK(rmdir(dir) == 0);
     struct mesh *all[] = {&a, &b, &c, &d};
     for (int i = 0; i < 4; i++) {
