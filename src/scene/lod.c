@@ -36,6 +36,20 @@ struct lod_job {
 _Static_assert(sizeof(unsigned int) == sizeof(uint32_t), "meshoptimizer indices are ours");
 _Static_assert(LOD_CACHE_LEVELS == LOD_MAX_LEVELS, "a cache file holds a whole chain");
 
+/* a level's own arrays (its materials and textures are the source's) */
+static void level_free(struct mesh *l)
+{
+    free(l->verts);
+    free(l->tris);
+    free(l->tri_material);
+    free(l->vert_material);
+    free(l->colors);
+    free(l->pos_id);
+    free(l->pos_xyz);
+    mesh_free_clusters(l);
+    memset(l, 0, sizeof *l);
+}
+
 /* A level's geometry: the triangles idx[0 .. n_idx) of src, with only the vertices they use,
  * in order of first use; materials, textures and bounds are the source mesh's (borrowed). */
 static int make_level(const struct mesh *root, const struct mesh *src, const uint32_t *idx,
@@ -64,12 +78,7 @@ static int make_level(const struct mesh *root, const struct mesh *src, const uin
         (src->colors && !out->colors)) {
         free(remap);
         free(to_root);
-        free(out->verts);
-        free(out->vert_material);
-        free(out->tris);
-        free(out->tri_material);
-        free(out->colors);
-        memset(out, 0, sizeof *out);
+        level_free(out);
         return -1;
     }
     for (uint32_t v = 0; v < src->n_verts; v++) {
@@ -121,20 +130,6 @@ static double mesh_area(const struct mesh *m)
         sum += 0.5 * v3_len(v3_cross(v3_sub(p[1], p[0]), v3_sub(p[2], p[0])));
     }
     return sum;
-}
-
-/* a level's own arrays (its materials and textures are the source's) */
-static void level_free(struct mesh *l)
-{
-    free(l->verts);
-    free(l->tris);
-    free(l->tri_material);
-    free(l->vert_material);
-    free(l->colors);
-    free(l->pos_id);
-    free(l->pos_xyz);
-    mesh_free_clusters(l);
-    memset(l, 0, sizeof *l);
 }
 
 static float extent(const struct mesh *m)
