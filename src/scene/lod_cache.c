@@ -79,10 +79,10 @@ static int cache_dir(char *out, size_t size)
     return n > 0 && (size_t)n < size ? 0 : -1;
 }
 
-static int cache_path(uint64_t key, char *out, size_t size)
+/* the folder (dir: 4096 bytes) and, in it, the file of key */
+static int cache_path(char *dir, uint64_t key, char *out, size_t size)
 {
-    char dir[4096];
-    if (cache_dir(dir, sizeof dir))
+    if (cache_dir(dir, 4096))
         return -1;
     int n = snprintf(out, size, "%s/lod-%016llx.bin", dir, (unsigned long long)key);
     return n > 0 && (size_t)n < size ? 0 : -1;
@@ -97,8 +97,8 @@ bool lod_cache_enabled(void)
 int lod_cache_read(const struct mesh *m, uint64_t key, struct lod_cached *out)
 {
     memset(out, 0, sizeof *out);
-    char path[4200];
-    if (cache_path(key, path, sizeof path))
+    char dir[4096], path[4200];
+    if (cache_path(dir, key, path, sizeof path))
         return -1;
     char *buf;
     size_t len;
@@ -253,8 +253,7 @@ static void evict(const char *dir, const char *keep)
 int lod_cache_write(const struct mesh *m, uint64_t key, const struct lod_cached *c)
 {
     char dir[4096], path[4200], tmp[4300];
-    if (c->n_levels < 1 || cache_dir(dir, sizeof dir) || make_dirs(dir) ||
-        cache_path(key, path, sizeof path))
+    if (c->n_levels < 1 || cache_path(dir, key, path, sizeof path) || make_dirs(dir))
         return -1;
     /* beside the target and renamed over it when whole: a reader never sees half a file,
      * and two writers of the same mesh leave one of their (equal) files */
