@@ -86,6 +86,10 @@ enum debug_view { VIEW_COLOR, VIEW_DEPTH, VIEW_NORMALS, VIEW_OVERDRAW, VIEW_WIRE
  * dropped before the vertex stage when they cannot reach a pixel. Never changes a picture.
  * Off by default: measured, it does not pay yet (README, "Cost against triangles"). */
 enum cluster_cull { CLUSTER_CULL_OFF, CLUSTER_CULL_ON, CLUSTER_CULL_COUNT };
+/* Hidden triangles (--hidden-cull; frontend.h, "Hidden"): a triangle whose nearest corner
+ * lies at or behind what the depth buffer already holds over its whole pixel box is dropped
+ * before its vertices are lit or it is set up. Never changes a picture. On by default. */
+enum hidden_cull { HIDDEN_CULL_OFF, HIDDEN_CULL_ON, HIDDEN_CULL_COUNT };
 
 enum thread_split { SPLIT_AUTO, SPLIT_TILES, SPLIT_SLICES, SPLIT_COUNT };
 
@@ -111,6 +115,7 @@ struct render_opts {
     float lod_px;               /* LOD_AUTO: largest error on screen, in pixels (> 0) */
     enum cull_mode cull;
     enum cluster_cull cluster_cull; /* --cluster-cull: the picture never depends on it */
+    enum hidden_cull hidden_cull;   /* --hidden-cull: nor on it */
     enum debug_view view;
     bool textures;       /* sample material / override textures (else albedo = kd) */
     bool hidden_lines;   /* wire: hide edges behind the model's surfaces (depth pre-pass) */
@@ -149,7 +154,7 @@ struct render_enum {
 extern const struct render_enum render_shade_names, render_cull_names, render_filter_names,
     render_view_names, render_raster_names, render_persp_names, render_depth_names,
     render_ssaa_names, render_lod_names, render_split_names, render_kernel_names,
-    render_cluster_cull_names, render_wire_names;
+    render_cluster_cull_names, render_hidden_cull_names, render_wire_names;
 
 const char *render_shade_name(enum shade_mode m);
 const char *render_cull_name(enum cull_mode m);

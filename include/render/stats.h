@@ -18,6 +18,9 @@ struct frame_stats {
                               * box of at most 4 pixels whose centres it misses (not
                               * lit, no shading record); unclipped, in = rejected + culled +
                               * no_centre + drawn */
+    uint64_t tris_hidden;   /* dropped by the front end: behind the depth buffer over its
+                               whole pixel box (--hidden-cull; frontend.h, "Hidden"); in
+                               the sum above beside no_centre */
     uint64_t verts_lit;     /* vertices lit (vertex_shade): only those of triangles drawn */
     uint64_t tris_by_position; /* of tris_in, walked by position (frontend.c: a mesh whose
                                   vertices share positions, denser than the framebuffer) */

@@ -189,11 +189,12 @@ int prepare_sky(const struct options *o, const struct scene *s, const struct ren
 void prepare_print_stats(const struct frame_stats *st)
 {
     fprintf(stderr,
-            "tris in %llu, rejected %llu, culled %llu, no pixel centre %llu, clipped %llu, "
-            "drawn %llu (no pixel %llu); vertices lit %llu; pixels tested %llu, shaded %llu; "
-            "%.3f ms\n",
+            "tris in %llu, rejected %llu, culled %llu, no pixel centre %llu, hidden %llu, "
+            "clipped %llu, drawn %llu (no pixel %llu); vertices lit %llu; pixels tested %llu, "
+            "shaded %llu; %.3f ms\n",
             (unsigned long long)st->tris_in, (unsigned long long)st->tris_rejected,
             (unsigned long long)st->tris_culled, (unsigned long long)st->tris_no_centre,
+            (unsigned long long)st->tris_hidden,
             (unsigned long long)st->tris_clipped,
             (unsigned long long)st->tris_drawn, (unsigned long long)st->tris_empty,
             (unsigned long long)st->verts_lit,

@@ -249,6 +249,8 @@ struct tri_walk {
     uint32_t *vslot;          /* by position: where vertex i's record is in vo (+ 1), or 0 */
     uint32_t n_made;          /* by position: records made, vo[0 .. n_made) */
     uint32_t pos_done;        /* by position: positions 0 .. pos_done-1 projected */
+    const float *hide;        /* the depth buffer hidden triangles are tested on, or NULL */
+    uint64_t n_hidden;
 };
 
 /* The clip position of object-space point q: every kernel's vertex_run's doubles in its
@@ -275,11 +277,13 @@ static void position_stage(const struct frame *f, const struct mesh *m,
         struct frontend_pos *o = &pos[p];
         o->outcode = vertex_outcode(clip, gx, gy);
         o->fx = o->fy = 0;
+        o->z = 0;
         if (!(o->outcode & VERTEX_NEEDS_CLIP)) {
             double win[3];
             viewport_window(clip, fb_w, fb_h, win);
             o->fx = (int32_t)viewport_snap(win[0]);
             o->fy = (int32_t)viewport_snap(win[1]);
+            o->z = (float)win[2];
         }
     }
 }
@@ -341,6 +345,30 @@ static void vertex_stage(const struct frame *f, const struct tri_walk *w, uint32
     }
 }
 
+/* The window depth setup gives corner v (setup_interp's z_lo is the least of the three, in
+ * float: every pixel's depth is clamped to it), for the default depth method */
+static inline float corner_depth(const struct vertex_out *v)
+{
+    const double rw = 1.0 / v->clip[3];
+    return (float)(0.5 * v->clip[2] * rw + 0.5);
+}
+
+/* Is a triangle whose depth is at least z_lo everywhere hidden over its pixel box by what
+ * the depth buffer holds (test LESS: a fragment at z_lo or behind fails where the buffer is
+ * at z_lo or nearer)? Boxes of more than FRONTEND_HIDDEN_MAX_BOX pixels are not tested. */
+static inline bool hidden_behind(const float *depth, int fb_w, const int64_t box[4], float z_lo)
+{
+    if ((box[2] - box[0] + 1) * (box[3] - box[1] + 1) > FRONTEND_HIDDEN_MAX_BOX)
+        return false;
+    for (int64_t y = box[1]; y <= box[3]; y++) {
+        const float *row = depth + y * fb_w;
+        for (int64_t x = box[0]; x <= box[2]; x++)
+            if (z_lo < row[x])
+                return false;
+    }
+    return true;
+}
+
 /* triangles i0 .. i1-1; the vertex stage runs just ahead of them from *vdone on (none
  * when it is m->n_verts: the caller ran it) */
 static inline __attribute__((always_inline)) int
@@ -360,7 +388,8 @@ walk(struct frontend *fe, struct frame *f, struct tri_walk *w, uint32_t i0, uint
     struct batch *bt = &fe->batch[fe->cur];
     /* counted in locals, added once: through the stats pointer every count would be a
      * memory update the compiler must keep in order with the batch's stores */
-    uint64_t n_rejected = 0, n_culled = 0, n_no_centre = 0;
+    uint64_t n_rejected = 0, n_culled = 0, n_no_centre = 0, n_hidden = 0;
+    const float *hide = w->hide;
     const int fb_w = f->fb->w, fb_h = f->fb->h;
     const bool culls = !depth_only && (cull != CULL_NONE || by_material); /* (reads clip) */
     struct vertex_out snapped[3]; /* by position: a triangle's snapped corners for setup */
@@ -412,6 +441,14 @@ walk(struct frontend *fe, struct frame *f, struct tri_walk *w, uint32_t i0, uint
                 n_no_centre++;
                 continue;
             }
+            if (hide && unclipped) {
+                float z = p0->z < p1->z ? p0->z : p1->z;
+                z = p2->z < z ? p2->z : z;
+                if (hidden_behind(hide, fb_w, box, z)) {
+                    n_hidden++;
+                    continue;
+                }
+            }
             if (unclipped && !culls) { /* setup reads the snapped corners alone: the
                                           records wait until it draws the triangle */
                 for (int k = 0; k < 3; k++)
@@ -437,6 +474,15 @@ walk(struct frontend *fe, struct frame *f, struct tri_walk *w, uint32_t i0, uint
             if (unclipped && !setup_box(v[0], v[1], v[2], fb_w, fb_h, box)) {
                 n_no_centre++; /* whatever its facing: its determinant is never computed */
                 continue;
+            }
+            if (hide && unclipped) {
+                float z = corner_depth(v[0]), z1 = corner_depth(v[1]), z2 = corner_depth(v[2]);
+                z = z1 < z ? z1 : z;
+                z = z2 < z ? z2 : z;
+                if (hidden_behind(hide, fb_w, box, z)) {
+                    n_hidden++;
+                    continue;
+                }
             }
         }
         /* culling: once per source triangle, never per clipped piece */
@@ -479,6 +525,7 @@ walk(struct frontend *fe, struct frame *f, struct tri_walk *w, uint32_t i0, uint
     w->n_rejected += n_rejected;
     w->n_culled += n_culled;
     w->n_no_centre += n_no_centre;
+    w->n_hidden += n_hidden;
     *vdone = verts_done;
     return 0;
 }
@@ -797,6 +844,12 @@ int frontend_triangles(struct frontend *fe, struct frame *f, const struct draw_i
                         o->view != VIEW_WIRE_OVERLAY;
     if (by_pos)
         f->stats->tris_by_position += i1 - i0;
+    /* hidden triangles (frontend.h): on the depth buffer the batches drawn so far wrote —
+     * one thread's (with a pool, the batch in flight is still writing it) */
+    if (o->hidden_cull == HIDDEN_CULL_ON && !fe->workers && !depth_only &&
+        f->fb->depth_mode == DEPTH_Z && !f->fb->overdraw && f->span.mode != SHADE_WIRE &&
+        o->view != VIEW_WIRE_OVERLAY)
+        w.hide = f->fb->depth;
     int rc = cut        ? walk_cut(fe, f, &w, i0, i1, e)
              : clusters ? walk_clusters(fe, f, &w, i0, i1, e)
              : by_pos   ? walk_by_position(fe, f, &w, i0, i1, e)
@@ -809,6 +862,7 @@ int frontend_triangles(struct frontend *fe, struct frame *f, const struct draw_i
     stats->tris_rejected += w.n_rejected;
     stats->tris_culled += w.n_culled;
     stats->tris_no_centre += w.n_no_centre;
+    stats->tris_hidden += w.n_hidden;
     return 0;
 }
 

@@ -254,6 +254,7 @@ int plan_slices_draw(struct plan_slices *s, struct workers *w, const struct kern
         stats->tris_drawn += st->tris_drawn;
         stats->tris_empty += st->tris_empty;
         stats->tris_no_centre += st->tris_no_centre;
+        stats->tris_hidden += st->tris_hidden;
         stats->verts_lit += st->verts_lit;
         stats->tris_by_position += st->tris_by_position;
         stats->pixels_tested += st->pixels_tested;
