@@ -16,7 +16,10 @@
 # build/oracle/compare), with --lod clusters (the cluster hierarchy, scene/dag.h: dag_ms,
 # its PSNR, the triangles of its cut), and — where this build has the switch — --lod off
 # --cluster-cull on (cluster_ms; speedup = off_ms / cluster_ms; the clusters culled of
-# those tested; the pictures must be the same bytes: "same" or "DIFFER"). load_ms is
+# those tested; the pictures must be the same bytes: "same" or "DIFFER"), and --lod off
+# --hidden-cull off (nohide_ms: every triangle set up, none dropped as hidden behind the
+# depth so far; hidden: the triangles the --lod off run dropped so; hbytes: the pictures
+# compared the same way). load_ms is
 # render's, rss_MB the peak resident memory of the --lod off run (/usr/bin/time), tris the
 # triangles drawn. Mesa llvmpipe on the same mesh and camera (build/bench/glbench, OSMesa,
 # as tests/bench_speed.sh runs it: the camera rastty's --frame chose, from the --lod off
@@ -62,8 +65,9 @@ done
 for m in lost_empire/lost_empire.obj sports_car/sportsCar.obj bunny/bunny.obj; do
     if [ -f "$S/$m" ]; then models+=("$S/$m"); else echo "   (no $S/$m: skipped)"; fi
 done
-cull=0
+cull=0 hide=0
 "$BIN" --help 2>&1 | grep -q -- --cluster-cull && cull=1
+"$BIN" --help 2>&1 | grep -q -- --hidden-cull && hide=1
 if [ ! -x "$GL" ]; then
     echo "   (no llvmpipe columns: $GL missing; it needs OSMesa: apt-get install libosmesa6-dev, make oracle-build)"
     GL=
@@ -75,10 +79,10 @@ TIME=
 ms_of() { sed -n 's/.*median_ms=\([0-9.]*\).*/\1/p' | tail -n 1; }
 echo "-- scale: median ms of $repeat frames, eye 0.5,0.364,0.8 framed; auto's PSNR against --lod off;"
 echo "   gl_ms: Mesa llvmpipe on the same mesh and camera, x/gl: rastty's ms over llvmpipe's"
-printf '  %-20s %-8s %2s %9s %9s %9s %8s %9s %6s %9s %6s %8s %9s %7s %15s %5s %9s %8s %8s %8s\n' model size th load_ms rss_MB \
+printf '  %-20s %-8s %2s %9s %9s %9s %8s %9s %6s %9s %6s %8s %9s %7s %15s %5s %9s %7s %6s %9s %8s %8s %8s\n' model size th load_ms rss_MB \
     off_ms tris auto_ms PSNR dag_ms PSNR dag_tris cluster_ms speedup culled/tested bytes \
-    gl_ms off/gl auto/gl dag/gl
-[ -n "$csv" ] && echo "model,size,threads,load_ms,rss_mb,off_ms,tris,auto_ms,auto_psnr,dag_ms,dag_psnr,dag_tris,cluster_ms,speedup,culled_tested,same_bytes,gl_ms,off_gl,auto_gl,dag_gl" > "$csv"
+    nohide_ms hidden hbytes gl_ms off/gl auto/gl dag/gl
+[ -n "$csv" ] && echo "model,size,threads,load_ms,rss_mb,off_ms,tris,auto_ms,auto_psnr,dag_ms,dag_psnr,dag_tris,cluster_ms,speedup,culled_tested,same_bytes,nohide_ms,hidden,nohide_same_bytes,gl_ms,off_gl,auto_gl,dag_gl" > "$csv"
 for m in "${models[@]}"; do
     name=$(basename "$m"); name=${name%.*}
     for size in $screens; do
@@ -90,6 +94,8 @@ for m in "${models[@]}"; do
             off=$(ms_of <<<"$st")
             load=$(sed -n 's/.*load_ms=\([0-9.]*\).*/\1/p' <<<"$st" | tail -n 1)
             tris=$(sed -n 's/^tris in .* drawn \([0-9]*\).*/\1/p' <<<"$st" | tail -n 1)
+            hid=$(sed -n 's/^tris in .* hidden \([0-9]*\),.*/\1/p' <<<"$st" | tail -n 1)
+            hid=${hid:--}
             rss=$(sed -n 's/^rss_kb=\([0-9]*\)/\1/p' <<<"$st")
             rss=$([ -n "$rss" ] && awk -v k="$rss" 'BEGIN { printf "%.0f", k / 1024 }' || echo -)
             camv=()
@@ -128,11 +134,19 @@ for m in "${models[@]}"; do
                 eq=same
                 cmp -s "$o.nc.ppm" "$o.off.ppm" && cmp -s "$o.nc.pfm" "$o.off.pfm" || eq=DIFFER
             fi
+            nh=- heq=-
+            if [ $hide = 1 ]; then
+                st=$("$BIN" render "$m" "${cam[@]}" --lod off --hidden-cull off \
+                    --out "$o.nh.ppm" --depth-out "$o.nh.pfm" 2>&1)
+                nh=$(ms_of <<<"$st")
+                heq=same
+                cmp -s "$o.nh.ppm" "$o.off.ppm" && cmp -s "$o.nh.pfm" "$o.off.pfm" || heq=DIFFER
+            fi
             ro=$(ratio "$off" "$gl") ra=$(ratio "$auto" "$gl") rd=$(ratio "$dag" "$gl")
-            printf '  %-20s %-8s %2s %9s %9s %9s %8s %9s %6s %9s %6s %8s %9s %7s %15s %5s %9s %8s %8s %8s\n' "$name" "$size" \
+            printf '  %-20s %-8s %2s %9s %9s %9s %8s %9s %6s %9s %6s %8s %9s %7s %15s %5s %9s %7s %6s %9s %8s %8s %8s\n' "$name" "$size" \
                 "$th" "$load" "$rss" "$off" "$tris" "$auto" "$psnr" "$dag" "$dpsnr" "$dtris" "$nc" "$sp" "$cl" "$eq" \
-                "$gl" "$ro" "$ra" "$rd"
-            [ -n "$csv" ] && echo "$name,$size,$th,$load,$rss,$off,$tris,$auto,$psnr,$dag,$dpsnr,$dtris,$nc,$sp,$cl,$eq,$gl,$ro,$ra,$rd" >> "$csv"
+                "$nh" "$hid" "$heq" "$gl" "$ro" "$ra" "$rd"
+            [ -n "$csv" ] && echo "$name,$size,$th,$load,$rss,$off,$tris,$auto,$psnr,$dag,$dpsnr,$dtris,$nc,$sp,$cl,$eq,$nh,$hid,$heq,$gl,$ro,$ra,$rd" >> "$csv"
         done
     done
 done
