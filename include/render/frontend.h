@@ -44,8 +44,8 @@
  * than FRONTEND_HIDDEN_MAX_BOX pixels are not tested (a large triangle is most often
  * seen, and reading its box would cost what drawing it does). Which triangles are found
  * depends on when batches go out: frame_stats.tris_hidden counts them, and tris_drawn is
- * smaller by as many (lost_empire at 160x96: 11.9k hidden of the 23.8k triangles that pass their box, the
- * car 20.8k of 30.0k; README, "Hidden triangles").
+ * smaller by as many (lost_empire at 160x96: 11.9k hidden of the 23.8k triangles that
+ * pass their box, the car 20.8k of 30.0k; README, "Hidden triangles").
  *
  * Owns: per-item vertex outputs and the two batches, allocated once and reused across
  * frames, so a frame performs no allocation once the largest mesh has been seen. One per
