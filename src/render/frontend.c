@@ -353,6 +353,12 @@ static inline float corner_depth(const struct vertex_out *v)
     return (float)(0.5 * v->clip[2] * rw + 0.5);
 }
 
+static inline float min3f(float a, float b, float c)
+{
+    a = b < a ? b : a;
+    return c < a ? c : a;
+}
+
 /* Is a triangle whose depth is at least z_lo everywhere hidden over its pixel box by what
  * the depth buffer holds (test LESS: a fragment at z_lo or behind fails where the buffer is
  * at z_lo or nearer)? Boxes of more than FRONTEND_HIDDEN_MAX_BOX pixels are not tested. */
@@ -441,13 +447,9 @@ walk(struct frontend *fe, struct frame *f, struct tri_walk *w, uint32_t i0, uint
                 n_no_centre++;
                 continue;
             }
-            if (hide && unclipped) {
-                float z = p0->z < p1->z ? p0->z : p1->z;
-                z = p2->z < z ? p2->z : z;
-                if (hidden_behind(hide, fb_w, box, z)) {
-                    n_hidden++;
-                    continue;
-                }
+            if (hide && unclipped && hidden_behind(hide, fb_w, box, min3f(p0->z, p1->z, p2->z))) {
+                n_hidden++;
+                continue;
             }
             if (unclipped && !culls) { /* setup reads the snapped corners alone: the
                                           records wait until it draws the triangle */
@@ -475,14 +477,11 @@ walk(struct frontend *fe, struct frame *f, struct tri_walk *w, uint32_t i0, uint
                 n_no_centre++; /* whatever its facing: its determinant is never computed */
                 continue;
             }
-            if (hide && unclipped) {
-                float z = corner_depth(v[0]), z1 = corner_depth(v[1]), z2 = corner_depth(v[2]);
-                z = z1 < z ? z1 : z;
-                z = z2 < z ? z2 : z;
-                if (hidden_behind(hide, fb_w, box, z)) {
-                    n_hidden++;
-                    continue;
-                }
+            if (hide && unclipped &&
+                hidden_behind(hide, fb_w, box,
+                              min3f(corner_depth(v[0]), corner_depth(v[1]), corner_depth(v[2])))) {
+                n_hidden++;
+                continue;
             }
         }
         /* culling: once per source triangle, never per clipped piece */
