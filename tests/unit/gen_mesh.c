@@ -5,6 +5,12 @@
 #include <stdlib.h>
 #include <string.h>
 
+double gen_rnd(unsigned *s, double lo, double hi)
+{
+    *s = *s * 1103515245u + 12345u;
+    return lo + (hi - lo) * ((*s >> 8) & 0xffffff) / 16777216.0;
+}
+
 int gen_bumpy_sphere(struct mesh *m, int rows, int dup, int every, float crease_deg)
 {
     const int cols = 2 * rows, n_pos = (rows - 1) * cols + 2;

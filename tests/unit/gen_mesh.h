@@ -1,4 +1,5 @@
-/* gen_mesh.h: meshes the unit tests make for themselves (tests/unit/gen_mesh.c). */
+/* gen_mesh.h: meshes (and the random numbers for views of them) the unit tests make for
+ * themselves (tests/unit/gen_mesh.c). */
 #ifndef RASTTY_TEST_GEN_MESH_H
 #define RASTTY_TEST_GEN_MESH_H
 
@@ -12,5 +13,9 @@
  * mesh_build with crease angle crease_deg (180: smooth, one vertex a position; 0: faceted,
  * several). Materials are the caller's to add (m->materials is NULL). 0, or -1. */
 int gen_bumpy_sphere(struct mesh *m, int rows, int dup, int every, float crease_deg);
+
+/* The next number of the sequence *s (a linear congruential step), scaled into [lo, hi):
+ * the random views the tests draw, the same on every machine. */
+double gen_rnd(unsigned *s, double lo, double hi);
 
 #endif

@@ -105,12 +105,6 @@ TEST(clusters_hold_their_triangles_and_the_tree_its_clusters)
     mesh_free(&m);
 }
 
-static double rnd(unsigned *s, double lo, double hi)
-{
-    *s = *s * 1103515245u + 12345u;
-    return lo + (hi - lo) * ((*s >> 8) & 0xffffff) / 16777216.0;
-}
-
 TEST(cluster_culling_draws_the_same_bytes_from_every_view)
 {
     struct mesh m;
@@ -126,21 +120,21 @@ TEST(cluster_culling_draws_the_same_bytes_from_every_view)
         struct camera cam;
         camera_default(&cam);
         /* near (inside the bumps, through the near plane) to far (sub-pixel) */
-        double dist = view % 5 == 0 ? rnd(&seed, 0.6, 1.3) : exp(rnd(&seed, log(1.5), log(300)));
-        double th = rnd(&seed, 0, 2 * M_PI), el = rnd(&seed, -1.4, 1.4);
+        double dist = view % 5 == 0 ? gen_rnd(&seed, 0.6, 1.3) : exp(gen_rnd(&seed, log(1.5), log(300)));
+        double th = gen_rnd(&seed, 0, 2 * M_PI), el = gen_rnd(&seed, -1.4, 1.4);
         cam.eye = v3(dist * cos(el) * cos(th), dist * sin(el), dist * cos(el) * sin(th));
         /* aimed off the centre: partly off screen */
-        cam.target = v3(rnd(&seed, -1.2, 1.2), rnd(&seed, -1.2, 1.2), rnd(&seed, -1.2, 1.2));
-        cam.fov_deg = rnd(&seed, 10, 90);
-        cam.near = view % 7 == 0 ? rnd(&seed, 0.2, 2) : 0.05;
+        cam.target = v3(gen_rnd(&seed, -1.2, 1.2), gen_rnd(&seed, -1.2, 1.2), gen_rnd(&seed, -1.2, 1.2));
+        cam.fov_deg = gen_rnd(&seed, 10, 90);
+        cam.near = view % 7 == 0 ? gen_rnd(&seed, 0.2, 2) : 0.05;
         cam.far = view % 11 == 0 ? dist : 1000;
         if (view % 9 == 0)
-            cam.ortho_height = rnd(&seed, 0.05, 4);
+            cam.ortho_height = gen_rnd(&seed, 0.05, 4);
         struct draw_item item = {.mesh = &m, .model = m4_identity()};
         if (view % 4 == 1) /* mirrored: every winding turns */
             item.model = m4_scale(v3(-1, 1, 1));
         if (view % 4 == 2) /* stretched and turned */
-            item.model = m4_mul(m4_rotate(v3(1, 2, 3), rnd(&seed, 0, 360)),
+            item.model = m4_mul(m4_rotate(v3(1, 2, 3), gen_rnd(&seed, 0, 360)),
                                 m4_scale(v3(1, 0.3, 2)));
         for (int cull = 0; cull < CULL_COUNT; cull++)
             for (int split = SPLIT_TILES; split <= SPLIT_SLICES; split++) {

@@ -42,12 +42,6 @@ static int sphere(struct mesh *m, int rows, int dup, float crease, bool cutout)
     return 0;
 }
 
-static double rnd(unsigned *s, double lo, double hi)
-{
-    *s = *s * 1103515245u + 12345u;
-    return lo + (hi - lo) * ((*s >> 8) & 0xffffff) / 16777216.0;
-}
-
 TEST(hidden_triangles_dropped_change_no_byte_from_any_view)
 {
     struct mesh faceted, smooth;
@@ -65,20 +59,20 @@ TEST(hidden_triangles_dropped_change_no_byte_from_any_view)
     for (int view = 0; view < 100; view++) {
         struct camera cam;
         camera_default(&cam);
-        double dist = view % 5 == 0 ? rnd(&seed, 0.8, 1.5) : exp(rnd(&seed, log(2), log(60)));
-        double th = rnd(&seed, 0, 2 * M_PI), el = rnd(&seed, -1.4, 1.4);
+        double dist = view % 5 == 0 ? gen_rnd(&seed, 0.8, 1.5) : exp(gen_rnd(&seed, log(2), log(60)));
+        double th = gen_rnd(&seed, 0, 2 * M_PI), el = gen_rnd(&seed, -1.4, 1.4);
         cam.eye = v3(dist * cos(el) * cos(th), dist * sin(el), dist * cos(el) * sin(th));
-        cam.target = v3(rnd(&seed, -1, 1), rnd(&seed, -1, 1), rnd(&seed, -1, 1));
-        cam.fov_deg = rnd(&seed, 15, 80);
+        cam.target = v3(gen_rnd(&seed, -1, 1), gen_rnd(&seed, -1, 1), gen_rnd(&seed, -1, 1));
+        cam.fov_deg = gen_rnd(&seed, 15, 80);
         if (view % 9 == 0)
-            cam.ortho_height = rnd(&seed, 0.5, 6);
+            cam.ortho_height = gen_rnd(&seed, 0.5, 6);
         /* the two spheres overlapping, in either order in the list */
         struct draw_item items[2] = {
             {.mesh = &faceted, .model = m4_identity()},
             {.mesh = &smooth,
-             .model = m4_mul(m4_translate(v3(rnd(&seed, -1, 1), rnd(&seed, -1, 1),
-                                             rnd(&seed, -1.5, 1.5))),
-                             m4_rotate(v3(1, 2, 3), rnd(&seed, 0, 360)))}};
+             .model = m4_mul(m4_translate(v3(gen_rnd(&seed, -1, 1), gen_rnd(&seed, -1, 1),
+                                             gen_rnd(&seed, -1.5, 1.5))),
+                             m4_rotate(v3(1, 2, 3), gen_rnd(&seed, 0, 360)))}};
         if (view % 2) {
             struct draw_item tmp = items[0];
             items[0] = items[1], items[1] = tmp;
