@@ -83,8 +83,10 @@ enum debug_view { VIEW_COLOR, VIEW_DEPTH, VIEW_NORMALS, VIEW_OVERDRAW, VIEW_WIRE
  *                 whole meshes) for every PIPELINE_SLICE_PIXELS pixels, else tiles; tiles
  *                 always for wireframe, the wireframe overlay and the overdraw count. */
 /* Cluster culling (--cluster-cull; cluster_cull.h): whole clusters of a mesh's triangles
- * dropped before the vertex stage when they cannot reach a pixel. Never changes a picture.
- * Off by default: measured, it does not pay yet (README, "Cost against triangles"). */
+ * dropped before the vertex stage when they cannot reach a pixel, or (with --hidden-cull)
+ * lie behind the depth drawn so far. Never changes a picture. On by default (README, "Cost
+ * against triangles": the sports car at 160x96 27% faster, the bunny and the head within
+ * 3%). */
 enum cluster_cull { CLUSTER_CULL_OFF, CLUSTER_CULL_ON, CLUSTER_CULL_COUNT };
 /* Hidden triangles (--hidden-cull; frontend.h, "Hidden"): a triangle whose nearest corner
  * lies at or behind what the depth buffer already holds over its whole pixel box is dropped

@@ -29,12 +29,13 @@ struct frame_stats {
     uint64_t meshes_culled; /* whole meshes outside the frustum (bounding sphere) */
     uint64_t tris_full;     /* what tris_in would be at full detail (--lod off) */
     /* clusters (cluster_cull.h): tested, dropped whole (outside a frustum plane, facing away
-     * under culling, no pixel centre in their screen box), and drawn triangle by triangle;
-     * tested = frustum + facing + no_centre + drawn. With slices, a cluster two slices
-     * hold triangles of is counted by both. Their triangles count as tris_culled, tris_rejected
-     * and tris_no_centre. */
+     * under culling, no pixel centre in their screen box, hidden behind the depth drawn so
+     * far: frontend.h), and drawn triangle by triangle; tested = frustum + facing +
+     * no_centre + hidden + drawn. With slices, a cluster two slices hold triangles of is
+     * counted by the one with its first. Their triangles count as tris_culled,
+     * tris_rejected, tris_no_centre and tris_hidden. */
     uint64_t clusters_tested, clusters_frustum, clusters_facing, clusters_no_centre,
-        clusters_drawn;
+        clusters_hidden, clusters_drawn;
     /* the cluster hierarchy (scene/dag.h, --lod auto): clusters in the cut (drawn or culled),
      * their triangles, and a bit per level they come from */
     uint64_t dag_cut, dag_tris;

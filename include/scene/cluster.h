@@ -1,18 +1,21 @@
-/* cluster.h: a mesh's triangles in clusters with a tree over them, so that a frame can
- * drop whole clusters that cannot reach a pixel before their vertices are transformed
- * (render/cluster_cull.h; --cluster-cull on).
+/* cluster.h: a mesh's triangles in clusters, so that a frame can drop whole clusters that
+ * cannot reach a pixel before their vertices are transformed (render/cluster_cull.h;
+ * --cluster-cull, on by default).
  *
  * Drawing order. The order triangles are drawn in decides a pixel where two surfaces meet
  * at the same depth (the depth test is LESS: the first one stays), and culling must never
  * change a pixel, so it must not change that order. meshopt_buildMeshlets regroups the
  * index buffer into compact meshlets (and returns their corners, not which triangles they
  * were); here a cluster is a run of CLUSTER_MAX_TRIS consecutive opaque triangles of the
- * file (mesh.n_opaque: the blended ones are drawn apart, sorted), and the drawn clusters are
- * walked in the file's order. Exporters write triangles in spatially coherent order and
- * mesh_build numbers vertices in order of first use, so a run is a small patch (on a
- * scanned grid, a strip) whose vertices lie in a few short ranges. Tried and dropped
- * (README): sets of 32 or 128 triangles by the Morton order of their centroids (compact,
- * but each drawn one reads its triangles and vertices from all over memory: slower).
+ * file (mesh.n_opaque: the blended ones are drawn apart, sorted), kept in the file's order
+ * and walked in it. Exporters write triangles in spatially coherent order and mesh_build
+ * numbers vertices in order of first use, so a run is a small patch (on a scanned grid, a
+ * strip) whose vertices lie close together. Tried and dropped (README): sets of triangles
+ * by the Morton order of their centroids (compact, but each drawn one reads its triangles
+ * and vertices from all over memory: slower); a tree over the clusters (its nodes cost a
+ * test each and seldom drop anything in a framed view; each cluster read out of the file's
+ * order missed the cache); runs of 16 and 32 triangles (more tests than they save: the car
+ * 5.6 and 4.8 ms against 4.4 at 64; 128 the same as 64).
  *
  * Per cluster:
  *   - its oriented box (object space): the mean face normal, and in its plane the
@@ -24,13 +27,12 @@
  *     within acos(cone_cos) of cone_axis; no_cone when a triangle is degenerate (its facing
  *     on screen is decided by rounding) or the cone is wider than acos(CLUSTER_MIN_CONE_COS);
  *   - one_sided: every triangle's material is MAT_ONE_SIDED (culled under --cull auto);
- *   - its vertices as ranges of consecutive indices: the vertex stage runs on exactly those.
- * The tree: the clusters sorted by the Morton code of their box centre (10 bits an axis
- * over the mesh's box), split where the codes' highest differing bit changes, depth first
- * in one array (mesh_clusters.c[]: a node's subtree ends at its skip); a node's box is the
- * axis-aligned box of its children's, so it holds them, and it has no cone.
- * Memory: 7.4 bytes a triangle (the 1M-triangle sphere: 7.4 MB, 24% of its mesh; lost_empire
- * 9%, the sports car 29%); build 0.4 s a million triangles (README). */
+ *   - its vertices' reach: v_end, its highest vertex + 1, and v_need, the lowest vertex it
+ *     or any later cluster uses. The front end makes vertices in order, up to each drawn
+ *     cluster's v_end, and jumps to its v_need first: the vertices it skips are read by
+ *     dropped clusters alone.
+ * Memory: 92 bytes a cluster, 1.4 a triangle (the 1M-triangle sphere: 1.4 MB, 5% of its
+ * mesh); build 0.07 s a million triangles (README). */
 #ifndef RASTTY_CLUSTER_H
 #define RASTTY_CLUSTER_H
 
@@ -40,7 +42,7 @@
 
 #include "mesh.h"
 
-#define CLUSTER_MAX_TRIS 32
+#define CLUSTER_MAX_TRIS 64
 #define CLUSTER_MIN_CONE_COS 0.05f
 
 /* Build m's clusters over its opaque triangles (replacing any): 0, or -1 out of memory (m

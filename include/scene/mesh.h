@@ -104,8 +104,8 @@ struct mesh_camera {
 };
 #define MESH_MAX_CAMERAS 64
 
-/* A cluster: a spatially compact set of a mesh's triangles with its bounds, or a node of
- * the tree over them (cluster.h builds them and says what they hold). */
+/* A cluster: a run of a mesh's triangles with its bounds (cluster.h builds them and says
+ * what they hold). */
 struct mesh_cluster {
     float center[3];     /* box, object space: center + sum of s_i half[i] axis[i], |s_i| <= 1 */
     float axis[3][3];    /* its axes: unit, orthogonal (to rounding; half[] allows for it) */
@@ -113,25 +113,16 @@ struct mesh_cluster {
     float cone_axis[3];  /* unit */
     float cone_cos;      /* every face normal n: dot(n, cone_axis) >= cone_cos */
     uint32_t tri_first;  /* its triangles: tri_first .. + n_tris - 1 (the file's order) */
-    uint32_t tri_lo, tri_hi; /* the lowest and highest of them (a node: of its subtree's) */
-    uint32_t skip;       /* the next node after its subtree (a cluster: its own index + 1) */
-    uint32_t n_sub;      /* triangles in its subtree */
-    uint32_t n_leaves;   /* clusters in its subtree (a cluster: 1) */
-    uint32_t range_first; /* its vertices: ranges[range_first .. + n_ranges) */
-    uint16_t n_ranges;
-    uint8_t n_tris;      /* 1 .. CLUSTER_MAX_TRIS; 0: a node */
+    uint32_t v_end;      /* its highest vertex + 1 */
+    uint32_t v_need;     /* the lowest vertex of it and of every later cluster */
+    uint8_t n_tris;      /* 1 .. CLUSTER_MAX_TRIS */
     uint8_t flags;       /* CLUSTER_NO_BOUNDS, CLUSTER_NO_CONE, CLUSTER_ONE_SIDED */
 };
 enum { CLUSTER_NO_BOUNDS = 1, CLUSTER_NO_CONE = 2, CLUSTER_ONE_SIDED = 4 };
 
 struct mesh_clusters {
-    struct mesh_cluster *c; /* the tree in depth-first order, c[0] the root */
+    struct mesh_cluster *c; /* in the file's order: c[k] holds triangles k * CLUSTER_MAX_TRIS on */
     uint32_t n;
-    uint32_t n_leaves;
-    uint32_t *leaf;        /* the clusters in the file's order: leaf[k] is the node of
-                              triangles k * CLUSTER_MAX_TRIS on */
-    uint32_t (*ranges)[2]; /* vertex ranges [first, end) */
-    uint32_t n_ranges;
 };
 
 struct mesh {

@@ -81,7 +81,7 @@ static const struct flag flags[] = {
     {"--background", F_BACKGROUND, ARG_VALUE, C_DRAW, "R,G,B", "background colour, 0..255 each (default 0,0,0)", NULL, 0},
     {"--sky", F_SKY, ARG_VALUE, C_DRAW, "procedural", "the generated sky behind the scene (the viewer's default)", NULL, 0},
     ENUM_FLAG("--cull", C_DRAW | C_BENCH, "face culling", render_cull_names, render.cull),
-    ENUM_FLAG("--cluster-cull", C_DRAW | C_BENCH, "drop whole clusters of triangles that cannot reach a pixel (outside the view, facing away when culled, between pixel centres) before their vertices are transformed; never changes a picture (default off: it does not pay yet)", render_cluster_cull_names, render.cluster_cull),
+    ENUM_FLAG("--cluster-cull", C_DRAW | C_BENCH, "drop whole clusters of 64 triangles that cannot reach a pixel (outside the view, facing away when culled, between pixel centres, or with --hidden-cull behind the depth drawn so far) before their vertices are transformed; never changes a picture", render_cluster_cull_names, render.cluster_cull),
     ENUM_FLAG("--hidden-cull", C_DRAW | C_BENCH, "drop a triangle whose nearest corner is at or behind what the depth buffer already holds over its whole pixel box (the batches drawn so far, one thread at a time), before its vertices are lit or it is set up; never changes a picture", render_hidden_cull_names, render.hidden_cull),
     {"--hidden-lines", F_HIDDEN_LINES, ARG_NONE, C_DRAW, NULL, "wire: hide edges behind the model's surfaces", NULL, 0},
     ENUM_FLAG("--wire", C_DRAW | C_BENCH, "wire: which edges: all, outline (silhouettes, creases and borders) or auto (all while readable: outline when they would light over half of the model's area)", render_wire_names, render.wire),

@@ -164,7 +164,8 @@ int prepare_scene(const struct options *o, const char *path, struct scene *s, ch
         scene_free(s);
         return -1;
     }
-    /* clusters only when they are used (--cluster-cull on): they do not pay yet (README) */
+    /* clusters when they are used (--cluster-cull on, the default; 0.07 s a million
+     * triangles) */
     if (o->render.cluster_cull == CLUSTER_CULL_ON && scene_build_clusters(s, e)) {
         scene_free(s);
         return -1;
@@ -202,12 +203,13 @@ void prepare_print_stats(const struct frame_stats *st)
             (unsigned long long)st->pixels_shaded, st->render_ms);
     if (st->clusters_tested)
         fprintf(stderr, "clusters: tested %llu, culled %llu (frustum %llu, facing %llu, no "
-                        "pixel centre %llu), drawn %llu\n",
+                        "pixel centre %llu, hidden %llu), drawn %llu\n",
                 (unsigned long long)st->clusters_tested,
                 (unsigned long long)(st->clusters_frustum + st->clusters_facing +
-                                     st->clusters_no_centre),
+                                     st->clusters_no_centre + st->clusters_hidden),
                 (unsigned long long)st->clusters_frustum, (unsigned long long)st->clusters_facing,
-                (unsigned long long)st->clusters_no_centre, (unsigned long long)st->clusters_drawn);
+                (unsigned long long)st->clusters_no_centre,
+                (unsigned long long)st->clusters_hidden, (unsigned long long)st->clusters_drawn);
     if (st->dag_cut) {
         int lo = __builtin_ctz(st->dag_levels), hi = 31 - __builtin_clz(st->dag_levels);
         fprintf(stderr, "lod: cluster hierarchy, a cut of %llu clusters of levels %d-%d, %llu "

@@ -55,8 +55,11 @@ static bool faces_away(const struct cluster_view *v, const float axis[3], float 
     return beta + spread + alpha < M_PI / 2 - CLUSTER_FACING_MARGIN;
 }
 
-enum cluster_verdict cluster_test(const struct cluster_view *v, const struct mesh_cluster *c)
+enum cluster_verdict cluster_test(const struct cluster_view *v, const struct mesh_cluster *c,
+                                  struct cluster_rect *out)
 {
+    if (out)
+        out->valid = false;
     if (c->flags & CLUSTER_NO_BOUNDS)
         return CLUSTER_DRAW;
     const double(*m)[4] = v->mvp.m;
@@ -102,16 +105,27 @@ enum cluster_verdict cluster_test(const struct cluster_view *v, const struct mes
         wmin -= fabs(A[a][3]), wmag += fabs(A[a][3]);
     if (!(wmin > 1e-9 * wmag))
         return CLUSTER_DRAW;
-    double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+    /* the eight corners, side by side (the compiler's vectors): corner k takes +A[a] where
+     * bit a of k is set, -A[a] where not */
+    static const double sg[3][8] = {{-1, 1, -1, 1, -1, 1, -1, 1},
+                                    {-1, -1, 1, 1, -1, -1, 1, 1},
+                                    {-1, -1, -1, -1, 1, 1, 1, 1}};
+    double q[4][8], x[8], y[8], z[8];
+    for (int r = 0; r < 4; r++)
+        for (int k = 0; k < 8; k++)
+            q[r][k] = C[r] + sg[0][k] * A[0][r] + sg[1][k] * A[1][r] + sg[2][k] * A[2][r];
+    const double hw = 0.5 * v->fb_w, hh = 0.5 * v->fb_h;
     for (int k = 0; k < 8; k++) {
-        double q[4];
-        for (int r = 0; r < 4; r++)
-            q[r] = C[r] + ((k & 1) ? A[0][r] : -A[0][r]) + ((k & 2) ? A[1][r] : -A[1][r]) +
-                   ((k & 4) ? A[2][r] : -A[2][r]);
-        double rw = 1.0 / q[3];
-        double x = (q[0] * rw + 1.0) * 0.5 * v->fb_w, y = (1.0 - q[1] * rw) * 0.5 * v->fb_h;
-        x0 = x < x0 ? x : x0, x1 = x > x1 ? x : x1;
-        y0 = y < y0 ? y : y0, y1 = y > y1 ? y : y1;
+        double rw = 1.0 / q[3][k];
+        x[k] = (q[0][k] * rw + 1.0) * hw;
+        y[k] = (1.0 - q[1][k] * rw) * hh;
+        z[k] = 0.5 * q[2][k] * rw + 0.5;
+    }
+    double x0 = x[0], x1 = x[0], y0 = y[0], y1 = y[0], z0 = z[0];
+    for (int k = 1; k < 8; k++) {
+        x0 = x[k] < x0 ? x[k] : x0, x1 = x[k] > x1 ? x[k] : x1;
+        y0 = y[k] < y0 ? y[k] : y0, y1 = y[k] > y1 ? y[k] : y1;
+        z0 = z[k] < z0 ? z[k] : z0;
     }
     if (!(x0 <= x1 && y0 <= y1)) /* (not finite) */
         return CLUSTER_DRAW;
@@ -124,5 +138,14 @@ enum cluster_verdict cluster_test(const struct cluster_view *v, const struct mes
     px1 = px1 > v->fb_w - 1 ? v->fb_w - 1 : px1, py1 = py1 > v->fb_h - 1 ? v->fb_h - 1 : py1;
     if (px0 > px1 || py0 > py1)
         return CLUSTER_NO_CENTRE;
+    if (out) {
+        out->x0 = (int)px0, out->y0 = (int)py0, out->x1 = (int)px1, out->y1 = (int)py1;
+        /* the least of z/w over the box is at a corner (z/w is monotone along any segment
+         * with w > 0): no point of a triangle, nor of a piece clipping makes of it, is
+         * nearer; a corner's depth is that in float, rounded to nearest, after the vertex
+         * stage's or the clipper's own roundings: 1e-6 below covers them */
+        out->z_lo = (float)(z0 - 1e-6 * (1 + fabs(z0)));
+        out->valid = true;
+    }
     return CLUSTER_DRAW;
 }

@@ -529,27 +529,6 @@ walk(struct frontend *fe, struct frame *f, struct tri_walk *w, uint32_t i0, uint
     return 0;
 }
 
-/* the vertex stage for cluster c's vertices that this walk has not made (a run of
- * consecutive ones in one call) */
-static void cluster_vertices(struct frontend *fe, const struct frame *f, const struct mesh *m,
-                             struct vertex_out *vo, const struct mesh_cluster *c)
-{
-    const uint32_t(*r)[2] = m->clusters->ranges + c->range_first;
-    uint8_t *done = fe->vdone;
-    for (int i = 0; i < c->n_ranges; i++)
-        for (uint32_t v = r[i][0]; v < r[i][1];) {
-            if (done[v]) {
-                v++;
-                continue;
-            }
-            uint32_t to = v;
-            while (to < r[i][1] && !done[to])
-                done[to++] = 1;
-            f->k->vertex_run(m, &f->u, vo, v, to);
-            v = to;
-        }
-}
-
 /* a buffer of at least n bytes, zeroed */
 static int zeroed(uint8_t **buf, size_t *cap, size_t n, struct err *e)
 {
@@ -564,75 +543,82 @@ static int zeroed(uint8_t **buf, size_t *cap, size_t n, struct err *e)
     return 0;
 }
 
-/* Triangles i0 .. i1-1 by clusters (cluster.h, cluster_cull.h). First the tree of
- * clusters, depth first: a node that cannot reach a pixel drops its subtree whole, and the
- * clusters that may draw are marked (only the tree's boxes are read). Then the marked
- * clusters in the file's order, each one's vertices made and its triangles walked as
- * without clusters: the drawn triangles keep the file's order, which decides ties of
- * depth, and memory is read forward. */
+/* Is a cluster lying at r (cluster_cull.h) hidden over its whole rectangle by what the
+ * depth buffer holds (hidden_behind's question for all its triangles at once: each one's
+ * box lies in the rectangle and each one's corners at r.z_lo or behind)? Rectangles of
+ * more than FRONTEND_HIDDEN_MAX_RECT pixels are not tested. */
+static bool cluster_hidden(const float *depth, int fb_w, const struct cluster_rect *r)
+{
+    if ((int64_t)(r->x1 - r->x0 + 1) * (r->y1 - r->y0 + 1) > FRONTEND_HIDDEN_MAX_RECT)
+        return false;
+    for (int y = r->y0; y <= r->y1; y++) {
+        const float *row = depth + (size_t)y * fb_w;
+        for (int x = r->x0; x <= r->x1; x++)
+            if (r->z_lo < row[x])
+                return false;
+    }
+    return true;
+}
+
+/* Triangles i0 .. i1-1 by clusters (cluster.h, cluster_cull.h), in the file's order (which
+ * decides ties of depth): each cluster tested whole first — outside the view, facing away,
+ * between pixel centres, or (with the hidden test on) behind the depth drawn so far over
+ * its whole rectangle, after the batch is drawn when it holds FRONTEND_CLUSTER_FLUSH
+ * triangles — and dropped before its vertices are made; the others' vertices made and
+ * their triangles walked as without clusters. */
 static int walk_clusters(struct frontend *fe, struct frame *f, struct tri_walk *w,
                          uint32_t i0, uint32_t i1, struct err *e)
 {
     const struct mesh *m = w->m;
     const struct mesh_clusters *cs = m->clusters;
-    const size_t words = ((size_t)cs->n_leaves + 63) / 64;
-    if (zeroed(&fe->vdone, &fe->vdone_cap, m->n_verts, e) ||
-        zeroed((uint8_t **)&fe->marks, &fe->marks_cap, words * sizeof *fe->marks, e))
-        return -1;
-    uint64_t *mark = fe->marks;
+    uint32_t vdone = 0; /* vertices below it made, or read by no cluster still to come */
     struct cluster_view cv;
     cluster_view_init(&cv, f->u.model, f->u.mvp, f->u.eye, f->u.ortho, f->u.view_back,
                       f->fb->w, f->fb->h, w->cull, w->by_material);
     struct frame_stats *st = f->stats;
-    uint64_t dropped[4] = {0, 0, 0, 0};
-    for (uint32_t k = 0; k < cs->n;) {
-        const struct mesh_cluster *c = &cs->c[k];
-        if (c->tri_hi < i0 || c->tri_lo >= i1) {
-            k = c->skip;
-            continue;
-        }
-        const bool whole = c->tri_lo >= i0 && c->tri_hi < i1;
-        const bool counts = c->tri_lo >= i0; /* (with slices: the one with its first) */
-        enum cluster_verdict cvd = cluster_test(&cv, c);
-        if (cvd != CLUSTER_DRAW && (whole || c->n_tris)) {
-            uint64_t n = c->n_sub;
-            if (!whole) { /* (a cluster partly in this slice) */
-                uint32_t a = c->tri_lo > i0 ? c->tri_lo : i0, b = c->tri_hi + 1;
-                n = (b < i1 ? b : i1) - a;
-            }
-            const uint64_t nl = counts ? c->n_leaves : 0;
-            st->clusters_tested += nl;
-            if (cvd == CLUSTER_FRUSTUM)
-                st->clusters_frustum += nl, dropped[1] += n;
-            else if (cvd == CLUSTER_FACING)
-                st->clusters_facing += nl, dropped[3] += n;
-            else
-                st->clusters_no_centre += nl, dropped[2] += n;
-            k = c->skip;
-            continue;
-        }
-        if (c->n_tris) {
-            st->clusters_tested += counts;
-            st->clusters_drawn += counts;
-            const uint32_t id = c->tri_first / CLUSTER_MAX_TRIS;
-            mark[id >> 6] |= 1ull << (id & 63);
-        }
-        k++;
-    }
-    w->n_rejected += dropped[1];
-    w->n_no_centre += dropped[2];
-    w->n_culled += dropped[3];
-    for (size_t wd = 0; wd < words; wd++)
-        for (uint64_t bits = mark[wd]; bits; bits &= bits - 1) {
-            const uint32_t id = (uint32_t)(wd * 64) + (uint32_t)__builtin_ctzll(bits);
-            const struct mesh_cluster *c = &cs->c[cs->leaf[id]];
-            uint32_t a = c->tri_lo > i0 ? c->tri_lo : i0;
-            uint32_t b = c->tri_hi + 1 < i1 ? c->tri_hi + 1 : i1;
-            cluster_vertices(fe, f, m, w->vo, c);
-            uint32_t all = m->n_verts;
-            if (walk(fe, f, w, a, b, &all, false, e))
+    uint64_t dropped[CLUSTER_VERDICTS] = {0}, clusters[CLUSTER_VERDICTS] = {0}; /* by verdict:
+                                                                triangles, clusters */
+    for (uint32_t id = i0 / CLUSTER_MAX_TRIS; id < cs->n; id++) {
+        const struct mesh_cluster *c = &cs->c[id];
+        if (c->tri_first >= i1)
+            break;
+        const uint32_t a = c->tri_first > i0 ? c->tri_first : i0;
+        const uint32_t b = c->tri_first + c->n_tris < i1 ? c->tri_first + c->n_tris : i1;
+        struct cluster_rect r;
+        enum cluster_verdict cvd = cluster_test(&cv, c, w->hide ? &r : NULL);
+        if (cvd == CLUSTER_DRAW && w->hide && r.valid) {
+            if (fe->batch[fe->cur].n_tris >= FRONTEND_CLUSTER_FLUSH && flush(fe, f, e))
                 return -1;
+            if (cluster_hidden(w->hide, f->fb->w, &r))
+                cvd = CLUSTER_HIDDEN;
         }
+        clusters[cvd] += c->tri_first >= i0; /* (with slices: the one with its first) */
+        if (cvd != CLUSTER_DRAW) {
+            dropped[cvd] += b - a;
+            continue;
+        }
+        /* the vertex stage from the lowest vertex this or a later cluster reads (those
+         * below it that dropped clusters alone read are never made) to this one's last */
+        vdone = vdone > c->v_need ? vdone : c->v_need;
+        if (vdone < c->v_end) {
+            vertex_stage(f, w, vdone, c->v_end);
+            vdone = c->v_end;
+        }
+        uint32_t all = m->n_verts;
+        if (walk(fe, f, w, a, b, &all, false, e))
+            return -1;
+    }
+    w->n_rejected += dropped[CLUSTER_FRUSTUM];
+    w->n_culled += dropped[CLUSTER_FACING];
+    w->n_no_centre += dropped[CLUSTER_NO_CENTRE];
+    w->n_hidden += dropped[CLUSTER_HIDDEN];
+    for (int k = 0; k < CLUSTER_VERDICTS; k++)
+        st->clusters_tested += clusters[k];
+    st->clusters_drawn += clusters[CLUSTER_DRAW];
+    st->clusters_frustum += clusters[CLUSTER_FRUSTUM];
+    st->clusters_facing += clusters[CLUSTER_FACING];
+    st->clusters_no_centre += clusters[CLUSTER_NO_CENTRE];
+    st->clusters_hidden += clusters[CLUSTER_HIDDEN];
     return 0;
 }
 
@@ -745,7 +731,7 @@ static int walk_cut(struct frontend *fe, struct frame *f, struct tri_walk *w, ui
         st->dag_tris += n;
         w->n_cut += n;
         st->clusters_tested += counts;
-        enum cluster_verdict cvd = cluster_test(&cv, &c->box);
+        enum cluster_verdict cvd = cluster_test(&cv, &c->box, NULL);
         if (cvd != CLUSTER_DRAW) {
             dropped[cvd] += n;
             if (cvd == CLUSTER_FRUSTUM)
@@ -802,6 +788,28 @@ static int walk_cut(struct frontend *fe, struct frame *f, struct tri_walk *w, ui
     return 0;
 }
 
+/* by position: the walk makes the vertex stage's records of the triangles that pass their
+ * box alone, for a mesh whose vertices share positions (mesh.h keeps pos_id for at most one
+ * position for every two vertices: lost_empire, 0.22, gains 17%; where every vertex has a
+ * position of its own, the sports car, it lost 14%), with more triangles than the
+ * framebuffer has pixels (most then hold no pixel centre: lost_empire at 160x96; at
+ * 640x480, 225k triangles on 307k pixels, it lost 4%). Preferred to clusters: on
+ * lost_empire, whose clusters are seldom dropped whole (10% at 160x96), walking by clusters
+ * lost 25%. */
+static bool walks_by_position(const struct mesh *m, int fb_w, int fb_h)
+{
+    return m->pos_id && 2 * (uint64_t)m->n_pos <= m->n_verts &&
+           m->n_tris > (uint64_t)fb_w * (uint64_t)fb_h;
+}
+
+bool frontend_by_clusters(const struct mesh *m, const struct render_opts *o, int fb_w, int fb_h,
+                          bool wire)
+{
+    return m->clusters && o->cluster_cull == CLUSTER_CULL_ON && !wire &&
+           o->view != VIEW_WIRE_OVERLAY && !dag_is_cut_mesh(m) &&
+           !walks_by_position(m, fb_w, fb_h);
+}
+
 int frontend_triangles(struct frontend *fe, struct frame *f, const struct draw_item *item,
                        const struct mesh *m, struct vertex_out *vo, bool depth_only,
                        uint32_t i0, uint32_t i1, uint32_t verts_from, struct err *e)
@@ -822,24 +830,14 @@ int frontend_triangles(struct frontend *fe, struct frame *f, const struct draw_i
     w.by_material = w.cull == CULL_AUTO && m->one_sided == MESH_SIDES_SOME;
     if (w.cull == CULL_AUTO)
         w.cull = m->one_sided == MESH_SIDES_ALL ? CULL_BACK : CULL_NONE;
-    /* clusters: not for wireframe (its pre-pass and the overlay's edges read every vertex) */
-    const bool clusters = m->clusters && o->cluster_cull == CLUSTER_CULL_ON && !depth_only &&
-                          f->span.mode != SHADE_WIRE && o->view != VIEW_WIRE_OVERLAY &&
-                          i1 <= m->n_opaque;
-    const bool cut = dag_is_cut_mesh(m) && !depth_only && f->span.mode != SHADE_WIRE &&
-                     o->view != VIEW_WIRE_OVERLAY;
-    /* by position: the walk makes the vertex stage's records of the triangles that pass
-     * their box alone (no one else reads the item's records: not wireframe's edges, not
-     * the hidden-line pre-pass), from the first vertex on; for a mesh whose vertices share
-     * positions (mesh.h keeps pos_id for at most one position for every two vertices:
-     * lost_empire, 0.22, gains 17%; where every vertex has a position of its own, the
-     * sports car, it lost 14%), with more triangles than the framebuffer has pixels (most
-     * then hold no pixel centre: lost_empire at 160x96; at 640x480, 225k triangles on 307k
-     * pixels, it lost 4%) */
-    const bool by_pos = !cut && !clusters && m->pos_id && 2 * (uint64_t)m->n_pos <= m->n_verts &&
-                        m->n_tris > (uint64_t)f->fb->w * (uint64_t)f->fb->h &&
-                        verts_from == 0 && i0 < i1 &&
-                        !depth_only && f->span.mode != SHADE_WIRE &&
+    const bool wire = f->span.mode == SHADE_WIRE;
+    const bool clusters = !depth_only && i1 <= m->n_opaque &&
+                          frontend_by_clusters(m, o, f->fb->w, f->fb->h, wire);
+    const bool cut = dag_is_cut_mesh(m) && !depth_only && !wire && o->view != VIEW_WIRE_OVERLAY;
+    /* by position (walks_by_position): from the first vertex on, and only where no one else
+     * reads the item's records (not wireframe's edges, not the hidden-line pre-pass) */
+    const bool by_pos = !cut && !clusters && walks_by_position(m, f->fb->w, f->fb->h) &&
+                        verts_from == 0 && i0 < i1 && !depth_only && !wire &&
                         o->view != VIEW_WIRE_OVERLAY;
     if (by_pos)
         f->stats->tris_by_position += i1 - i0;

@@ -162,8 +162,8 @@ static void slice_main(void *arg, int k)
         /* the vertex stage starts at the lowest vertex the slice's triangles use (one flat
          * loop over their indices: the compiler makes it a vector minimum) */
         uint32_t from = 0;
-        if (i0 && !(m->clusters && j->o->cluster_cull == CLUSTER_CULL_ON) && !dag_is_cut_mesh(m)) { /* (clusters:
-                                                       the front end makes their vertices) */
+        if (i0 && !frontend_by_clusters(m, j->o, f.fb->w, f.fb->h, f.span.mode == SHADE_WIRE) &&
+            !dag_is_cut_mesh(m)) { /* (the front end makes those vertices itself) */
             const uint32_t *idx = m->tris[i0];
             from = m->n_verts;
             for (size_t i = 0; i < 3 * (size_t)(i1 - i0); i++)
@@ -263,6 +263,7 @@ int plan_slices_draw(struct plan_slices *s, struct workers *w, const struct kern
         stats->clusters_frustum += st->clusters_frustum;
         stats->clusters_facing += st->clusters_facing;
         stats->clusters_no_centre += st->clusters_no_centre;
+        stats->clusters_hidden += st->clusters_hidden;
         stats->clusters_drawn += st->clusters_drawn;
         stats->dag_cut += st->dag_cut;
         stats->dag_tris += st->dag_tris;

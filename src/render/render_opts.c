@@ -61,7 +61,7 @@ void render_opts_default(struct render_opts *o)
     o->lod_ratio = 1;
     o->lod_px = LOD_DEFAULT_PX;
     o->cull = CULL_AUTO;
-    o->cluster_cull = CLUSTER_CULL_OFF;
+    o->cluster_cull = CLUSTER_CULL_ON;
     o->hidden_cull = HIDDEN_CULL_ON;
     o->view = VIEW_COLOR;
     o->textures = true;

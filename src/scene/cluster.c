@@ -11,8 +11,7 @@ size_t cluster_bytes(const struct mesh *m)
     const struct mesh_clusters *cs = m->clusters;
     if (!cs)
         return 0;
-    return sizeof *cs + cs->n * sizeof *cs->c + cs->n_ranges * sizeof *cs->ranges +
-           cs->n_leaves * sizeof *cs->leaf;
+    return sizeof *cs + cs->n * sizeof *cs->c;
 }
 
 /* the unit face normal of triangle t (file's winding), false when degenerate: the sine of
@@ -216,180 +215,22 @@ uint32_t cluster_morton3(const uint32_t q[3])
     return spread3(q[0]) | spread3(q[1]) << 1 | spread3(q[2]) << 2;
 }
 
-/* keys[0 .. n) ascending, by 16-bit digits (tmp: n more) */
-static void radix_sort(uint64_t *keys, uint64_t *tmp, size_t n)
+/* cluster c: triangles first .. first+n-1 (n <= CLUSTER_MAX_TRIS), its bounds and the
+ * end of its vertices (v_need is the caller's) */
+static void leaf(const struct mesh *m, uint32_t first, uint32_t n, struct mesh_cluster *c)
 {
-    static const int passes = 4;
-    size_t *count = calloc(65536, sizeof *count);
-    if (!count) { /* (a slower sort would do; the caller has the memory it needs) */
-        for (size_t i = 1; i < n; i++) { /* insertion: only for tiny meshes in practice */
-            uint64_t k = keys[i];
-            size_t j = i;
-            for (; j > 0 && keys[j - 1] > k; j--)
-                keys[j] = keys[j - 1];
-            keys[j] = k;
-        }
-        return;
-    }
-    for (int p = 0; p < passes; p++) {
-        const int sh = 16 * p;
-        memset(count, 0, 65536 * sizeof *count);
-        for (size_t i = 0; i < n; i++)
-            count[(keys[i] >> sh) & 0xffff]++;
-        size_t sum = 0;
-        for (size_t d = 0; d < 65536; d++) {
-            size_t c = count[d];
-            count[d] = sum;
-            sum += c;
-        }
-        for (size_t i = 0; i < n; i++)
-            tmp[count[(keys[i] >> sh) & 0xffff]++] = keys[i];
-        memcpy(keys, tmp, n * sizeof *keys);
-    }
-    free(count);
-}
-
-static int ascending(const void *a, const void *b)
-{
-    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
-    return x < y ? -1 : x > y;
-}
-
-/* what the build works on */
-struct builder {
-    const struct mesh *m;
-    struct mesh_clusters *cs;
-    size_t cap;
-    const struct mesh_cluster *leaves; /* in the file's order */
-    const uint64_t *keys;              /* Morton code << 32 | leaf, ascending */
-};
-
-/* cluster c: triangles first .. first+n-1 (n <= CLUSTER_MAX_TRIS), its vertex ranges
- * appended to *ranges (stamp: per vertex, the last cluster that listed it) */
-static int leaf(const struct mesh *m, uint32_t id, uint32_t first, uint32_t n,
-                struct mesh_cluster *c, uint32_t (**ranges)[2], uint32_t *n_ranges,
-                size_t *rcap, uint32_t *stamp)
-{
-    uint32_t tri[CLUSTER_MAX_TRIS];
+    uint32_t tri[CLUSTER_MAX_TRIS] = {0};
     for (uint32_t k = 0; k < n; k++)
         tri[k] = first + k;
     memset(c, 0, sizeof *c);
-    c->tri_first = c->tri_lo = first;
-    c->tri_hi = first + n - 1;
+    c->tri_first = first;
     c->n_tris = (uint8_t)n;
-    c->n_sub = n;
-    c->n_leaves = 1;
     cluster_bounds(m, tri, n, c);
-    /* its vertices, once each, ascending, as ranges */
-    uint32_t vl[3 * CLUSTER_MAX_TRIS];
-    int nv = 0;
     for (uint32_t k = 0; k < n; k++)
         for (int j = 0; j < 3; j++) {
             uint32_t v = m->tris[first + k][j];
-            if (stamp[v] != id)
-                stamp[v] = id, vl[nv++] = v;
+            c->v_end = v + 1 > c->v_end ? v + 1 : c->v_end;
         }
-    qsort(vl, (size_t)nv, sizeof *vl, ascending);
-    c->range_first = *n_ranges;
-    for (int k = 0; k < nv;) {
-        int j = k + 1;
-        while (j < nv && vl[j] == vl[j - 1] + 1)
-            j++;
-        if (*n_ranges == *rcap) {
-            size_t ncap = 2 * *rcap;
-            uint32_t(*g)[2] = realloc(*ranges, ncap * sizeof *g);
-            if (!g)
-                return -1;
-            *ranges = g, *rcap = ncap;
-        }
-        (*ranges)[*n_ranges][0] = vl[k];
-        (*ranges)[*n_ranges][1] = vl[j - 1] + 1;
-        (*n_ranges)++;
-        c->n_ranges++;
-        k = j;
-    }
-    return 0;
-}
-
-/* node i's box: the axis-aligned box of its children's corners (so that each child's box
- * lies inside it), widened outward to float */
-static void node_box(struct mesh_cluster *c, const struct mesh_cluster *x,
-                     const struct mesh_cluster *y)
-{
-    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    const struct mesh_cluster *ch[2] = {x, y};
-    for (int q = 0; q < 2; q++)
-        for (int k = 0; k < 8; k++)
-            for (int a = 0; a < 3; a++) {
-                double p = ch[q]->center[a];
-                for (int r = 0; r < 3; r++)
-                    p += ((k >> r) & 1 ? 1.0 : -1.0) * (double)ch[q]->half[r] *
-                         (double)ch[q]->axis[r][a];
-                lo[a] = p < lo[a] ? p : lo[a];
-                hi[a] = p > hi[a] ? p : hi[a];
-            }
-    for (int a = 0; a < 3; a++) {
-        c->center[a] = (float)(0.5 * (lo[a] + hi[a]));
-        double h = fmax(hi[a] - c->center[a], c->center[a] - lo[a]);
-        h = h * (1 + 1e-6) + 1e-30;
-        c->half[a] = (float)h;
-        if ((double)c->half[a] < h)
-            c->half[a] = nextafterf(c->half[a], INFINITY);
-        for (int r = 0; r < 3; r++)
-            c->axis[a][r] = a == r;
-    }
-}
-
-/* the subtree of the sorted clusters [a, b): one cluster, or a node split where their
- * Morton codes' highest differing bit changes (in the middle when they are one code) */
-static int build(struct builder *B, uint32_t a, uint32_t b)
-{
-    struct mesh_clusters *cs = B->cs;
-    if (cs->n == B->cap) {
-        size_t ncap = 2 * B->cap;
-        struct mesh_cluster *g = realloc(cs->c, ncap * sizeof *g);
-        if (!g)
-            return -1;
-        cs->c = g, B->cap = ncap;
-    }
-    const uint32_t i = cs->n++;
-    if (b - a == 1) {
-        cs->c[i] = B->leaves[(uint32_t)B->keys[a]];
-        cs->c[i].skip = i + 1;
-        cs->leaf[(uint32_t)B->keys[a]] = i;
-        return 0;
-    }
-    memset(&cs->c[i], 0, sizeof cs->c[i]);
-    uint64_t ca = B->keys[a] >> 32, cb = B->keys[b - 1] >> 32;
-    uint32_t s = a + (b - a) / 2;
-    if (ca != cb) { /* the first code with the highest differing bit set */
-        uint64_t bit = 1ull << (63 - __builtin_clzll(ca ^ cb));
-        uint32_t lo = a, hi = b - 1;
-        while (lo < hi) {
-            uint32_t mid = lo + (hi - lo) / 2;
-            if ((B->keys[mid] >> 32) & bit)
-                hi = mid;
-            else
-                lo = mid + 1;
-        }
-        s = lo;
-    }
-    if (build(B, a, s))
-        return -1;
-    const uint32_t right = cs->n;
-    if (build(B, s, b))
-        return -1;
-    struct mesh_cluster *c = &cs->c[i];
-    const struct mesh_cluster *x = &cs->c[i + 1], *y = &cs->c[right];
-    c->skip = cs->n;
-    c->n_sub = x->n_sub + y->n_sub;
-    c->n_leaves = x->n_leaves + y->n_leaves;
-    c->tri_lo = x->tri_lo < y->tri_lo ? x->tri_lo : y->tri_lo;
-    c->tri_hi = x->tri_hi > y->tri_hi ? x->tri_hi : y->tri_hi;
-    c->flags = CLUSTER_NO_CONE | ((x->flags | y->flags) & CLUSTER_NO_BOUNDS);
-    if (!(c->flags & CLUSTER_NO_BOUNDS))
-        node_box(c, x, y);
-    return 0;
 }
 
 int cluster_build(struct mesh *m)
@@ -400,62 +241,27 @@ int cluster_build(struct mesh *m)
         return 0;
     const uint32_t nl = (n + CLUSTER_MAX_TRIS - 1) / CLUSTER_MAX_TRIS;
     struct mesh_clusters *cs = calloc(1, sizeof *cs);
-    struct mesh_cluster *leaves = malloc((size_t)nl * sizeof *leaves);
-    uint64_t *keys = malloc((size_t)nl * sizeof *keys), *tmp = malloc((size_t)nl * sizeof *tmp);
-    uint32_t *stamp = malloc((size_t)m->n_verts * sizeof *stamp);
-    size_t rcap = (size_t)nl * 2;
-    struct builder B = {.m = m, .cs = cs, .cap = 2 * (size_t)nl, .leaves = leaves, .keys = keys};
-    if (cs) {
-        cs->c = malloc(B.cap * sizeof *cs->c);
-        cs->ranges = malloc(rcap * sizeof *cs->ranges);
-        cs->leaf = malloc((size_t)nl * sizeof *cs->leaf);
+    if (cs)
+        cs->c = malloc((size_t)nl * sizeof *cs->c);
+    if (!cs || !cs->c) {
+        free(cs);
+        return -1;
     }
-    if (!cs || !leaves || !keys || !tmp || !stamp || !cs->c || !cs->ranges || !cs->leaf)
-        goto oom;
     /* the clusters: runs of the file's triangles */
-    memset(stamp, 0xff, (size_t)m->n_verts * sizeof *stamp);
     for (uint32_t k = 0; k < nl; k++) {
         uint32_t first = k * CLUSTER_MAX_TRIS, cnt = n - first;
-        cnt = cnt < CLUSTER_MAX_TRIS ? cnt : CLUSTER_MAX_TRIS;
-        if (leaf(m, k, first, cnt, &leaves[k], &cs->ranges, &cs->n_ranges, &rcap, stamp))
-            goto oom;
+        leaf(m, first, cnt < CLUSTER_MAX_TRIS ? cnt : CLUSTER_MAX_TRIS, &cs->c[k]);
     }
-    cs->n_leaves = nl;
-    /* the tree over them: Morton codes of their centres over the mesh's box */
-    for (uint32_t k = 0; k < nl; k++) {
-        uint32_t q[3];
-        for (int a = 0; a < 3; a++) {
-            float size = m->bbox_max[a] - m->bbox_min[a];
-            float u = size > 0 ? (leaves[k].center[a] - m->bbox_min[a]) / size * 1023.0f : 0;
-            q[a] = u >= 0 && u <= 1023.0f ? (uint32_t)u : u > 1023.0f ? 1023 : 0; /* (NaN: 0) */
-        }
-        uint64_t code = cluster_morton3(q);
-        keys[k] = code << 32 | k;
+    /* v_need: the least vertex of its triangles and every later cluster's, from the end */
+    uint32_t need = UINT32_MAX;
+    for (uint32_t k = nl; k-- > 0;) {
+        const struct mesh_cluster *c = &cs->c[k];
+        for (uint32_t t = c->tri_first; t < c->tri_first + c->n_tris; t++)
+            for (int j = 0; j < 3; j++)
+                need = m->tris[t][j] < need ? m->tris[t][j] : need;
+        cs->c[k].v_need = need;
     }
-    radix_sort(keys, tmp, nl);
-    if (build(&B, 0, nl))
-        goto oom;
-    /* the arrays to their size (a shrink: kept as they are if it fails) */
-    struct mesh_cluster *gc = realloc(cs->c, cs->n * sizeof *gc);
-    cs->c = gc ? gc : cs->c;
-    uint32_t(*g)[2] = realloc(cs->ranges, (cs->n_ranges ? cs->n_ranges : 1) * sizeof *g);
-    cs->ranges = g ? g : cs->ranges;
-    free(leaves);
-    free(keys);
-    free(tmp);
-    free(stamp);
+    cs->n = nl;
     m->clusters = cs;
     return 0;
-oom:
-    if (cs) {
-        free(cs->c);
-        free(cs->ranges);
-        free(cs->leaf);
-        free(cs);
-    }
-    free(leaves);
-    free(keys);
-    free(tmp);
-    free(stamp);
-    return -1;
 }

@@ -714,8 +714,6 @@ void mesh_free_clusters(struct mesh *m)
     if (!m->clusters)
         return;
     free(m->clusters->c);
-    free(m->clusters->ranges);
-    free(m->clusters->leaf);
     free(m->clusters);
     m->clusters = NULL;
 }

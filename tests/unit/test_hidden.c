@@ -5,11 +5,14 @@
  * the faceted sphere, whose vertices share positions; by vertex: the smooth one), every
  * kernel this build and CPU have, every shading mode, one thread and two (slices; by tiles
  * two threads leave it off: the batch in flight writes the depth buffer meanwhile), and
- * the features path (a material with an alpha cutout); while many triangles are dropped. */
+ * the features path (a material with an alpha cutout), with whole clusters hidden too
+ * (cluster_cull.h: the smooth sphere is walked by clusters) against a frame with neither;
+ * while many triangles and clusters are dropped. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "cluster.h"
 #include "gen_mesh.h"
 #include "kernel.h"
 #include "mtl.h"
@@ -48,6 +51,9 @@ TEST(hidden_triangles_dropped_change_no_byte_from_any_view)
     REQUIRE(sphere(&faceted, 40, 1500, 0, false) == 0);
     REQUIRE(sphere(&smooth, 40, 1500, 180, true) == 0);
     REQUIRE(faceted.pos_id && !smooth.pos_id); /* the two walks */
+    /* clusters on both: the smooth one is walked by them (the faceted one by position, which
+     * is preferred where it applies) */
+    REQUIRE(cluster_build(&faceted) == 0 && cluster_build(&smooth) == 0);
     struct pipeline *p = pipeline_new();
     REQUIRE(p);
     struct fb a, b;
@@ -55,7 +61,7 @@ TEST(hidden_triangles_dropped_change_no_byte_from_any_view)
     REQUIRE(faceted.n_tris > 80 * 48); /* (denser than the framebuffer: by position) */
     static const enum shade_mode modes[] = {SHADE_PHONG, SHADE_GOURAUD, SHADE_FLAT, SHADE_UNLIT};
     unsigned seed = 25;
-    uint64_t cases = 0, differ = 0, hidden = 0, some = 0, by_pos = 0;
+    uint64_t cases = 0, differ = 0, hidden = 0, some = 0, by_pos = 0, by_clusters = 0;
     for (int view = 0; view < 100; view++) {
         struct camera cam;
         camera_default(&cam);
@@ -88,9 +94,12 @@ TEST(hidden_triangles_dropped_change_no_byte_from_any_view)
                 o.threads = run ? 2 : 1;
                 o.split = run == 1 ? SPLIT_SLICES : SPLIT_TILES;
                 struct frame_stats st = {0}, st_off = {0};
+                /* against every triangle drawn: no clusters, nothing hidden */
                 o.hidden_cull = HIDDEN_CULL_OFF;
+                o.cluster_cull = CLUSTER_CULL_OFF;
                 REQUIRE(pipeline_draw(p, items, 2, NULL, &cam, &o, &a, &st_off, NULL) == 0);
                 o.hidden_cull = HIDDEN_CULL_ON;
+                o.cluster_cull = CLUSTER_CULL_ON;
                 REQUIRE(pipeline_draw(p, items, 2, NULL, &cam, &o, &b, &st, NULL) == 0);
                 cases++;
                 differ += memcmp(a.rgb, b.rgb, (size_t)a.w * a.h * 3) != 0 ||
@@ -100,6 +109,7 @@ TEST(hidden_triangles_dropped_change_no_byte_from_any_view)
                     CHECK_EQ_INT(st.tris_hidden, 0);
                 hidden += st.tris_hidden;
                 some += st.tris_hidden > 0;
+                by_clusters += st.clusters_hidden > 0;
                 by_pos += st.tris_by_position > 0;
                 /* every triangle accounted for, the dropped ones among them */
                 CHECK_EQ_INT(st.tris_in, st_off.tris_in);
@@ -109,12 +119,14 @@ TEST(hidden_triangles_dropped_change_no_byte_from_any_view)
             }
         }
     }
-    printf("    %llu frames, %llu differ; %llu with triangles hidden (%llu in all), %llu walked "
-           "by position\n",
+    printf("    %llu frames, %llu differ; %llu with triangles hidden (%llu in all), %llu with "
+           "clusters hidden, %llu walked by position\n",
            (unsigned long long)cases, (unsigned long long)differ, (unsigned long long)some,
-           (unsigned long long)hidden, (unsigned long long)by_pos);
+           (unsigned long long)hidden, (unsigned long long)by_clusters,
+           (unsigned long long)by_pos);
     CHECK_EQ_INT(differ, 0);
     CHECK(some > cases / 3);
+    CHECK(by_clusters > cases / 10);
     CHECK(by_pos > cases / 4);
     fb_free(&a);
     fb_free(&b);
