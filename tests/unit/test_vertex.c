@@ -1,6 +1,6 @@
 /* test_vertex.c: the vertex stage in every kernel (kernel.h) against one vertex at a time:
  * the lighting, several vertices at a time (vertex_shade_many: a vertex per SIMD lane)
- * against vertex_shade, and the positions (vertex_run) against the reference kernel's —
+ * against vertex_shade, and the positions (vertex_run) against vertex.h's one at a time —
  * every byte of every vertex record the same, in every mode, on every instruction set the
  * machine has. */
 #include <stdlib.h>
@@ -106,6 +106,8 @@ TEST(vertex_run_is_the_reference)
     for (int i = 0; i < N; i++)
         for (int c = 0; c < 3; c++)
             verts[i].pos[c] = rnd(&seed) * (i % 7 == 0 ? 400.0f : 3.0f);
+    verts[5].pos[1] = NAN, verts[13].pos[0] = INFINITY; /* (not finite: invalid) */
+    verts[22].pos[0] = 0.2f, verts[22].pos[1] = 0.4f, verts[22].pos[2] = 1.5f; /* (w 0) */
     struct mesh m;
     memset(&m, 0, sizeof m);
     m.verts = verts, m.n_verts = N;
@@ -119,14 +121,26 @@ TEST(vertex_run_is_the_reference)
     u.guard_x = 1.0 + 2.0 * VERTEX_GUARD_PX / u.fb_w;
     u.guard_y = 1.0 + 2.0 * VERTEX_GUARD_PX / u.fb_h;
     static struct vertex_out ref[N], out[N];
+    /* the reference: vertex.h's functions one vertex at a time (the kernels run four at a
+     * time, a lane each) */
     memset(ref, 0, sizeof ref);
-    kernel_set(KERNEL_REF)->by_size[SPAN_SIZE_LARGE]->vertex_run(&m, &u, ref, 0, N);
-    int clipped = 0, projected = 0;
+    for (int i = 0; i < N; i++) {
+        const float *p = verts[i].pos;
+        vec4 c = m4_mul_v4(u.mvp, (vec4){p[0], p[1], p[2], 1});
+        ref[i].clip[0] = c.x, ref[i].clip[1] = c.y, ref[i].clip[2] = c.z, ref[i].clip[3] = c.w;
+        ref[i].outcode = vertex_outcode(ref[i].clip, u.guard_x, u.guard_y);
+        ref[i].shaded = VERTEX_UNSHADED;
+        if (!(ref[i].outcode & VERTEX_NEEDS_CLIP))
+            vertex_project(&ref[i], u.fb_w, u.fb_h);
+    }
+    int clipped = 0, projected = 0, invalid = 0;
     for (int i = 0; i < N; i++)
-        clipped += (ref[i].outcode & VERTEX_NEEDS_CLIP) != 0, projected += ref[i].projected;
+        clipped += (ref[i].outcode & VERTEX_NEEDS_CLIP) != 0, projected += ref[i].projected,
+            invalid += (ref[i].outcode & VERTEX_INVALID) != 0;
     CHECK(clipped > 5 && projected > 20);
-    static const enum kernel_isa isas[] = {KERNEL_SSE2, KERNEL_AVX2_8, KERNEL_AVX2_4};
-    for (int is = 0; is < 3; is++) {
+    CHECK_EQ_INT(invalid, 2);
+    static const enum kernel_isa isas[] = {KERNEL_REF, KERNEL_SSE2, KERNEL_AVX2_8, KERNEL_AVX2_4};
+    for (int is = 0; is < 4; is++) {
         if (!kernel_set(isas[is]))
             continue;
         memset(out, 0, sizeof out);

@@ -9,6 +9,18 @@
 #include "vertex.h"
 #include "viewport.h"
 
+/* one vertex's record from its clip position (vertex_outcode's, vertex_project's) */
+static inline void vertex_from_clip(struct vertex_out *o, const double clip[4], double gx,
+                                    double gy, int w, int h)
+{
+    __builtin_memcpy(o->clip, clip, sizeof o->clip);
+    o->outcode = vertex_outcode(o->clip, gx, gy);
+    o->projected = 0;
+    o->shaded = VERTEX_UNSHADED;
+    if (!(o->outcode & VERTEX_NEEDS_CLIP))
+        vertex_project(o, w, h);
+}
+
 static void vertex_run(const struct mesh *m, const struct vertex_uniforms *u,
                        struct vertex_out *out, uint32_t i0, uint32_t i1)
 {
@@ -17,22 +29,72 @@ static void vertex_run(const struct mesh *m, const struct vertex_uniforms *u,
     const mat4 a = u->mvp;
     const double gx = u->guard_x, gy = u->guard_y;
     const int w = u->fb_w, h = u->fb_h;
-    /* the matrix by columns, four rows at once (two SSE2 or one AVX operation per column):
-     * each row's sum in the same order as m4_mul_v4, so the same bits */
-    d4 col[4]; /* (kernel_setup.h's four doubles) */
-    for (int c = 0; c < 4; c++)
-        col[c] = (d4){a.m[0][c], a.m[1][c], a.m[2][c], a.m[3][c]};
-    for (uint32_t i = i0; i < i1; i++) {
+    /* four vertices at a time, a lane each: row r of the clip position is
+     * ((m[r][0] x + m[r][1] y) + m[r][2] z) + m[r][3] 1 in every lane, as m4_mul_v4 sums
+     * it, and the outcode's comparisons, the divide, viewport and snap are vertex.h's and
+     * viewport.h's in their order: the same bits as one at a time */
+    d4 mr[4][4];
+    for (int r = 0; r < 4; r++)
+        for (int c = 0; c < 4; c++)
+            mr[r][c] = (d4){a.m[r][c], a.m[r][c], a.m[r][c], a.m[r][c]};
+    const d4 one = {1, 1, 1, 1}, half = {0.5, 0.5, 0.5, 0.5};
+    const d4 gxn = -(d4){gx, gx, gx, gx}, gxp = (d4){gx, gx, gx, gx};
+    const d4 gyn = -(d4){gy, gy, gy, gy}, gyp = (d4){gy, gy, gy, gy};
+    const d4 fw = {w, w, w, w}, fh = {h, h, h, h};
+    const d4 sub = {VIEWPORT_SUBPIX_ONE, VIEWPORT_SUBPIX_ONE, VIEWPORT_SUBPIX_ONE,
+                    VIEWPORT_SUBPIX_ONE};
+    const double mg = 6755399441055744.0; /* viewport_snap's 1.5 * 2^52 */
+    const d4 magic = {mg, mg, mg, mg};
+    uint32_t i = i0;
+    for (; i + 4 <= i1; i += 4) {
+        /* (the positions a few steps on: a cluster's run is too short for the hardware's
+         * prefetcher to find) */
+        if (i + 19 < m->n_verts) {
+            __builtin_prefetch(&m->verts[i + 16]);
+            __builtin_prefetch(&m->verts[i + 18]);
+        }
+        d4 p[3];
+        for (int l = 0; l < 4; l++)
+            for (int c = 0; c < 3; c++)
+                p[c][l] = m->verts[i + l].pos[c];
+        d4 q[4];
+        for (int r = 0; r < 4; r++)
+            q[r] = mr[r][0] * p[0] + mr[r][1] * p[1] + mr[r][2] * p[2] + mr[r][3] * 1.0;
+        const d4 x = q[0], y = q[1], z = q[2], wc = q[3];
+        l4 oc = ((l4)(x < -wc) & VERTEX_OUT_LEFT) | ((l4)(x > wc) & VERTEX_OUT_RIGHT) |
+                ((l4)(y < -wc) & VERTEX_OUT_BOTTOM) | ((l4)(y > wc) & VERTEX_OUT_TOP) |
+                ((l4)(z < -wc) & VERTEX_OUT_NEAR) | ((l4)(z > wc) & VERTEX_OUT_FAR);
+        const l4 guard = ((l4)(x < gxn * wc) & VERTEX_GUARD_LEFT) |
+                         ((l4)(x > gxp * wc) & VERTEX_GUARD_RIGHT) |
+                         ((l4)(y < gyn * wc) & VERTEX_GUARD_BOTTOM) |
+                         ((l4)(y > gyp * wc) & VERTEX_GUARD_TOP);
+        oc |= guard & (l4)((oc & 0xf) != 0);
+        const l4 finite = (l4)((x - x) + (y - y) + (z - z) + (wc - wc) == 0);
+        oc = (oc & finite) |
+             (~finite & (VERTEX_OUT_FRUSTUM | VERTEX_NEEDS_CLIP | VERTEX_INVALID));
+        const d4 rw = one / wc;
+        const d4 wx = (x * rw + 1.0) * half * fw, wy = (1.0 - y * rw) * half * fh;
+        const d4 sx = (wx * sub + magic) - magic, sy = (wy * sub + magic) - magic;
+        for (int l = 0; l < 4; l++) {
+            struct vertex_out *o = &out[i + l];
+            o->clip[0] = x[l], o->clip[1] = y[l], o->clip[2] = z[l], o->clip[3] = wc[l];
+            o->outcode = (uint32_t)oc[l];
+            o->shaded = VERTEX_UNSHADED;
+            o->projected = 0;
+            if (!(oc[l] & VERTEX_NEEDS_CLIP)) {
+                o->win[0] = wx[l], o->win[1] = wy[l];
+                o->fx = (int32_t)(int64_t)sx[l];
+                o->fy = (int32_t)(int64_t)sy[l];
+                o->projected = 1;
+            }
+        }
+    }
+    for (; i < i1; i++) {
         const float *p = m->verts[i].pos;
-        const double x = p[0], y = p[1], z = p[2];
-        struct vertex_out *o = &out[i];
-        d4 cl = col[0] * x + col[1] * y + col[2] * z + col[3] * 1.0;
-        __builtin_memcpy(o->clip, &cl, sizeof cl);
-        o->outcode = vertex_outcode(o->clip, gx, gy);
-        o->projected = 0;
-        o->shaded = VERTEX_UNSHADED;
-        if (!(o->outcode & VERTEX_NEEDS_CLIP))
-            vertex_project(o, w, h);
+        double cl[4];
+        for (int r = 0; r < 4; r++)
+            cl[r] = a.m[r][0] * p[0] + a.m[r][1] * p[1] + a.m[r][2] * p[2] + a.m[r][3] * 1.0;
+        vertex_from_clip(&out[i], cl, gx, gy, w, h);
     }
 }
 
