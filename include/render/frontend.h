@@ -85,6 +85,9 @@
  * thread first, the dense models' records (57 MB for lost_empire) were out of the caches
  * again when the front end read them (car 2 threads 7.9 -> 7.2 ms). */
 #define FRONTEND_VERTEX_CHUNK 512
+/* Triangles filtered at a time (frontend.c, filter): outside the view or holding no pixel
+ * centre, dropped by a short loop before the walk takes the rest */
+#define FRONTEND_FILTER 64
 /* The largest pixel box the hidden test reads ("Hidden" above) */
 #define FRONTEND_HIDDEN_MAX_BOX 1024
 /* a cluster's rectangle read for the hidden test, at most (pixels) */
