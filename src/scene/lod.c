@@ -11,6 +11,7 @@
 
 #include <meshoptimizer.h>
 
+#include "cluster.h"
 #include "dag.h"
 #include "lod_cache.h"
 
@@ -114,6 +115,7 @@ static int make_level(const struct mesh *root, const struct mesh *src, const uin
     memcpy(out->center, root->center, sizeof out->center);
     out->radius = root->radius;
     mesh_share_positions(out); /* (out of memory: NULL, each vertex positioned alone) */
+    cluster_build(out);        /* (out of memory: none, drawn triangle by triangle) */
     return 0;
 }
 
