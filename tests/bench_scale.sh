@@ -15,8 +15,9 @@
 # with --lod auto (the levels of detail: its PSNR against --lod off, by
 # build/oracle/compare), with --lod clusters (the cluster hierarchy, scene/dag.h: dag_ms,
 # its PSNR, the triangles of its cut), and — where this build has the switch — --lod off
-# --cluster-cull on (cluster_ms; speedup = off_ms / cluster_ms; the clusters culled of
-# those tested; the pictures must be the same bytes: "same" or "DIFFER"), and --lod off
+# --cluster-cull off (noclu_ms: no clusters, on by default; speedup = noclu_ms / off_ms; the
+# clusters the --lod off run culled of those it tested; the pictures must be the same
+# bytes: "same" or "DIFFER"), and --lod off
 # --hidden-cull off (nohide_ms: every triangle set up, none dropped as hidden behind the
 # depth so far; hidden: the triangles the --lod off run dropped so; hbytes: the pictures
 # compared the same way). load_ms is
@@ -80,9 +81,9 @@ ms_of() { sed -n 's/.*median_ms=\([0-9.]*\).*/\1/p' | tail -n 1; }
 echo "-- scale: median ms of $repeat frames, eye 0.5,0.364,0.8 framed; auto's PSNR against --lod off;"
 echo "   gl_ms: Mesa llvmpipe on the same mesh and camera, x/gl: rastty's ms over llvmpipe's"
 printf '  %-20s %-8s %2s %9s %9s %9s %8s %9s %6s %9s %6s %8s %9s %7s %15s %5s %9s %7s %6s %9s %8s %8s %8s\n' model size th load_ms rss_MB \
-    off_ms tris auto_ms PSNR dag_ms PSNR dag_tris cluster_ms speedup culled/tested bytes \
+    off_ms tris auto_ms PSNR dag_ms PSNR dag_tris noclu_ms speedup culled/tested bytes \
     nohide_ms hidden hbytes gl_ms off/gl auto/gl dag/gl
-[ -n "$csv" ] && echo "model,size,threads,load_ms,rss_mb,off_ms,tris,auto_ms,auto_psnr,dag_ms,dag_psnr,dag_tris,cluster_ms,speedup,culled_tested,same_bytes,nohide_ms,hidden,nohide_same_bytes,gl_ms,off_gl,auto_gl,dag_gl" > "$csv"
+[ -n "$csv" ] && echo "model,size,threads,load_ms,rss_mb,off_ms,tris,auto_ms,auto_psnr,dag_ms,dag_psnr,dag_tris,noclu_ms,speedup,culled_tested,same_bytes,nohide_ms,hidden,nohide_same_bytes,gl_ms,off_gl,auto_gl,dag_gl" > "$csv"
 for m in "${models[@]}"; do
     name=$(basename "$m"); name=${name%.*}
     for size in $screens; do
@@ -92,6 +93,8 @@ for m in "${models[@]}"; do
             st=$($TIME "$BIN" render "$m" "${cam[@]}" --lod off --out "$o.off.ppm" \
                 --depth-out "$o.off.pfm" 2>&1) || { echo "  $name: render failed"; continue 3; }
             off=$(ms_of <<<"$st")
+            cl=$(sed -n 's/^clusters: tested \([0-9]*\), culled \([0-9]*\).*/\2\/\1/p' <<<"$st")
+            cl=${cl:--}
             load=$(sed -n 's/.*load_ms=\([0-9.]*\).*/\1/p' <<<"$st" | tail -n 1)
             tris=$(sed -n 's/^tris in .* drawn \([0-9]*\).*/\1/p' <<<"$st" | tail -n 1)
             hid=$(sed -n 's/^tris in .* hidden \([0-9]*\),.*/\1/p' <<<"$st" | tail -n 1)
@@ -124,13 +127,12 @@ for m in "${models[@]}"; do
                 [ -x "$CMP" ] && dpsnr=$("$CMP" "$o.dag.ppm" "$o.dag.pfm" "$o.off.ppm" "$o.off.pfm" |
                     sed -n 's/.*psnr=\([0-9.inf]*\).*/\1/p')
             fi
-            nc=- sp=- eq=- cl=-
+            nc=- sp=- eq=-
             if [ $cull = 1 ]; then
-                st=$("$BIN" render "$m" "${cam[@]}" --lod off --cluster-cull on \
+                st=$("$BIN" render "$m" "${cam[@]}" --lod off --cluster-cull off \
                     --out "$o.nc.ppm" --depth-out "$o.nc.pfm" 2>&1)
                 nc=$(ms_of <<<"$st")
-                sp=$(awk -v a="$off" -v b="$nc" 'BEGIN { printf "%.2fx", a / b }')
-                cl=$(sed -n 's/^clusters: tested \([0-9]*\), culled \([0-9]*\).*/\2\/\1/p' <<<"$st")
+                sp=$(awk -v a="$nc" -v b="$off" 'BEGIN { printf "%.2fx", a / b }')
                 eq=same
                 cmp -s "$o.nc.ppm" "$o.off.ppm" && cmp -s "$o.nc.pfm" "$o.off.pfm" || eq=DIFFER
             fi
