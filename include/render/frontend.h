@@ -134,16 +134,9 @@ struct frontend {
     size_t vdone_cap, marks_cap;
     /* positions (mesh.h's pos_id), for the item being walked by position: each projected
      * once (n_pos of them), and per vertex where its record is (slot + 1, 0: not made) */
-    struct frontend_pos *pos;
+    struct vertex_pos *pos;
     uint32_t *vslot;
     size_t pos_cap, vslot_cap;
-};
-/* A position's share of a vertex record (struct vertex_out): what rejection and the pixel
- * box read */
-struct frontend_pos {
-    int32_t fx, fy; /* valid when outcode has no VERTEX_NEEDS_CLIP bit */
-    uint32_t outcode;
-    float z;        /* window depth (viewport_window's, rounded to float), the same */
 };
 
 /* Batches of batch_cap set-up triangles (tests: the picture must not depend on it). 0 or

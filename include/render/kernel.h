@@ -65,6 +65,10 @@ struct kernel {
     /* vertex.h's vertex_run and vertex_shade_many */
     void (*vertex_run)(const struct mesh *m, const struct vertex_uniforms *u,
                        struct vertex_out *out, uint32_t i0, uint32_t i1);
+    /* positions xyz[p0 .. p1) as vertex_run positions a vertex, kept as struct vertex_pos:
+     * outcode, snapped window position and depth (the front end's walk by position) */
+    void (*position_run)(const float (*xyz)[3], const struct vertex_uniforms *u,
+                         struct vertex_pos *out, uint32_t p0, uint32_t p1);
     void (*vertex_shade_many)(const struct mesh *m, const struct vertex_uniforms *u,
                               const uint32_t *idx, struct vertex_out *const *out, uint32_t n);
     /* The sky (scene/skybox.h) in rows y0 .. y1-1 of fb: every pixel nothing covered (its

@@ -115,6 +115,15 @@ struct vary_rich {
     bool dropped_uv1, dropped_alpha;
 };
 
+/* A position's share of a vertex record (struct vertex_out): what rejection, the pixel box
+ * and the hidden test read — the front end's walk by position keeps one per distinct
+ * position (mesh.h's pos_id; kernel.h's position_run makes them) */
+struct vertex_pos {
+    int32_t fx, fy; /* valid when outcode has no VERTEX_NEEDS_CLIP bit */
+    uint32_t outcode;
+    float z;        /* window depth (viewport_window's, rounded to float), the same */
+};
+
 struct vertex_uniforms {
     int fb_w, fb_h;
     mat4 model, normal_matrix, mvp;

@@ -245,7 +245,7 @@ struct tri_walk {
     uint64_t n_rejected, n_culled, n_no_centre;
     const uint8_t *vmark; /* the hierarchy's cut: the vertices to make (a byte each), or
                              NULL: all */
-    struct frontend_pos *pos; /* by position (walk_by_position): each position's share */
+    struct vertex_pos *pos; /* by position (walk_by_position): each position's share */
     uint32_t *vslot;          /* by position: where vertex i's record is in vo (+ 1), or 0 */
     uint32_t n_made;          /* by position: records made, vo[0 .. n_made) */
     uint32_t pos_done;        /* by position: positions 0 .. pos_done-1 projected */
@@ -262,30 +262,13 @@ static inline void position_clip(const mat4 *a, const float q[3], double clip[4]
         clip[r] = a->m[r][0] * x + a->m[r][1] * y + a->m[r][2] * z + a->m[r][3] * 1.0;
 }
 
-/* Positions p0 .. p1-1 of m projected (mesh.h's pos_id): outcode and snapped window
- * position, as vertex_run makes them for a vertex, kept alone: all the triangle tests
- * read */
-static void position_stage(const struct frame *f, const struct mesh *m,
-                           struct frontend_pos *pos, uint32_t p0, uint32_t p1)
+/* Positions p0 .. p1-1 of m projected (mesh.h's pos_id): outcode, snapped window position
+ * and depth, as vertex_run makes them for a vertex, kept alone: all the triangle tests read
+ * (the kernel's position_run) */
+static void position_stage(const struct frame *f, const struct mesh *m, struct vertex_pos *pos,
+                           uint32_t p0, uint32_t p1)
 {
-    const mat4 a = f->u.mvp;
-    const double gx = f->u.guard_x, gy = f->u.guard_y;
-    const int fb_w = f->u.fb_w, fb_h = f->u.fb_h;
-    for (uint32_t p = p0; p < p1; p++) {
-        double clip[4];
-        position_clip(&a, m->pos_xyz[p], clip);
-        struct frontend_pos *o = &pos[p];
-        o->outcode = vertex_outcode(clip, gx, gy);
-        o->fx = o->fy = 0;
-        o->z = 0;
-        if (!(o->outcode & VERTEX_NEEDS_CLIP)) {
-            double win[3];
-            viewport_window(clip, fb_w, fb_h, win);
-            o->fx = (int32_t)viewport_snap(win[0]);
-            o->fy = (int32_t)viewport_snap(win[1]);
-            o->z = (float)win[2];
-        }
-    }
+    f->k->position_run(m->pos_xyz, &f->u, pos, p0, p1);
 }
 
 /* vertex i's record (vertex_run's bytes: its clip and window positions computed again
@@ -300,7 +283,7 @@ static inline struct vertex_out *make_vertex(const struct frame *f, struct tri_w
     s = w->n_made++;
     w->vslot[i] = s + 1;
     const uint32_t p = w->m->pos_id[i];
-    const struct frontend_pos *q = &w->pos[p];
+    const struct vertex_pos *q = &w->pos[p];
     struct vertex_out *o = &w->vo[s];
     position_clip(&f->u.mvp, w->m->pos_xyz[p], o->clip);
     o->outcode = q->outcode;
@@ -408,7 +391,7 @@ walk(struct frontend *fe, struct frame *f, struct tri_walk *w, const uint32_t *l
         bool unclipped;
         if (by_pos) { /* the corners' positions: their vertices made only past the box */
             const uint32_t q0 = m->pos_id[c[0]], q1 = m->pos_id[c[1]], q2 = m->pos_id[c[2]];
-            const struct frontend_pos *p0 = &w->pos[q0], *p1 = &w->pos[q1], *p2 = &w->pos[q2];
+            const struct vertex_pos *p0 = &w->pos[q0], *p1 = &w->pos[q1], *p2 = &w->pos[q2];
             all = p0->outcode & p1->outcode & p2->outcode;
             any = p0->outcode | p1->outcode | p2->outcode;
             if ((all & VERTEX_OUT_FRUSTUM) || (any & VERTEX_INVALID)) {
@@ -550,7 +533,7 @@ filter(const struct frame *f, struct tri_walk *w, uint32_t a, uint32_t b, uint32
                 position_stage(f, m, w->pos, w->pos_done, to);
                 w->pos_done = to;
             }
-            const struct frontend_pos *p0 = &w->pos[q0], *p1 = &w->pos[q1], *p2 = &w->pos[q2];
+            const struct vertex_pos *p0 = &w->pos[q0], *p1 = &w->pos[q1], *p2 = &w->pos[q2];
             all = p0->outcode & p1->outcode & p2->outcode;
             any = p0->outcode | p1->outcode | p2->outcode;
             x[0] = p0->fx, y[0] = p0->fy, x[1] = p1->fx, y[1] = p1->fy;
@@ -701,7 +684,7 @@ static int walk_by_position(struct frontend *fe, struct frame *f, struct tri_wal
                e))
         return -1;
     if (m->n_pos > fe->pos_cap) {
-        struct frontend_pos *g = realloc(fe->pos, (size_t)m->n_pos * sizeof *g);
+        struct vertex_pos *g = realloc(fe->pos, (size_t)m->n_pos * sizeof *g);
         if (!g)
             return err_set(e, "out of memory for %u positions", (unsigned)m->n_pos);
         fe->pos = g;

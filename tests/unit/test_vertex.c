@@ -1,8 +1,8 @@
 /* test_vertex.c: the vertex stage in every kernel (kernel.h) against one vertex at a time:
  * the lighting, several vertices at a time (vertex_shade_many: a vertex per SIMD lane)
- * against vertex_shade, and the positions (vertex_run) against vertex.h's one at a time —
- * every byte of every vertex record the same, in every mode, on every instruction set the
- * machine has. */
+ * against vertex_shade, and the positions (vertex_run, position_run) against vertex.h's one
+ * at a time — every byte of every vertex record the same, in every mode, on every
+ * instruction set the machine has. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -147,5 +147,22 @@ TEST(vertex_run_is_the_reference)
         kernel_set(isas[is])->by_size[SPAN_SIZE_LARGE]->vertex_run(&m, &u, out, 0, 30);
         kernel_set(isas[is])->by_size[SPAN_SIZE_LARGE]->vertex_run(&m, &u, out, 30, N);
         CHECK(memcmp(ref, out, sizeof ref) == 0);
+        /* the same positions alone (the walk by position's share of each record) */
+        float xyz[N][3];
+        struct vertex_pos pos[N], want[N];
+        memset(want, 0, sizeof want);
+        for (int i = 0; i < N; i++) {
+            memcpy(xyz[i], verts[i].pos, sizeof xyz[i]);
+            want[i].outcode = ref[i].outcode;
+            if (ref[i].projected) {
+                double win[3];
+                viewport_window(ref[i].clip, u.fb_w, u.fb_h, win);
+                want[i].fx = ref[i].fx, want[i].fy = ref[i].fy, want[i].z = (float)win[2];
+            }
+        }
+        memset(pos, 0xff, sizeof pos);
+        kernel_set(isas[is])->by_size[SPAN_SIZE_LARGE]->position_run(xyz, &u, pos, 0, 29);
+        kernel_set(isas[is])->by_size[SPAN_SIZE_LARGE]->position_run(xyz, &u, pos, 29, N);
+        CHECK(memcmp(want, pos, sizeof want) == 0);
     }
 }

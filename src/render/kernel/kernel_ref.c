@@ -9,7 +9,8 @@
  *                the three edge functions (setup.h) and queues each covered pixel;
  *                ref_span draws the queued pixels: for each, the depth from the plane, the
  *                depth test, the varyings in the perspective method, the colour, the write.
- * Per frame:     ref_vertex_run positions vertices, ref_vertex_shade_many lights them
+ * Per frame:     ref_vertex_run positions vertices (ref_position_run positions alone),
+ *                ref_vertex_shade_many lights them
  *                (vertex.c's vertex_shade), ref_sky_rows draws the sky where nothing was. */
 #include <math.h>
 #include <stdint.h>
@@ -219,6 +220,29 @@ static void ref_vertex_run(const struct mesh *m, const struct vertex_uniforms *u
     }
 }
 
+static void ref_position_run(const float (*xyz)[3], const struct vertex_uniforms *u,
+                             struct vertex_pos *out, uint32_t p0, uint32_t p1)
+{
+    for (uint32_t i = p0; i < p1; i++) {
+        const double x = xyz[i][0], y = xyz[i][1], z = xyz[i][2];
+        double clip[4];
+        for (int r = 0; r < 4; r++) /* m4_mul_v4's sums, in its order */
+            clip[r] = u->mvp.m[r][0] * x + u->mvp.m[r][1] * y + u->mvp.m[r][2] * z +
+                      u->mvp.m[r][3] * 1.0;
+        struct vertex_pos *o = &out[i];
+        o->outcode = vertex_outcode(clip, u->guard_x, u->guard_y);
+        o->fx = o->fy = 0;
+        o->z = 0;
+        if (!(o->outcode & VERTEX_NEEDS_CLIP)) {
+            double win[3];
+            viewport_window(clip, u->fb_w, u->fb_h, win);
+            o->fx = (int32_t)viewport_snap(win[0]);
+            o->fy = (int32_t)viewport_snap(win[1]);
+            o->z = (float)win[2];
+        }
+    }
+}
+
 static void ref_vertex_shade_many(const struct mesh *m, const struct vertex_uniforms *u,
                                   const uint32_t *idx, struct vertex_out *const *out, uint32_t n)
 {
@@ -323,6 +347,7 @@ const struct kernel kernel_ref = {
     .span_rich = {ref_span, ref_span, ref_span, ref_span, ref_span},
     .raster = {ref_raster, ref_raster, ref_raster},
     .vertex_run = ref_vertex_run,
+    .position_run = ref_position_run,
     .vertex_shade_many = ref_vertex_shade_many,
     .sky_rows = ref_sky_rows,
 };

@@ -49,6 +49,7 @@ const struct kernel KERNEL_TABLE = {
                [RASTER_SCANLINE] = raster_scanline,
                [RASTER_TILED] = raster_tiled},
     .vertex_run = vertex_run,
+    .position_run = position_run,
     .vertex_shade_many = vertex_shade_many,
     .sky_rows = sky_rows,
 };

@@ -9,42 +9,68 @@
 #include "vertex.h"
 #include "viewport.h"
 
-/* one vertex's record from its clip position (vertex_outcode's, vertex_project's) */
-static inline void vertex_from_clip(struct vertex_out *o, const double clip[4], double gx,
-                                    double gy, int w, int h)
+/* Four vertices at a time, a lane each: row r of the clip position is
+ * ((m[r][0] x + m[r][1] y) + m[r][2] z) + m[r][3] 1 in every lane, as m4_mul_v4 sums it,
+ * and the outcode's comparisons, the divide, viewport and snap are vertex.h's and
+ * viewport.h's in their order: the same bits as one at a time (tests/unit/test_vertex.c) */
+struct lanes_view { /* a frame's constants, broadcast */
+    d4 m[4][4], gxn, gxp, gyn, gyp, fw, fh;
+};
+struct lanes { /* four vertices positioned */
+    d4 clip[4], wx, wy, sx, sy; /* window x, y; snapped x, y (whole numbers of 1/256 px) */
+    l4 oc;
+};
+
+static inline void lanes_view_init(struct lanes_view *L, const struct vertex_uniforms *u)
 {
-    __builtin_memcpy(o->clip, clip, sizeof o->clip);
-    o->outcode = vertex_outcode(o->clip, gx, gy);
-    o->projected = 0;
-    o->shaded = VERTEX_UNSHADED;
-    if (!(o->outcode & VERTEX_NEEDS_CLIP))
-        vertex_project(o, w, h);
+    for (int r = 0; r < 4; r++)
+        for (int c = 0; c < 4; c++)
+            L->m[r][c] = (d4){u->mvp.m[r][c], u->mvp.m[r][c], u->mvp.m[r][c], u->mvp.m[r][c]};
+    const double gx = u->guard_x, gy = u->guard_y;
+    L->gxp = (d4){gx, gx, gx, gx}, L->gxn = -L->gxp;
+    L->gyp = (d4){gy, gy, gy, gy}, L->gyn = -L->gyp;
+    L->fw = (d4){u->fb_w, u->fb_w, u->fb_w, u->fb_w};
+    L->fh = (d4){u->fb_h, u->fb_h, u->fb_h, u->fb_h};
+}
+
+/* (by pointer: a function returning vectors would have an AVX-only calling convention in
+ * the baseline build) */
+static inline void lanes_position(const struct lanes_view *L, const d4 p[3], struct lanes *o)
+{
+    for (int r = 0; r < 4; r++)
+        o->clip[r] = L->m[r][0] * p[0] + L->m[r][1] * p[1] + L->m[r][2] * p[2] + L->m[r][3] * 1.0;
+    const d4 x = o->clip[0], y = o->clip[1], z = o->clip[2], w = o->clip[3];
+    l4 oc = ((l4)(x < -w) & VERTEX_OUT_LEFT) | ((l4)(x > w) & VERTEX_OUT_RIGHT) |
+            ((l4)(y < -w) & VERTEX_OUT_BOTTOM) | ((l4)(y > w) & VERTEX_OUT_TOP) |
+            ((l4)(z < -w) & VERTEX_OUT_NEAR) | ((l4)(z > w) & VERTEX_OUT_FAR);
+    const l4 guard = ((l4)(x < L->gxn * w) & VERTEX_GUARD_LEFT) |
+                     ((l4)(x > L->gxp * w) & VERTEX_GUARD_RIGHT) |
+                     ((l4)(y < L->gyn * w) & VERTEX_GUARD_BOTTOM) |
+                     ((l4)(y > L->gyp * w) & VERTEX_GUARD_TOP);
+    oc |= guard & (l4)((oc & 0xf) != 0); /* (the guard band only outside x or y) */
+    const l4 finite = (l4)((x - x) + (y - y) + (z - z) + (w - w) == 0);
+    o->oc = (oc & finite) | (~finite & (VERTEX_OUT_FRUSTUM | VERTEX_NEEDS_CLIP | VERTEX_INVALID));
+    const d4 one = {1, 1, 1, 1}, half = {0.5, 0.5, 0.5, 0.5};
+    const double mg = 6755399441055744.0, s = VIEWPORT_SUBPIX_ONE; /* viewport_snap's */
+    const d4 magic = {mg, mg, mg, mg}, sub = {s, s, s, s};
+    const d4 rw = one / w;
+    o->wx = (x * rw + 1.0) * half * L->fw;
+    o->wy = (1.0 - y * rw) * half * L->fh;
+    o->sx = (o->wx * sub + magic) - magic;
+    o->sy = (o->wy * sub + magic) - magic;
+}
+
+/* lane l's window depth, as viewport_window makes it (only where it projects) */
+static inline double lanes_depth(const struct lanes *o, int l)
+{
+    return 0.5 * o->clip[2][l] * (1.0 / o->clip[3][l]) + 0.5;
 }
 
 static void vertex_run(const struct mesh *m, const struct vertex_uniforms *u,
                        struct vertex_out *out, uint32_t i0, uint32_t i1)
 {
-    /* the matrix in locals: the stores below may alias it otherwise (same sums, same order
-     * as m4_mul_v4, so the same bits) */
-    const mat4 a = u->mvp;
-    const double gx = u->guard_x, gy = u->guard_y;
-    const int w = u->fb_w, h = u->fb_h;
-    /* four vertices at a time, a lane each: row r of the clip position is
-     * ((m[r][0] x + m[r][1] y) + m[r][2] z) + m[r][3] 1 in every lane, as m4_mul_v4 sums
-     * it, and the outcode's comparisons, the divide, viewport and snap are vertex.h's and
-     * viewport.h's in their order: the same bits as one at a time */
-    d4 mr[4][4];
-    for (int r = 0; r < 4; r++)
-        for (int c = 0; c < 4; c++)
-            mr[r][c] = (d4){a.m[r][c], a.m[r][c], a.m[r][c], a.m[r][c]};
-    const d4 one = {1, 1, 1, 1}, half = {0.5, 0.5, 0.5, 0.5};
-    const d4 gxn = -(d4){gx, gx, gx, gx}, gxp = (d4){gx, gx, gx, gx};
-    const d4 gyn = -(d4){gy, gy, gy, gy}, gyp = (d4){gy, gy, gy, gy};
-    const d4 fw = {w, w, w, w}, fh = {h, h, h, h};
-    const d4 sub = {VIEWPORT_SUBPIX_ONE, VIEWPORT_SUBPIX_ONE, VIEWPORT_SUBPIX_ONE,
-                    VIEWPORT_SUBPIX_ONE};
-    const double mg = 6755399441055744.0; /* viewport_snap's 1.5 * 2^52 */
-    const d4 magic = {mg, mg, mg, mg};
+    struct lanes_view L;
+    lanes_view_init(&L, u);
     uint32_t i = i0;
     for (; i + 4 <= i1; i += 4) {
         /* (the positions a few steps on: a cluster's run is too short for the hardware's
@@ -57,44 +83,76 @@ static void vertex_run(const struct mesh *m, const struct vertex_uniforms *u,
         for (int l = 0; l < 4; l++)
             for (int c = 0; c < 3; c++)
                 p[c][l] = m->verts[i + l].pos[c];
-        d4 q[4];
-        for (int r = 0; r < 4; r++)
-            q[r] = mr[r][0] * p[0] + mr[r][1] * p[1] + mr[r][2] * p[2] + mr[r][3] * 1.0;
-        const d4 x = q[0], y = q[1], z = q[2], wc = q[3];
-        l4 oc = ((l4)(x < -wc) & VERTEX_OUT_LEFT) | ((l4)(x > wc) & VERTEX_OUT_RIGHT) |
-                ((l4)(y < -wc) & VERTEX_OUT_BOTTOM) | ((l4)(y > wc) & VERTEX_OUT_TOP) |
-                ((l4)(z < -wc) & VERTEX_OUT_NEAR) | ((l4)(z > wc) & VERTEX_OUT_FAR);
-        const l4 guard = ((l4)(x < gxn * wc) & VERTEX_GUARD_LEFT) |
-                         ((l4)(x > gxp * wc) & VERTEX_GUARD_RIGHT) |
-                         ((l4)(y < gyn * wc) & VERTEX_GUARD_BOTTOM) |
-                         ((l4)(y > gyp * wc) & VERTEX_GUARD_TOP);
-        oc |= guard & (l4)((oc & 0xf) != 0);
-        const l4 finite = (l4)((x - x) + (y - y) + (z - z) + (wc - wc) == 0);
-        oc = (oc & finite) |
-             (~finite & (VERTEX_OUT_FRUSTUM | VERTEX_NEEDS_CLIP | VERTEX_INVALID));
-        const d4 rw = one / wc;
-        const d4 wx = (x * rw + 1.0) * half * fw, wy = (1.0 - y * rw) * half * fh;
-        const d4 sx = (wx * sub + magic) - magic, sy = (wy * sub + magic) - magic;
+        struct lanes q;
+        lanes_position(&L, p, &q);
         for (int l = 0; l < 4; l++) {
             struct vertex_out *o = &out[i + l];
-            o->clip[0] = x[l], o->clip[1] = y[l], o->clip[2] = z[l], o->clip[3] = wc[l];
-            o->outcode = (uint32_t)oc[l];
+            for (int r = 0; r < 4; r++)
+                o->clip[r] = q.clip[r][l];
+            o->outcode = (uint32_t)q.oc[l];
             o->shaded = VERTEX_UNSHADED;
             o->projected = 0;
-            if (!(oc[l] & VERTEX_NEEDS_CLIP)) {
-                o->win[0] = wx[l], o->win[1] = wy[l];
-                o->fx = (int32_t)(int64_t)sx[l];
-                o->fy = (int32_t)(int64_t)sy[l];
+            if (!(q.oc[l] & VERTEX_NEEDS_CLIP)) {
+                o->win[0] = q.wx[l], o->win[1] = q.wy[l];
+                o->fx = (int32_t)(int64_t)q.sx[l];
+                o->fy = (int32_t)(int64_t)q.sy[l];
                 o->projected = 1;
             }
         }
     }
-    for (; i < i1; i++) {
+    for (; i < i1; i++) { /* (the last few: vertex.h's functions) */
         const float *p = m->verts[i].pos;
-        double cl[4];
-        for (int r = 0; r < 4; r++)
-            cl[r] = a.m[r][0] * p[0] + a.m[r][1] * p[1] + a.m[r][2] * p[2] + a.m[r][3] * 1.0;
-        vertex_from_clip(&out[i], cl, gx, gy, w, h);
+        struct vertex_out *o = &out[i];
+        const vec4 c = m4_mul_v4(u->mvp, (vec4){p[0], p[1], p[2], 1});
+        o->clip[0] = c.x, o->clip[1] = c.y, o->clip[2] = c.z, o->clip[3] = c.w;
+        o->outcode = vertex_outcode(o->clip, u->guard_x, u->guard_y);
+        o->projected = 0;
+        o->shaded = VERTEX_UNSHADED;
+        if (!(o->outcode & VERTEX_NEEDS_CLIP))
+            vertex_project(o, u->fb_w, u->fb_h);
+    }
+}
+
+static void position_run(const float (*xyz)[3], const struct vertex_uniforms *u,
+                         struct vertex_pos *out, uint32_t p0, uint32_t p1)
+{
+    struct lanes_view L;
+    lanes_view_init(&L, u);
+    uint32_t i = p0;
+    for (; i + 4 <= p1; i += 4) {
+        d4 p[3];
+        for (int l = 0; l < 4; l++)
+            for (int c = 0; c < 3; c++)
+                p[c][l] = xyz[i + l][c];
+        struct lanes q;
+        lanes_position(&L, p, &q);
+        for (int l = 0; l < 4; l++) {
+            struct vertex_pos *o = &out[i + l];
+            o->outcode = (uint32_t)q.oc[l];
+            o->fx = o->fy = 0;
+            o->z = 0;
+            if (!(q.oc[l] & VERTEX_NEEDS_CLIP)) {
+                o->fx = (int32_t)(int64_t)q.sx[l];
+                o->fy = (int32_t)(int64_t)q.sy[l];
+                o->z = (float)lanes_depth(&q, l);
+            }
+        }
+    }
+    for (; i < p1; i++) { /* (the last few: vertex.h's and viewport.h's functions) */
+        const float *p = xyz[i];
+        const vec4 c = m4_mul_v4(u->mvp, (vec4){p[0], p[1], p[2], 1});
+        const double clip[4] = {c.x, c.y, c.z, c.w};
+        struct vertex_pos *o = &out[i];
+        o->outcode = vertex_outcode(clip, u->guard_x, u->guard_y);
+        o->fx = o->fy = 0;
+        o->z = 0;
+        if (!(o->outcode & VERTEX_NEEDS_CLIP)) {
+            double win[3];
+            viewport_window(clip, u->fb_w, u->fb_h, win);
+            o->fx = (int32_t)viewport_snap(win[0]);
+            o->fy = (int32_t)viewport_snap(win[1]);
+            o->z = (float)win[2];
+        }
     }
 }
 
