@@ -170,7 +170,8 @@ struct mesh {
     struct mesh_dag *dag; /* the cluster hierarchy (dag.h), set (atomically) once complete,
                              or NULL; the hierarchy's own mesh points to it too */
     struct mesh_clusters *clusters; /* its opaque triangles in runs with bounds (cluster.h),
-                                       or NULL: drawn triangle by triangle */
+                                       or NULL: drawn triangle by triangle; whoever edits
+                                       tris or verts frees them (mesh_free_clusters) */
 };
 
 enum { MESH_SIDES_NONE, MESH_SIDES_ALL, MESH_SIDES_SOME };

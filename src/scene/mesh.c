@@ -697,6 +697,8 @@ int mesh_tangents(struct mesh *m, bool second)
         }
     }
     m->n_verts = nv + extra;
+    if (extra) /* (the clusters' vertex reach is stale: built again by whoever wants them) */
+        mesh_free_clusters(m);
     if (extra && mesh_share_positions(m)) { /* (the twins share their vertex's position) */
         free(twin);
         free(acc);

@@ -100,6 +100,24 @@ TEST(clusters_hold_their_triangles_and_the_vertices_they_need)
     mesh_free(&m);
 }
 
+TEST(mirrored_tangents_drop_the_clusters_they_make_stale)
+{
+    /* uvs mirrored across x = 0 (u = |x|): the triangles there disagree on handedness, and
+     * mesh_tangents splits their vertices into twins, renumbering triangles' corners: the
+     * clusters' vertex reach (v_need, v_end) would be stale, so they go */
+    struct mesh m;
+    REQUIRE(bumpy(&m, 20, 0) == 0);
+    for (uint32_t v = 0; v < m.n_verts; v++)
+        m.verts[v].uv[0] = fabsf(m.verts[v].pos[0]), m.verts[v].uv[1] = m.verts[v].pos[1];
+    m.has_uvs = true;
+    REQUIRE(cluster_build(&m) == 0 && m.clusters);
+    const uint32_t nv = m.n_verts;
+    REQUIRE(mesh_tangents(&m, false) == 0);
+    CHECK(m.n_verts > nv); /* (twins made) */
+    CHECK(m.clusters == NULL);
+    mesh_free(&m);
+}
+
 TEST(cluster_culling_draws_the_same_bytes_from_every_view)
 {
     struct mesh m;
