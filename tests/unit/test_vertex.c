@@ -145,6 +145,8 @@ TEST(vertex_run_is_the_reference)
             continue;
         memset(out, 0, sizeof out);
         kernel_set(isas[is])->by_size[SPAN_SIZE_LARGE]->vertex_run(&m, &u, out, 0, 30);
+        static const struct vertex_out untouched; /* (a run writes its own records alone) */
+        CHECK(memcmp(&out[30], &untouched, sizeof untouched) == 0);
         kernel_set(isas[is])->by_size[SPAN_SIZE_LARGE]->vertex_run(&m, &u, out, 30, N);
         CHECK(memcmp(ref, out, sizeof ref) == 0);
         /* the same positions alone (the walk by position's share of each record) */
@@ -162,6 +164,7 @@ TEST(vertex_run_is_the_reference)
         }
         memset(pos, 0xff, sizeof pos);
         kernel_set(isas[is])->by_size[SPAN_SIZE_LARGE]->position_run(xyz, &u, pos, 0, 29);
+        CHECK(pos[29].outcode == 0xffffffffu && pos[30].outcode == 0xffffffffu);
         kernel_set(isas[is])->by_size[SPAN_SIZE_LARGE]->position_run(xyz, &u, pos, 29, N);
         CHECK(memcmp(want, pos, sizeof want) == 0);
     }

@@ -1,7 +1,8 @@
-/* kernel_vertex.h: the vertex stage's bulk work (vertex.h) — positioning vertices and
- * shading many at once — compiled once per instruction set by kernel_*.c (kernel.h): with
- * AVX the clip position's four rows in one register instead of two, and SIMD_LANES vertices
- * lit at a time; the same doubles and floats as vertex.c's one-at-a-time functions. */
+/* kernel_vertex.h: the vertex stage's bulk work (vertex.h) — positioning vertices (or
+ * positions alone) four at a time and shading many at once — compiled once per
+ * instruction set by kernel_*.c (kernel.h): four doubles in one register with AVX, two with
+ * SSE2, and SIMD_LANES vertices lit at a time; the same doubles and floats as vertex.c's
+ * one-at-a-time functions. */
 #ifndef RASTTY_KERNEL_VERTEX_H
 #define RASTTY_KERNEL_VERTEX_H
 
@@ -66,26 +67,28 @@ static inline double lanes_depth(const struct lanes *o, int l)
     return 0.5 * o->clip[2][l] * (1.0 / o->clip[3][l]) + 0.5;
 }
 
+/* (the last run of fewer than four fills its empty lanes with its last vertex again, and
+ * stores only its own) */
 static void vertex_run(const struct mesh *m, const struct vertex_uniforms *u,
                        struct vertex_out *out, uint32_t i0, uint32_t i1)
 {
     struct lanes_view L;
     lanes_view_init(&L, u);
-    uint32_t i = i0;
-    for (; i + 4 <= i1; i += 4) {
+    for (uint32_t i = i0; i < i1; i += 4) {
+        const int n = i1 - i < 4 ? (int)(i1 - i) : 4;
         /* (the positions a few steps on: a cluster's run is too short for the hardware's
          * prefetcher to find) */
         if (i + 19 < m->n_verts) {
             __builtin_prefetch(&m->verts[i + 16]);
             __builtin_prefetch(&m->verts[i + 18]);
         }
-        d4 p[3];
-        for (int l = 0; l < 4; l++)
-            for (int c = 0; c < 3; c++)
-                p[c][l] = m->verts[i + l].pos[c];
+        const float *a = m->verts[i].pos, *b = m->verts[i + (n > 1)].pos,
+                    *c = m->verts[i + (n > 2 ? 2 : n - 1)].pos, *d = m->verts[i + n - 1].pos;
+        const d4 p[3] = {{a[0], b[0], c[0], d[0]}, {a[1], b[1], c[1], d[1]},
+                         {a[2], b[2], c[2], d[2]}};
         struct lanes q;
         lanes_position(&L, p, &q);
-        for (int l = 0; l < 4; l++) {
+        for (int l = 0; l < n; l++) {
             struct vertex_out *o = &out[i + l];
             for (int r = 0; r < 4; r++)
                 o->clip[r] = q.clip[r][l];
@@ -100,17 +103,6 @@ static void vertex_run(const struct mesh *m, const struct vertex_uniforms *u,
             }
         }
     }
-    for (; i < i1; i++) { /* (the last few: vertex.h's functions) */
-        const float *p = m->verts[i].pos;
-        struct vertex_out *o = &out[i];
-        const vec4 c = m4_mul_v4(u->mvp, (vec4){p[0], p[1], p[2], 1});
-        o->clip[0] = c.x, o->clip[1] = c.y, o->clip[2] = c.z, o->clip[3] = c.w;
-        o->outcode = vertex_outcode(o->clip, u->guard_x, u->guard_y);
-        o->projected = 0;
-        o->shaded = VERTEX_UNSHADED;
-        if (!(o->outcode & VERTEX_NEEDS_CLIP))
-            vertex_project(o, u->fb_w, u->fb_h);
-    }
 }
 
 static void position_run(const float (*xyz)[3], const struct vertex_uniforms *u,
@@ -118,15 +110,15 @@ static void position_run(const float (*xyz)[3], const struct vertex_uniforms *u,
 {
     struct lanes_view L;
     lanes_view_init(&L, u);
-    uint32_t i = p0;
-    for (; i + 4 <= p1; i += 4) {
-        d4 p[3];
-        for (int l = 0; l < 4; l++)
-            for (int c = 0; c < 3; c++)
-                p[c][l] = xyz[i + l][c];
+    for (uint32_t i = p0; i < p1; i += 4) {
+        const int n = p1 - i < 4 ? (int)(p1 - i) : 4;
+        const float *a = xyz[i], *b = xyz[i + (n > 1)], *c = xyz[i + (n > 2 ? 2 : n - 1)],
+                    *d = xyz[i + n - 1];
+        const d4 p[3] = {{a[0], b[0], c[0], d[0]}, {a[1], b[1], c[1], d[1]},
+                         {a[2], b[2], c[2], d[2]}};
         struct lanes q;
         lanes_position(&L, p, &q);
-        for (int l = 0; l < 4; l++) {
+        for (int l = 0; l < n; l++) {
             struct vertex_pos *o = &out[i + l];
             o->outcode = (uint32_t)q.oc[l];
             o->fx = o->fy = 0;
@@ -136,22 +128,6 @@ static void position_run(const float (*xyz)[3], const struct vertex_uniforms *u,
                 o->fy = (int32_t)(int64_t)q.sy[l];
                 o->z = (float)lanes_depth(&q, l);
             }
-        }
-    }
-    for (; i < p1; i++) { /* (the last few: vertex.h's and viewport.h's functions) */
-        const float *p = xyz[i];
-        const vec4 c = m4_mul_v4(u->mvp, (vec4){p[0], p[1], p[2], 1});
-        const double clip[4] = {c.x, c.y, c.z, c.w};
-        struct vertex_pos *o = &out[i];
-        o->outcode = vertex_outcode(clip, u->guard_x, u->guard_y);
-        o->fx = o->fy = 0;
-        o->z = 0;
-        if (!(o->outcode & VERTEX_NEEDS_CLIP)) {
-            double win[3];
-            viewport_window(clip, u->fb_w, u->fb_h, win);
-            o->fx = (int32_t)viewport_snap(win[0]);
-            o->fy = (int32_t)viewport_snap(win[1]);
-            o->z = (float)win[2];
         }
     }
 }
