@@ -377,7 +377,7 @@ walk(struct frontend *fe, struct frame *f, struct tri_walk *w, const uint32_t *l
     struct batch *bt = &fe->batch[fe->cur];
     /* counted in locals, added once: through the stats pointer every count would be a
      * memory update the compiler must keep in order with the batch's stores */
-    uint64_t n_rejected = 0, n_culled = 0, n_no_centre = 0, n_hidden = 0;
+    uint64_t n_culled = 0, n_no_centre = 0, n_hidden = 0;
     const float *hide = w->hide;
     const int fb_w = f->fb->w, fb_h = f->fb->h;
     const bool culls = !depth_only && (cull != CULL_NONE || by_material); /* (reads clip) */
@@ -386,24 +386,18 @@ walk(struct frontend *fe, struct frame *f, struct tri_walk *w, const uint32_t *l
         const uint32_t i = list[li];
         const uint32_t *c = m->tris[i];
         struct vertex_out *v[3] = {&vo[c[0]], &vo[c[1]], &vo[c[2]]};
-        uint32_t all, any;
+        uint32_t any;
         int64_t box[4] = {0, 0, -1, -1};
         bool unclipped;
+        /* (filter kept the triangle: inside the view, and unclipped its box holds a pixel
+         * centre; the box is made again here) */
         if (by_pos) { /* the corners' positions: their vertices made only past the box */
             const uint32_t q0 = m->pos_id[c[0]], q1 = m->pos_id[c[1]], q2 = m->pos_id[c[2]];
             const struct vertex_pos *p0 = &w->pos[q0], *p1 = &w->pos[q1], *p2 = &w->pos[q2];
-            all = p0->outcode & p1->outcode & p2->outcode;
             any = p0->outcode | p1->outcode | p2->outcode;
-            if ((all & VERTEX_OUT_FRUSTUM) || (any & VERTEX_INVALID)) {
-                n_rejected++;
-                continue;
-            }
             unclipped = !(any & VERTEX_NEEDS_CLIP);
-            if (unclipped &&
-                !setup_box_xy(p0->fx, p0->fy, p1->fx, p1->fy, p2->fx, p2->fy, fb_w, fb_h, box)) {
-                n_no_centre++;
-                continue;
-            }
+            if (unclipped)
+                setup_box_xy(p0->fx, p0->fy, p1->fx, p1->fy, p2->fx, p2->fy, fb_w, fb_h, box);
             if (hide && unclipped && hidden_behind(hide, fb_w, box, min3f(p0->z, p1->z, p2->z))) {
                 n_hidden++;
                 continue;
@@ -421,19 +415,10 @@ walk(struct frontend *fe, struct frame *f, struct tri_walk *w, const uint32_t *l
                 v[2] = make_vertex(f, w, c[2]);
             }
         } else {
-            all = v[0]->outcode & v[1]->outcode & v[2]->outcode;
             any = v[0]->outcode | v[1]->outcode | v[2]->outcode;
-            if ((all & VERTEX_OUT_FRUSTUM) || (any & VERTEX_INVALID)) {
-                n_rejected++;
-                continue;
-            }
-            /* an unclipped triangle whose box holds no pixel centre goes first: at
-             * terminal sizes most triangles of a dense mesh do */
             unclipped = !(any & VERTEX_NEEDS_CLIP);
-            if (unclipped && !setup_box(v[0], v[1], v[2], fb_w, fb_h, box)) {
-                n_no_centre++; /* whatever its facing: its determinant is never computed */
-                continue;
-            }
+            if (unclipped)
+                setup_box(v[0], v[1], v[2], fb_w, fb_h, box);
             if (hide && unclipped &&
                 hidden_behind(hide, fb_w, box,
                               min3f(corner_depth(v[0]), corner_depth(v[1]), corner_depth(v[2])))) {
@@ -478,7 +463,6 @@ walk(struct frontend *fe, struct frame *f, struct tri_walk *w, const uint32_t *l
         stats->tris_clipped++;
         clip_and_add(fe, f, v, any & VERTEX_NEEDS_CLIP, n_var, shade, rich);
     }
-    w->n_rejected += n_rejected;
     w->n_culled += n_culled;
     w->n_no_centre += n_no_centre;
     w->n_hidden += n_hidden;
