@@ -7,9 +7,10 @@
  * (cluster_cull.h: outside the view, facing away, between pixel centres, or hidden behind
  * the depth drawn so far over its rectangle, after the batch is drawn when it holds
  * FRONTEND_CLUSTER_FLUSH triangles or more) and dropped before any of its vertices is
- * made; the vertex stage then runs from the cluster's v_need to its v_end, and its
- * triangles go through the steps below as any others (the sports car at 160x96: 44% of its
- * clusters hidden, 6% between pixel centres).
+ * made; the vertex stage then runs from the cluster's v_need to its v_end (walking by
+ * position: its positions are projected just ahead, as below), and its triangles go
+ * through the steps below as any others (the sports car at 160x96: 44% of its clusters
+ * hidden, 6% between pixel centres).
  *
  * For each triangle of an item, in order:
  *     the vertex stage just ahead of it (kernel.h's vertex_run, in chunks of at least
@@ -151,13 +152,12 @@ void frontend_begin(struct frontend *fe, const struct frame *f, struct workers *
 /* Item it's vertex-stage output array, grown to n (kept across frames); NULL and e set when
  * out of memory. */
 struct vertex_out *frontend_item_verts(struct frontend *fe, int it, uint32_t n, struct err *e);
-/* Does the front end walk m's opaque triangles by clusters under o on a framebuffer of
- * fb_w x fb_h pixels, wire: wireframe shading (and so make their vertices itself: the
- * caller's verts_from is not read)? --cluster-cull on, a mesh with clusters that is not a
- * hierarchy's cut and would not be walked by position (which pays more where it applies:
- * frontend.c), not wireframe or its overlay (their edges read every vertex). */
-bool frontend_by_clusters(const struct mesh *m, const struct render_opts *o, int fb_w, int fb_h,
-                          bool wire);
+/* Does the front end walk m's opaque triangles by clusters under o, wire: wireframe shading
+ * (and so make their vertices itself: the caller's verts_from is not read)? --cluster-cull
+ * on, a mesh with clusters that is not a hierarchy's cut, not wireframe or its overlay
+ * (their edges read every vertex). A mesh walked by position keeps that walk for the
+ * clusters kept. */
+bool frontend_by_clusters(const struct mesh *m, const struct render_opts *o, bool wire);
 /* The front end for the item's triangles i0 .. i1-1 of m (the item's mesh at the level of
  * detail drawn; no triangle uses a vertex below verts_from: the vertex stage starts there)
  * with vertex records vo; depth_only: the hidden-line pre-pass (every face, whatever the

@@ -575,6 +575,28 @@ static int zeroed(uint8_t **buf, size_t *cap, size_t n, struct err *e)
     return 0;
 }
 
+/* The walk by position's scratch for w's mesh: a record slot per vertex (none made yet)
+ * and a projected position per position (none projected yet). 0, or -1 out of memory. */
+static int positions_begin(struct frontend *fe, struct tri_walk *w, struct err *e)
+{
+    const struct mesh *m = w->m;
+    if (zeroed((uint8_t **)&fe->vslot, &fe->vslot_cap, (size_t)m->n_verts * sizeof *fe->vslot,
+               e))
+        return -1;
+    if (m->n_pos > fe->pos_cap) {
+        struct vertex_pos *g = realloc(fe->pos, (size_t)m->n_pos * sizeof *g);
+        if (!g)
+            return err_set(e, "out of memory for %u positions", (unsigned)m->n_pos);
+        fe->pos = g;
+        fe->pos_cap = m->n_pos;
+    }
+    w->pos = fe->pos;
+    w->vslot = fe->vslot;
+    w->n_made = 0;
+    w->pos_done = 0;
+    return 0;
+}
+
 /* Is a cluster lying at r (cluster_cull.h) hidden over its whole rectangle by what the
  * depth buffer holds (hidden_behind's question for all its triangles at once: each one's
  * box lies in the rectangle and each one's corners at r.z_lo or behind)? Rectangles of
@@ -599,11 +621,14 @@ static bool cluster_hidden(const float *depth, int fb_w, const struct cluster_re
  * triangles — and dropped before its vertices are made; the others' vertices made and
  * their triangles walked as without clusters. */
 static int walk_clusters(struct frontend *fe, struct frame *f, struct tri_walk *w,
-                         uint32_t i0, uint32_t i1, struct err *e)
+                         uint32_t i0, uint32_t i1, const bool by_pos, struct err *e)
 {
     const struct mesh *m = w->m;
     const struct mesh_clusters *cs = m->clusters;
-    uint32_t vdone = 0; /* vertices below it made, or read by no cluster still to come */
+    if (by_pos && positions_begin(fe, w, e))
+        return -1;
+    uint32_t vdone = 0; /* vertices below it made, or read by no cluster still to come (by
+                           position: read ahead, as filter does) */
     struct cluster_view cv;
     cluster_view_init(&cv, f->u.model, f->u.mvp, f->u.eye, f->u.ortho, f->u.view_back,
                       f->fb->w, f->fb->h, w->cull, w->by_material);
@@ -629,6 +654,13 @@ static int walk_clusters(struct frontend *fe, struct frame *f, struct tri_walk *
             dropped[cvd] += b - a;
             continue;
         }
+        uint32_t list[CLUSTER_MAX_TRIS];
+        if (by_pos) { /* (filter projects the positions and reads the vertices ahead) */
+            const uint32_t n = filter(f, w, a, b, &vdone, true, list);
+            if (n && walk(fe, f, w, list, n, true, e))
+                return -1;
+            continue;
+        }
         /* the vertex stage from the lowest vertex this or a later cluster reads (those
          * below it that dropped clusters alone read are never made) to this one's last */
         vdone = vdone > c->v_need ? vdone : c->v_need;
@@ -636,7 +668,7 @@ static int walk_clusters(struct frontend *fe, struct frame *f, struct tri_walk *
             vertex_stage(f, w, vdone, c->v_end);
             vdone = c->v_end;
         }
-        uint32_t list[CLUSTER_MAX_TRIS], all = m->n_verts;
+        uint32_t all = m->n_verts;
         const uint32_t n = filter(f, w, a, b, &all, false, list);
         if (n && walk(fe, f, w, list, n, false, e))
             return -1;
@@ -663,21 +695,8 @@ static int walk_clusters(struct frontend *fe, struct frame *f, struct tri_walk *
 static int walk_by_position(struct frontend *fe, struct frame *f, struct tri_walk *w,
                             uint32_t i0, uint32_t i1, struct err *e)
 {
-    const struct mesh *m = w->m;
-    if (zeroed((uint8_t **)&fe->vslot, &fe->vslot_cap, (size_t)m->n_verts * sizeof *fe->vslot,
-               e))
+    if (positions_begin(fe, w, e))
         return -1;
-    if (m->n_pos > fe->pos_cap) {
-        struct vertex_pos *g = realloc(fe->pos, (size_t)m->n_pos * sizeof *g);
-        if (!g)
-            return err_set(e, "out of memory for %u positions", (unsigned)m->n_pos);
-        fe->pos = g;
-        fe->pos_cap = m->n_pos;
-    }
-    w->pos = fe->pos;
-    w->vslot = fe->vslot;
-    w->n_made = 0;
-    w->pos_done = 0;
     uint32_t vdone = 0;
     return walk_range(fe, f, w, i0, i1, &vdone, true, e);
 }
@@ -826,21 +845,19 @@ static int walk_cut(struct frontend *fe, struct frame *f, struct tri_walk *w, ui
  * position for every two vertices: lost_empire, 0.22, gains 17%; where every vertex has a
  * position of its own, the sports car, it lost 14%), with more triangles than the
  * framebuffer has pixels (most then hold no pixel centre: lost_empire at 160x96; at
- * 640x480, 225k triangles on 307k pixels, it lost 4%). Preferred to clusters: on
- * lost_empire, whose clusters are seldom dropped whole (10% at 160x96), walking by clusters
- * lost 25%. */
+ * 640x480, 225k triangles on 307k pixels, it lost 4%). With clusters, the clusters kept
+ * are walked by position (lost_empire by clusters and by vertex lost 25% framed at
+ * 160x96, and won 11% from inside the world, where most clusters lie outside the view). */
 static bool walks_by_position(const struct mesh *m, int fb_w, int fb_h)
 {
     return m->pos_id && 2 * (uint64_t)m->n_pos <= m->n_verts &&
            m->n_tris > (uint64_t)fb_w * (uint64_t)fb_h;
 }
 
-bool frontend_by_clusters(const struct mesh *m, const struct render_opts *o, int fb_w, int fb_h,
-                          bool wire)
+bool frontend_by_clusters(const struct mesh *m, const struct render_opts *o, bool wire)
 {
     return m->clusters && o->cluster_cull == CLUSTER_CULL_ON && !wire &&
-           o->view != VIEW_WIRE_OVERLAY && !dag_is_cut_mesh(m) &&
-           !walks_by_position(m, fb_w, fb_h);
+           o->view != VIEW_WIRE_OVERLAY && !dag_is_cut_mesh(m);
 }
 
 int frontend_triangles(struct frontend *fe, struct frame *f, const struct draw_item *item,
@@ -865,12 +882,12 @@ int frontend_triangles(struct frontend *fe, struct frame *f, const struct draw_i
         w.cull = m->one_sided == MESH_SIDES_ALL ? CULL_BACK : CULL_NONE;
     const bool wire = f->span.mode == SHADE_WIRE;
     const bool clusters = !depth_only && i1 <= m->n_opaque &&
-                          frontend_by_clusters(m, o, f->fb->w, f->fb->h, wire);
+                          frontend_by_clusters(m, o, wire);
     const bool cut = dag_is_cut_mesh(m) && !depth_only && !wire && o->view != VIEW_WIRE_OVERLAY;
     /* by position (walks_by_position): from the first vertex on, and only where no one else
      * reads the item's records (not wireframe's edges, not the hidden-line pre-pass) */
-    const bool by_pos = !cut && !clusters && walks_by_position(m, f->fb->w, f->fb->h) &&
-                        verts_from == 0 && i0 < i1 && !depth_only && !wire &&
+    const bool by_pos = !cut && walks_by_position(m, f->fb->w, f->fb->h) &&
+                        (verts_from == 0 || clusters) && i0 < i1 && !depth_only && !wire &&
                         o->view != VIEW_WIRE_OVERLAY;
     if (by_pos)
         f->stats->tris_by_position += i1 - i0;
@@ -881,7 +898,7 @@ int frontend_triangles(struct frontend *fe, struct frame *f, const struct draw_i
         o->view != VIEW_WIRE_OVERLAY)
         w.hide = f->fb->depth;
     int rc = cut        ? walk_cut(fe, f, &w, i0, i1, e)
-             : clusters ? walk_clusters(fe, f, &w, i0, i1, e)
+             : clusters ? walk_clusters(fe, f, &w, i0, i1, by_pos, e)
              : by_pos   ? walk_by_position(fe, f, &w, i0, i1, e)
                         : walk_range(fe, f, &w, i0, i1, &verts_from, false, e);
     if (rc)

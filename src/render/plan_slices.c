@@ -162,7 +162,7 @@ static void slice_main(void *arg, int k)
         /* the vertex stage starts at the lowest vertex the slice's triangles use (one flat
          * loop over their indices: the compiler makes it a vector minimum) */
         uint32_t from = 0;
-        if (i0 && !frontend_by_clusters(m, j->o, f.fb->w, f.fb->h, f.span.mode == SHADE_WIRE) &&
+        if (i0 && !frontend_by_clusters(m, j->o, f.span.mode == SHADE_WIRE) &&
             !dag_is_cut_mesh(m)) { /* (the front end makes those vertices itself) */
             const uint32_t *idx = m->tris[i0];
             from = m->n_verts;
