@@ -36,8 +36,12 @@ static inline void lanes_view_init(struct lanes_view *L, const struct vertex_uni
 
 /* (by pointer: a function returning vectors would have an AVX-only calling convention in
  * the baseline build) */
-static inline void lanes_position(const struct lanes_view *L, const d4 p[3], struct lanes *o)
+static inline void lanes_position(const struct lanes_view *L, const float *const pt[4],
+                                  struct lanes *o)
 {
+    const d4 p[3] = {{pt[0][0], pt[1][0], pt[2][0], pt[3][0]},
+                     {pt[0][1], pt[1][1], pt[2][1], pt[3][1]},
+                     {pt[0][2], pt[1][2], pt[2][2], pt[3][2]}};
     for (int r = 0; r < 4; r++)
         o->clip[r] = L->m[r][0] * p[0] + L->m[r][1] * p[1] + L->m[r][2] * p[2] + L->m[r][3] * 1.0;
     const d4 x = o->clip[0], y = o->clip[1], z = o->clip[2], w = o->clip[3];
@@ -82,12 +86,11 @@ static void vertex_run(const struct mesh *m, const struct vertex_uniforms *u,
             __builtin_prefetch(&m->verts[i + 16]);
             __builtin_prefetch(&m->verts[i + 18]);
         }
-        const float *a = m->verts[i].pos, *b = m->verts[i + (n > 1)].pos,
-                    *c = m->verts[i + (n > 2 ? 2 : n - 1)].pos, *d = m->verts[i + n - 1].pos;
-        const d4 p[3] = {{a[0], b[0], c[0], d[0]}, {a[1], b[1], c[1], d[1]},
-                         {a[2], b[2], c[2], d[2]}};
+        const float *pt[4];
+        for (int l = 0; l < 4; l++)
+            pt[l] = m->verts[i + (l < n ? l : n - 1)].pos;
         struct lanes q;
-        lanes_position(&L, p, &q);
+        lanes_position(&L, pt, &q);
         for (int l = 0; l < n; l++) {
             struct vertex_out *o = &out[i + l];
             for (int r = 0; r < 4; r++)
@@ -112,12 +115,11 @@ static void position_run(const float (*xyz)[3], const struct vertex_uniforms *u,
     lanes_view_init(&L, u);
     for (uint32_t i = p0; i < p1; i += 4) {
         const int n = p1 - i < 4 ? (int)(p1 - i) : 4;
-        const float *a = xyz[i], *b = xyz[i + (n > 1)], *c = xyz[i + (n > 2 ? 2 : n - 1)],
-                    *d = xyz[i + n - 1];
-        const d4 p[3] = {{a[0], b[0], c[0], d[0]}, {a[1], b[1], c[1], d[1]},
-                         {a[2], b[2], c[2], d[2]}};
+        const float *pt[4];
+        for (int l = 0; l < 4; l++)
+            pt[l] = xyz[i + (l < n ? l : n - 1)];
         struct lanes q;
-        lanes_position(&L, p, &q);
+        lanes_position(&L, pt, &q);
         for (int l = 0; l < n; l++) {
             struct vertex_pos *o = &out[i + l];
             o->outcode = (uint32_t)q.oc[l];
