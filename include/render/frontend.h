@@ -127,8 +127,8 @@ struct frontend {
     struct vertex_out **vq_out;
     uint32_t vq_n, vq_cap;
     const struct mesh *vq_mesh;
-    /* clusters (cluster_cull.h), for the item being walked: which vertices the vertex
-     * stage has made (a byte each), which triangles may draw (a bit each); cleared per
+    /* the hierarchy's cut (dag.h, walk_cut), for the item being walked: which vertices the
+     * vertex stage makes (a byte each), which triangles may draw (a bit each); cleared per
      * item */
     uint8_t *vdone;
     uint64_t *marks;

@@ -342,12 +342,14 @@ static inline float min3f(float a, float b, float c)
     return c < a ? c : a;
 }
 
-/* Is a triangle whose depth is at least z_lo everywhere hidden over its pixel box by what
- * the depth buffer holds (test LESS: a fragment at z_lo or behind fails where the buffer is
- * at z_lo or nearer)? Boxes of more than FRONTEND_HIDDEN_MAX_BOX pixels are not tested. */
-static inline bool hidden_behind(const float *depth, int fb_w, const int64_t box[4], float z_lo)
+/* Is a triangle (or a cluster's triangles) whose depth is at least z_lo everywhere hidden
+ * over its pixel box by what the depth buffer holds (test LESS: a fragment at z_lo or behind
+ * fails where the buffer is at z_lo or nearer)? Boxes of more than max_px pixels are not
+ * tested (a triangle's: FRONTEND_HIDDEN_MAX_BOX; a cluster's: FRONTEND_HIDDEN_MAX_RECT). */
+static inline bool hidden_behind(const float *depth, int fb_w, const int64_t box[4], float z_lo,
+                                 int64_t max_px)
 {
-    if ((box[2] - box[0] + 1) * (box[3] - box[1] + 1) > FRONTEND_HIDDEN_MAX_BOX)
+    if ((box[2] - box[0] + 1) * (box[3] - box[1] + 1) > max_px)
         return false;
     for (int64_t y = box[1]; y <= box[3]; y++) {
         const float *row = depth + y * fb_w;
@@ -398,7 +400,9 @@ walk(struct frontend *fe, struct frame *f, struct tri_walk *w, const uint32_t *l
             unclipped = !(any & VERTEX_NEEDS_CLIP);
             if (unclipped)
                 setup_box_xy(p0->fx, p0->fy, p1->fx, p1->fy, p2->fx, p2->fy, fb_w, fb_h, box);
-            if (hide && unclipped && hidden_behind(hide, fb_w, box, min3f(p0->z, p1->z, p2->z))) {
+            if (hide && unclipped &&
+                hidden_behind(hide, fb_w, box, min3f(p0->z, p1->z, p2->z),
+                              FRONTEND_HIDDEN_MAX_BOX)) {
                 n_hidden++;
                 continue;
             }
@@ -421,7 +425,8 @@ walk(struct frontend *fe, struct frame *f, struct tri_walk *w, const uint32_t *l
                 setup_box(v[0], v[1], v[2], fb_w, fb_h, box);
             if (hide && unclipped &&
                 hidden_behind(hide, fb_w, box,
-                              min3f(corner_depth(v[0]), corner_depth(v[1]), corner_depth(v[2])))) {
+                              min3f(corner_depth(v[0]), corner_depth(v[1]), corner_depth(v[2])),
+                              FRONTEND_HIDDEN_MAX_BOX)) {
                 n_hidden++;
                 continue;
             }
@@ -567,7 +572,7 @@ static int zeroed(uint8_t **buf, size_t *cap, size_t n, struct err *e)
     if (n > *cap) {
         uint8_t *g = realloc(*buf, n);
         if (!g)
-            return err_set(e, "out of memory for the clusters' marks");
+            return err_set(e, "out of memory for the front end's marks");
         *buf = g;
         *cap = n;
     }
@@ -595,23 +600,6 @@ static int positions_begin(struct frontend *fe, struct tri_walk *w, struct err *
     w->n_made = 0;
     w->pos_done = 0;
     return 0;
-}
-
-/* Is a cluster lying at r (cluster_cull.h) hidden over its whole rectangle by what the
- * depth buffer holds (hidden_behind's question for all its triangles at once: each one's
- * box lies in the rectangle and each one's corners at r.z_lo or behind)? Rectangles of
- * more than FRONTEND_HIDDEN_MAX_RECT pixels are not tested. */
-static bool cluster_hidden(const float *depth, int fb_w, const struct cluster_rect *r)
-{
-    if ((int64_t)(r->x1 - r->x0 + 1) * (r->y1 - r->y0 + 1) > FRONTEND_HIDDEN_MAX_RECT)
-        return false;
-    for (int y = r->y0; y <= r->y1; y++) {
-        const float *row = depth + (size_t)y * fb_w;
-        for (int x = r->x0; x <= r->x1; x++)
-            if (r->z_lo < row[x])
-                return false;
-    }
-    return true;
 }
 
 /* Triangles i0 .. i1-1 by clusters (cluster.h, cluster_cull.h), in the file's order (which
@@ -646,7 +634,10 @@ static int walk_clusters(struct frontend *fe, struct frame *f, struct tri_walk *
         if (cvd == CLUSTER_DRAW && w->hide && r.valid) {
             if (fe->batch[fe->cur].n_tris >= FRONTEND_CLUSTER_FLUSH && flush(fe, f, e))
                 return -1;
-            if (cluster_hidden(w->hide, f->fb->w, &r))
+            /* (every triangle's box lies in the rectangle, its corners at r.z_lo or
+             * behind: hidden_behind's question for all of them at once) */
+            const int64_t box[4] = {r.x0, r.y0, r.x1, r.y1};
+            if (hidden_behind(w->hide, f->fb->w, box, r.z_lo, FRONTEND_HIDDEN_MAX_RECT))
                 cvd = CLUSTER_HIDDEN;
         }
         clusters[cvd] += c->tri_first >= i0; /* (with slices: the one with its first) */
