@@ -39,7 +39,9 @@
  * error, projected at the nearest point of its sphere (lod.h's lod_pixels_per_unit), is at
  * most lod_px, and its parent's is more. Drawn clusters are then culled as --cluster-cull's
  * (frustum, facing, no pixel centre: cluster_cull.h) and their triangles drawn in the order
- * of the hierarchy's mesh: the source's in the file's order first. With no level coarsened
+ * of the hierarchy's mesh: the source's in the file's order first, by that mesh's runs of 64
+ * (cluster.h; built with the hierarchy), a run hidden behind the depth drawn so far dropped
+ * whole as --cluster-cull drops a hidden cluster. With no level coarsened
  * (every parent's error projects above lod_px), the frame is the bytes of --lod off.
  *
  * Meshes get a hierarchy when they have at least DAG_MIN_TRIS triangles, all opaque, and no

@@ -728,11 +728,98 @@ static inline double ppu_at(const struct ppu *q, const float c[3], float r)
     return q->k / z * q->scale;
 }
 
+/* the cut's marked triangles (a bit each in tmark) in runs, in the mesh's order, the vertex
+ * stage on the marked vertices just ahead of them */
+static int cut_marked(struct frontend *fe, struct frame *f, struct tri_walk *w, uint64_t *tmark,
+                      size_t words, uint32_t i0, uint32_t i1, struct err *e)
+{
+    uint32_t vdone = 0;
+    for (size_t wd = i0 >> 6; wd < words && wd * 64 < i1;) {
+        uint64_t bits = tmark[wd];
+        if (!bits) {
+            wd++;
+            continue;
+        }
+        const uint32_t a = (uint32_t)(wd * 64) + (uint32_t)__builtin_ctzll(bits);
+        uint64_t rest = ~bits & (~0ull << (a & 63)); /* the run's end: the first unmarked */
+        while (!rest && ++wd < words)
+            rest = ~tmark[wd];
+        const uint32_t b = wd < words ? (uint32_t)(wd * 64) + (uint32_t)__builtin_ctzll(rest)
+                                      : (uint32_t)(words * 64);
+        const uint32_t lo = a > i0 ? a : i0, hi = b < i1 ? b : i1;
+        if (lo < hi && walk_range(fe, f, w, lo, hi, &vdone, false, e))
+            return -1;
+        if (wd < words) /* (word wd's bits below b are done) */
+            tmark[wd] &= ~0ull << (b % 64);
+        if (b >= i1)
+            break;
+    }
+    return 0;
+}
+
+/* The cut's marked triangles by the hierarchy mesh's runs of 64 (cluster.h: run k is mark
+ * word k), in the mesh's order: a run with a marked triangle tested whole as walk_clusters
+ * tests a cluster — with the hidden test on the depth drawn so far, which the hierarchy's
+ * own clusters, tested before anything is drawn, cannot have — and dropped (its marked
+ * triangles counted in dropped[] by verdict), or its vertex stage run and its marked
+ * triangles walked. (Its box holds its unmarked triangles too: only larger.) */
+static int cut_runs(struct frontend *fe, struct frame *f, struct tri_walk *w,
+                    const struct cluster_view *cv, const uint64_t *tmark, uint32_t i0,
+                    uint32_t i1, uint64_t dropped[CLUSTER_VERDICTS], struct err *e)
+{
+    const struct mesh *m = w->m;
+    const struct mesh_clusters *cs = m->clusters;
+    uint32_t vdone = 0;
+    for (uint32_t id = i0 / CLUSTER_MAX_TRIS; id < cs->n; id++) {
+        const struct mesh_cluster *c = &cs->c[id];
+        if (c->tri_first >= i1)
+            break;
+        uint64_t bits = tmark[id];
+        if (c->tri_first < i0)
+            bits &= ~0ull << (i0 - c->tri_first);
+        if (i1 - c->tri_first < 64)
+            bits &= (1ull << (i1 - c->tri_first)) - 1;
+        if (!bits)
+            continue;
+        struct cluster_rect r;
+        enum cluster_verdict cvd = cluster_test(cv, c, &r);
+        if (cvd == CLUSTER_DRAW && r.valid) {
+            if (fe->batch[fe->cur].n_tris >= FRONTEND_CLUSTER_FLUSH && flush(fe, f, e))
+                return -1;
+            const int64_t box[4] = {r.x0, r.y0, r.x1, r.y1};
+            if (hidden_behind(w->hide, f->fb->w, box, r.z_lo, FRONTEND_HIDDEN_MAX_RECT))
+                cvd = CLUSTER_HIDDEN;
+        }
+        if (cvd != CLUSTER_DRAW) {
+            dropped[cvd] += (uint64_t)__builtin_popcountll(bits);
+            continue;
+        }
+        vdone = vdone > c->v_need ? vdone : c->v_need;
+        if (vdone < c->v_end) {
+            vertex_stage(f, w, vdone, c->v_end);
+            vdone = c->v_end;
+        }
+        while (bits) { /* its runs of marked triangles */
+            const unsigned a = (unsigned)__builtin_ctzll(bits);
+            const uint64_t from_a = bits >> a;
+            const unsigned len = ~from_a ? (unsigned)__builtin_ctzll(~from_a) : 64 - a;
+            uint32_t list[CLUSTER_MAX_TRIS], all = m->n_verts;
+            const uint32_t n = filter(f, w, c->tri_first + a, c->tri_first + a + len, &all,
+                                      false, list);
+            if (n && walk(fe, f, w, list, n, false, e))
+                return -1;
+            bits = a + len < 64 ? bits & (~0ull << (a + len)) : 0;
+        }
+    }
+    return 0;
+}
+
 /* The hierarchy's cut (dag.h) for triangles i0 .. i1-1 of its mesh: each cluster whose own
  * error projects to at most lod_px and its parent's to more, unless culled whole
  * (cluster_cull.h), marks its triangles in the slice (a bit each) and their vertices (a
  * byte each); then the marked triangles are walked in the mesh's order, the vertex stage
- * on the marked vertices just ahead of them. */
+ * on the marked vertices just ahead of them: by the mesh's runs with the hidden test on
+ * (cut_runs), else in runs of marked triangles (cut_marked). */
 static int walk_cut(struct frontend *fe, struct frame *f, struct tri_walk *w, uint32_t i0,
                     uint32_t i1, struct err *e)
 {
@@ -751,7 +838,7 @@ static int walk_cut(struct frontend *fe, struct frame *f, struct tri_walk *w, ui
     struct ppu pu;
     ppu_init(&pu, f);
     const double tau = f->o->lod_px;
-    uint64_t dropped[4] = {0, 0, 0, 0};
+    uint64_t dropped[CLUSTER_VERDICTS] = {0};
     for (uint32_t k = 0; k < d->n; k++) {
         const struct dag_cluster *c = &d->c[k];
         if (c->tri_hi < i0 || c->tri_lo >= i1)
@@ -799,35 +886,22 @@ static int walk_cut(struct frontend *fe, struct frame *f, struct tri_walk *w, ui
                 vmark[v[q]] = 1;
         }
     }
-    w->n_rejected += dropped[CLUSTER_FRUSTUM];
-    w->n_no_centre += dropped[CLUSTER_NO_CENTRE];
-    w->n_culled += dropped[CLUSTER_FACING];
-    /* the marked triangles in runs, in the mesh's order */
     w->vmark = vmark;
-    uint32_t vdone = 0;
-    for (size_t wd = i0 >> 6; wd < words && wd * 64 < i1;) {
-        uint64_t bits = tmark[wd];
-        if (!bits) {
-            wd++;
-            continue;
-        }
-        const uint32_t a = (uint32_t)(wd * 64) + (uint32_t)__builtin_ctzll(bits);
-        uint64_t rest = ~bits & (~0ull << (a & 63)); /* the run's end: the first unmarked */
-        while (!rest && ++wd < words)
-            rest = ~tmark[wd];
-        const uint32_t b = wd < words ? (uint32_t)(wd * 64) + (uint32_t)__builtin_ctzll(rest)
-                                      : (uint32_t)(words * 64);
-        const uint32_t lo = a > i0 ? a : i0, hi = b < i1 ? b : i1;
-        if (lo < hi && walk_range(fe, f, w, lo, hi, &vdone, false, e)) {
+    if (m->clusters && w->hide) { /* the marked triangles by the mesh's runs, hidden ones
+                                     dropped (cut_runs) */
+        if (cut_runs(fe, f, w, &cv, tmark, i0, i1, dropped, e)) {
             w->vmark = NULL;
             return -1;
         }
-        if (wd < words) /* (word wd's bits below b are done) */
-            tmark[wd] &= ~0ull << (b % 64);
-        if (b >= i1)
-            break;
+    } else if (cut_marked(fe, f, w, tmark, words, i0, i1, e)) {
+        w->vmark = NULL;
+        return -1;
     }
     w->vmark = NULL;
+    w->n_rejected += dropped[CLUSTER_FRUSTUM];
+    w->n_no_centre += dropped[CLUSTER_NO_CENTRE];
+    w->n_culled += dropped[CLUSTER_FACING];
+    w->n_hidden += dropped[CLUSTER_HIDDEN];
     return 0;
 }
 

@@ -705,6 +705,7 @@ int dag_build(struct mesh *m, const atomic_bool *cancel)
      * in the mesh's order, every level reads its vertices forward, as the source does */
     if (own_vertices(&B, d))
         goto fail;
+    cluster_build(hm); /* the runs the cut is walked by (out of memory: none, walked without) */
     uint32_t *st2 = realloc(B.stamp, (size_t)hm->n_verts * sizeof *st2);
     if (!st2)
         goto fail;
@@ -745,6 +746,7 @@ int dag_build(struct mesh *m, const atomic_bool *cancel)
     rc = 0;
     goto out;
 fail:
+    mesh_free_clusters(&d->mesh);
     free(d->mesh.tris);
     free(d->mesh.tri_material);
     if (d->mesh.verts != m->verts) {
@@ -780,6 +782,7 @@ void dag_free(struct mesh *m)
     struct mesh_dag *d = m->dag;
     if (!d || dag_is_cut_mesh(m))
         return;
+    mesh_free_clusters(&d->mesh);
     free(d->mesh.tris);
     free(d->mesh.tri_material);
     free(d->mesh.verts);
