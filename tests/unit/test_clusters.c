@@ -188,3 +188,84 @@ TEST(cluster_culling_draws_the_same_bytes_from_every_view)
     fb_free(&b);
     mesh_free(&m);
 }
+
+/* The front end's filter (frontend.c: its box question in 32 bits, many at a time) drops
+ * only triangles that hold no pixel centre: a grid of half-pixel cells whose corners sit on
+ * pixel centres and between them, seen orthographically (8 px a unit, the grid's corners
+ * exactly on the snapping grid), covers every pixel centre in its rectangle, whichever
+ * triangle owns it by the tie rule — at every offset of the grid, both diagonals, with
+ * clusters on and off. Every pixel drawn is counted: a centre a dropped triangle owned is
+ * left black. */
+TEST(filter_keeps_every_triangle_that_owns_a_pixel_centre)
+{
+    enum { G = 40 };                 /* cells a side: 20 px */
+    const double cell = 1.0 / 16.0; /* half a pixel */
+    struct fb fb;
+    REQUIRE(fb_init(&fb, 80, 48, false, NULL) == 0);
+    struct pipeline *p = pipeline_new();
+    REQUIRE(p);
+    int frames = 0, bad = 0;
+    for (int diag = 0; diag < 2; diag++)
+        for (int off = 0; off < 8; off++) { /* offsets in quarter pixels, both axes */
+            float pos[(G + 1) * (G + 1) * 3];
+            struct mesh_corner c[G * G * 6];
+            for (int y = 0; y <= G; y++)
+                for (int x = 0; x <= G; x++) {
+                    float *q = &pos[3 * (y * (G + 1) + x)];
+                    q[0] = (float)((x - G / 2) * cell + off / 32.0);
+                    q[1] = (float)((y - G / 2) * cell + (off * 3 % 8) / 32.0);
+                    q[2] = 0;
+                }
+            for (int k = 0; k < G * G; k++) {
+                uint32_t x = (uint32_t)(k % G), y = (uint32_t)(k / G), W = G + 1;
+                uint32_t P[4] = {y * W + x, y * W + x + 1, (y + 1) * W + x + 1, (y + 1) * W + x};
+                static const int o[2][6] = {{0, 1, 2, 0, 2, 3}, {0, 1, 3, 1, 2, 3}};
+                for (int j = 0; j < 6; j++)
+                    c[6 * k + j] = (struct mesh_corner){P[o[diag][j]], MESH_NONE, MESH_NONE};
+            }
+            struct mesh_source src = {.pos = pos, .n_pos = (G + 1) * (G + 1), .corners = c,
+                                      .n_tris = 2 * G * G};
+            struct mesh m;
+            memset(&m, 0, sizeof m);
+            REQUIRE(mesh_build(&src, &m, NULL) == 0);
+            m.materials = calloc(1, sizeof *m.materials);
+            REQUIRE(m.materials);
+            m.n_materials = 1;
+            m.materials[0].kd[0] = m.materials[0].kd[1] = m.materials[0].kd[2] = 1;
+            m.materials[0].texture = -1;
+            REQUIRE(cluster_build(&m) == 0);
+            struct draw_item it = {.mesh = &m, .model = m4_identity()};
+            struct camera cam;
+            camera_default(&cam);
+            cam.ortho_height = 6; /* 48 px: 8 a unit */
+            for (int cl = 0; cl < 2; cl++) {
+                struct render_opts o;
+                render_opts_default(&o);
+                o.shade = SHADE_UNLIT;
+                o.cluster_cull = cl ? CLUSTER_CULL_ON : CLUSTER_CULL_OFF;
+                struct frame_stats st;
+                REQUIRE(pipeline_draw(p, &it, 1, NULL, &cam, &o, &fb, &st, NULL) == 0);
+                frames++;
+                /* the pixel centres inside the grid's rectangle, strictly */
+                const double x0 = 40 + 8 * (-G / 2 * cell + off / 32.0), y0 = 24 - 8 * (G / 2 * cell + (off * 3 % 8) / 32.0);
+                int missing = 0, inside = 0;
+                for (int py = 0; py < fb.h; py++)
+                    for (int px = 0; px < fb.w; px++) {
+                        const double cx = px + 0.5, cy = py + 0.5;
+                        if (cx <= x0 || cx >= x0 + G / 2 || cy <= y0 || cy >= y0 + G / 2)
+                            continue;
+                        inside++;
+                        const uint8_t *rgb = &fb.rgb[3 * (py * fb.w + px)];
+                        missing += rgb[0] + rgb[1] + rgb[2] == 0;
+                    }
+                CHECK(inside >= 18 * 18);
+                bad += missing > 0;
+                CHECK_EQ_INT(missing, 0);
+                CHECK(st.tris_no_centre > st.tris_drawn); /* (most cells hold none) */
+            }
+            mesh_free(&m);
+        }
+    printf("    %d frames, %d with a pixel centre missing\n", frames, bad);
+    pipeline_destroy(p);
+    fb_free(&fb);
+}
