@@ -18,7 +18,9 @@
  *       walking by position (a mesh with mesh.h's pos_id, drawn from its first vertex, not
  *       by clusters, not as wireframe or its pre-pass), each distinct position projected
  *       once instead (outcode, snapped window position; lost_empire: 97k positions for
- *       450k vertices), read ahead in the same chunks
+ *       450k vertices), read ahead in the same chunks; or walking by heads (a mesh with
+ *       more vertices than render_opts.heads_ratio times the pixels: the 1M sphere at
+ *       160x96), the same with every vertex its own position
  *     trivial reject (all corners outside one frustum plane, or a corner not finite)
  *     its pixel box (setup_box): no pixel centre in it, dropped (most triangles of a dense
  *       mesh at terminal sizes); by position both from the corners' positions, and the

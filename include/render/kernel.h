@@ -65,9 +65,11 @@ struct kernel {
     /* vertex.h's vertex_run and vertex_shade_many */
     void (*vertex_run)(const struct mesh *m, const struct vertex_uniforms *u,
                        struct vertex_out *out, uint32_t i0, uint32_t i1);
-    /* positions xyz[p0 .. p1) as vertex_run positions a vertex, kept as struct vertex_pos:
-     * outcode, snapped window position and depth (the front end's walk by position) */
-    void (*position_run)(const float (*xyz)[3], const struct vertex_uniforms *u,
+    /* points p0 .. p1 (point i: three floats `stride` bytes on from xyz, i strides in: a
+     * mesh's positions, or its vertices' positions in place) as vertex_run positions a
+     * vertex, kept as struct vertex_pos in out[i]: outcode, snapped window position and
+     * depth (the front end's walk by position) */
+    void (*position_run)(const float *xyz, size_t stride, const struct vertex_uniforms *u,
                          struct vertex_pos *out, uint32_t p0, uint32_t p1);
     void (*vertex_shade_many)(const struct mesh *m, const struct vertex_uniforms *u,
                               const uint32_t *idx, struct vertex_out *const *out, uint32_t n);

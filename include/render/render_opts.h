@@ -102,6 +102,18 @@ enum thread_split { SPLIT_AUTO, SPLIT_TILES, SPLIT_SLICES, SPLIT_COUNT };
 enum kernel_isa { KERNEL_AUTO, KERNEL_REF, KERNEL_SSE2, KERNEL_AVX2, KERNEL_AVX2_4, KERNEL_AVX2_8,
                   KERNEL_ISA_COUNT };
 
+/* By heads (render_opts.heads_ratio, default this; render/frontend.c): a mesh with more
+ * vertices than this many times the framebuffer's pixels, and no pos_id (walked by
+ * position instead), is walked as by position with every
+ * vertex its own position — the vertex stage makes each vertex's head alone (outcode,
+ * snapped window position, depth: 16 bytes, position_run reading the vertices in place)
+ * and the records only of the triangles that draw. Where the vertex records are the
+ * frame's cost it pays (160x96, one thread: the 1M sphere 10.3 -> 8.2 ms, 4M 37.4 -> 28.4;
+ * at 640x480 the 4M sphere 54.1 -> 47.3, the 1M 22.0 -> 21.2); where many triangles draw
+ * for the vertices staged it does not (the car at 160x96, 11 vertices a pixel: 4.59 ->
+ * 4.81; at 320x192 8.73 -> 8.86; the 100k sphere 1.35 -> 1.36). */
+#define RENDER_HEADS_RATIO 16
+
 struct render_opts {
     enum shade_mode shade;
     enum tex_filter filter;
@@ -118,6 +130,9 @@ struct render_opts {
     enum cull_mode cull;
     enum cluster_cull cluster_cull; /* --cluster-cull: the picture never depends on it */
     enum hidden_cull hidden_cull;   /* --hidden-cull: nor on it */
+    int heads_ratio; /* walk a mesh by its vertices' heads when it has more vertices than
+                        this many times the framebuffer's pixels (default
+                        RENDER_HEADS_RATIO, 0 always, negative never): nor on it */
     enum debug_view view;
     bool textures;       /* sample material / override textures (else albedo = kd) */
     bool hidden_lines;   /* wire: hide edges behind the model's surfaces (depth pre-pass) */

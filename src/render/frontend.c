@@ -263,30 +263,47 @@ static inline void position_clip(const mat4 *a, const float q[3], double clip[4]
         clip[r] = a->m[r][0] * x + a->m[r][1] * y + a->m[r][2] * z + a->m[r][3] * 1.0;
 }
 
-/* Positions p0 .. p1-1 of m projected (mesh.h's pos_id): outcode, snapped window position
- * and depth, as vertex_run makes them for a vertex, kept alone: all the triangle tests read
- * (the kernel's position_run) */
+/* How the walk reads a triangle's corners: the vertex stage's records (vertex_run), or
+ * only their heads first — outcode, snapped window position and depth (struct vertex_pos,
+ * the kernel's position_run) — per position (mesh.h's pos_id: walks_by_position) or per
+ * vertex (walks_by_heads), the records made (make_vertex) for the triangles that draw */
+enum walk_by { BY_VERTEX, BY_POSITION, BY_HEAD };
+
+/* Heads p0 .. p1-1 (by position: of positions, mesh.h's pos_id; by head: of vertices) as
+ * vertex_run makes them for a vertex, kept alone: all the triangle tests read */
 static void position_stage(const struct frame *f, const struct mesh *m, struct vertex_pos *pos,
-                           uint32_t p0, uint32_t p1)
+                           uint32_t p0, uint32_t p1, const int by)
 {
-    f->k->position_run(m->pos_xyz, &f->u, pos, p0, p1);
+    if (by == BY_HEAD)
+        f->k->position_run(m->verts[0].pos, sizeof *m->verts, &f->u, pos, p0, p1);
+    else
+        f->k->position_run(m->pos_xyz[0], sizeof *m->pos_xyz, &f->u, pos, p0, p1);
 }
 
 /* vertex i's record (vertex_run's bytes: its clip and window positions computed again
  * from its position, the same doubles), made in the next free record of vo when the walk
  * by position has not made it yet: the records drawn triangles read lie together */
 static inline struct vertex_out *make_vertex(const struct frame *f, struct tri_walk *w,
-                                             uint32_t i)
+                                             uint32_t i, const int by)
 {
-    uint32_t s = w->vslot[i];
-    if (s)
-        return &w->vo[s - 1];
-    s = w->n_made++;
-    w->vslot[i] = s + 1;
-    const uint32_t p = w->m->pos_id[i];
+    struct vertex_out *o;
+    if (by == BY_HEAD) { /* (in place: a byte a vertex says it is made) */
+        uint8_t *made = (uint8_t *)w->vslot;
+        if (made[i])
+            return &w->vo[i];
+        made[i] = 1;
+        o = &w->vo[i];
+    } else {
+        uint32_t s = w->vslot[i];
+        if (s)
+            return &w->vo[s - 1];
+        s = w->n_made++;
+        w->vslot[i] = s + 1;
+        o = &w->vo[s];
+    }
+    const uint32_t p = by == BY_HEAD ? i : w->m->pos_id[i];
     const struct vertex_pos *q = &w->pos[p];
-    struct vertex_out *o = &w->vo[s];
-    position_clip(&f->u.mvp, w->m->pos_xyz[p], o->clip);
+    position_clip(&f->u.mvp, by == BY_HEAD ? w->m->verts[i].pos : w->m->pos_xyz[p], o->clip);
     o->outcode = q->outcode;
     o->projected = 0;
     o->shaded = VERTEX_UNSHADED;
@@ -366,8 +383,9 @@ static inline bool hidden_behind(const float *depth, int fb_w, const int64_t box
  * shading (frontend.h) */
 static inline __attribute__((always_inline)) int
 walk(struct frontend *fe, struct frame *f, struct tri_walk *w, const uint32_t *list, uint32_t n,
-     const bool by_pos, struct err *e)
+     const int by, struct err *e)
 {
+    const bool by_pos = by != BY_VERTEX; /* (by position or by head: the heads first) */
     const struct mesh *m = w->m;
     struct vertex_out *vo = w->vo;
     const bool depth_only = w->depth_only;
@@ -395,7 +413,9 @@ walk(struct frontend *fe, struct frame *f, struct tri_walk *w, const uint32_t *l
         /* (filter kept the triangle: inside the view, and unclipped its box holds a pixel
          * centre; the box is made again here) */
         if (by_pos) { /* the corners' positions: their vertices made only past the box */
-            const uint32_t q0 = m->pos_id[c[0]], q1 = m->pos_id[c[1]], q2 = m->pos_id[c[2]];
+            const uint32_t q0 = by == BY_HEAD ? c[0] : m->pos_id[c[0]];
+            const uint32_t q1 = by == BY_HEAD ? c[1] : m->pos_id[c[1]];
+            const uint32_t q2 = by == BY_HEAD ? c[2] : m->pos_id[c[2]];
             const struct vertex_pos *p0 = &w->pos[q0], *p1 = &w->pos[q1], *p2 = &w->pos[q2];
             any = p0->outcode | p1->outcode | p2->outcode;
             unclipped = !(any & VERTEX_NEEDS_CLIP);
@@ -415,9 +435,9 @@ walk(struct frontend *fe, struct frame *f, struct tri_walk *w, const uint32_t *l
                 snapped[1].fx = p1->fx, snapped[1].fy = p1->fy;
                 snapped[2].fx = p2->fx, snapped[2].fy = p2->fy;
             } else {
-                v[0] = make_vertex(f, w, c[0]);
-                v[1] = make_vertex(f, w, c[1]);
-                v[2] = make_vertex(f, w, c[2]);
+                v[0] = make_vertex(f, w, c[0], by);
+                v[1] = make_vertex(f, w, c[1], by);
+                v[2] = make_vertex(f, w, c[2], by);
             }
         } else {
             any = v[0]->outcode | v[1]->outcode | v[2]->outcode;
@@ -456,7 +476,7 @@ walk(struct frontend *fe, struct frame *f, struct tri_walk *w, const uint32_t *l
             }
             if (by_pos && !culls) /* (the corners' records, made now: see above) */
                 for (int k = 0; k < 3; k++)
-                    t->v[k] = v[k] = make_vertex(f, w, c[k]);
+                    t->v[k] = v[k] = make_vertex(f, w, c[k], by);
             shade_vertices(fe, m, f, i, v, false);
             t->shade = depth_only ? bt->n_shades : add_shade(bt, f, item, m, i, v, &w->proto);
             t->rich = rich;
@@ -489,8 +509,9 @@ _Static_assert(offsetof(struct vertex_out, fy) == 4 && offsetof(struct vertex_ou
                "filter copies a record's first 16 bytes: fx, fy, outcode");
 static inline __attribute__((always_inline)) uint32_t
 filter(const struct frame *f, struct tri_walk *w, uint32_t a, uint32_t b, uint32_t *vdone,
-       const bool by_pos, uint32_t *list)
+       const int by, uint32_t *list)
 {
+    const bool by_pos = by != BY_VERTEX;
     const struct mesh *m = w->m;
     const struct vertex_out *vo = w->vo;
     const int fb_w = f->fb->w, fb_h = f->fb->h;
@@ -508,12 +529,12 @@ filter(const struct frame *f, struct tri_walk *w, uint32_t a, uint32_t b, uint32
                 uint32_t to = verts_done + FRONTEND_VERTEX_CHUNK;
                 to = hi + 1 > to ? hi + 1 : to;
                 to = to < m->n_verts ? to : m->n_verts;
-                if (by_pos) {
+                if (by == BY_POSITION) {
                     /* the vertices' records are made (and lit) for the few triangles
                      * that pass: their mesh data read ahead, as the vertex stage did */
                     for (uint32_t k = verts_done; k < to; k += 2)
                         __builtin_prefetch(&m->verts[k]);
-                } else {
+                } else if (by == BY_VERTEX) {
                     vertex_stage(f, w, verts_done, to);
                 }
                 verts_done = to;
@@ -521,14 +542,18 @@ filter(const struct frame *f, struct tri_walk *w, uint32_t a, uint32_t b, uint32
         }
         const uint32_t j = i - a;
         if (by_pos) {
-            const uint32_t q0 = m->pos_id[c[0]], q1 = m->pos_id[c[1]], q2 = m->pos_id[c[2]];
+            const uint32_t q0 = by == BY_HEAD ? c[0] : m->pos_id[c[0]];
+            const uint32_t q1 = by == BY_HEAD ? c[1] : m->pos_id[c[1]];
+            const uint32_t q2 = by == BY_HEAD ? c[2] : m->pos_id[c[2]];
             uint32_t qh = q0 > q1 ? q0 : q1;
             qh = q2 > qh ? q2 : qh;
-            if (qh >= w->pos_done) { /* the positions just ahead (numbered in order of use) */
+            if (qh >= w->pos_done) { /* the heads just ahead (positions: numbered in order of
+                                        use) */
+                const uint32_t np = by == BY_HEAD ? m->n_verts : m->n_pos;
                 uint32_t to = w->pos_done + FRONTEND_VERTEX_CHUNK;
                 to = qh + 1 > to ? qh + 1 : to;
-                to = to < m->n_pos ? to : m->n_pos;
-                position_stage(f, m, w->pos, w->pos_done, to);
+                to = to < np ? to : np;
+                position_stage(f, m, w->pos, w->pos_done, to, by);
                 w->pos_done = to;
             }
             memcpy(&h[0][j], &w->pos[q0], sizeof h[0][j]);
@@ -588,15 +613,25 @@ filter(const struct frame *f, struct tri_walk *w, uint32_t a, uint32_t b, uint32
 /* triangles i0 .. i1-1, FRONTEND_FILTER at a time: filtered, then walked; the vertex stage
  * (or by position the positions) just ahead of them from *vdone on, as filter says */
 static int walk_range(struct frontend *fe, struct frame *f, struct tri_walk *w, uint32_t i0,
-                      uint32_t i1, uint32_t *vdone, const bool by_pos, struct err *e)
+                      uint32_t i1, uint32_t *vdone, const int by, struct err *e)
 {
     uint32_t list[FRONTEND_FILTER];
     for (uint32_t a = i0; a < i1; a += FRONTEND_FILTER) {
         const uint32_t b = i1 - a > FRONTEND_FILTER ? a + FRONTEND_FILTER : i1;
-        const uint32_t n = by_pos ? filter(f, w, a, b, vdone, true, list)
-                                  : filter(f, w, a, b, vdone, false, list);
-        if (n && (by_pos ? walk(fe, f, w, list, n, true, e) : walk(fe, f, w, list, n, false, e)))
-            return -1;
+        uint32_t n;
+        if (by == BY_HEAD) {
+            n = filter(f, w, a, b, vdone, BY_HEAD, list);
+            if (n && walk(fe, f, w, list, n, BY_HEAD, e))
+                return -1;
+        } else if (by == BY_POSITION) {
+            n = filter(f, w, a, b, vdone, BY_POSITION, list);
+            if (n && walk(fe, f, w, list, n, BY_POSITION, e))
+                return -1;
+        } else {
+            n = filter(f, w, a, b, vdone, BY_VERTEX, list);
+            if (n && walk(fe, f, w, list, n, BY_VERTEX, e))
+                return -1;
+        }
     }
     return 0;
 }
@@ -617,18 +652,20 @@ static int zeroed(uint8_t **buf, size_t *cap, size_t n, struct err *e)
 
 /* The walk by position's scratch for w's mesh: a record slot per vertex (none made yet)
  * and a projected position per position (none projected yet). 0, or -1 out of memory. */
-static int positions_begin(struct frontend *fe, struct tri_walk *w, struct err *e)
+static int positions_begin(struct frontend *fe, struct tri_walk *w, const int by,
+                           struct err *e)
 {
     const struct mesh *m = w->m;
-    if (zeroed((uint8_t **)&fe->vslot, &fe->vslot_cap, (size_t)m->n_verts * sizeof *fe->vslot,
-               e))
+    if (zeroed((uint8_t **)&fe->vslot, &fe->vslot_cap,
+               (size_t)m->n_verts * (by == BY_HEAD ? 1 : sizeof *fe->vslot), e))
         return -1;
-    if (m->n_pos > fe->pos_cap) {
-        struct vertex_pos *g = realloc(fe->pos, (size_t)m->n_pos * sizeof *g);
+    const uint32_t np = by == BY_HEAD ? m->n_verts : m->n_pos; /* (heads: one a vertex) */
+    if (np > fe->pos_cap) {
+        struct vertex_pos *g = realloc(fe->pos, (size_t)np * sizeof *g);
         if (!g)
-            return err_set(e, "out of memory for %u positions", (unsigned)m->n_pos);
+            return err_set(e, "out of memory for %u positions", (unsigned)np);
         fe->pos = g;
-        fe->pos_cap = m->n_pos;
+        fe->pos_cap = np;
     }
     w->pos = fe->pos;
     w->vslot = fe->vslot;
@@ -644,11 +681,11 @@ static int positions_begin(struct frontend *fe, struct tri_walk *w, struct err *
  * triangles — and dropped before its vertices are made; the others' vertices made and
  * their triangles walked as without clusters. */
 static int walk_clusters(struct frontend *fe, struct frame *f, struct tri_walk *w,
-                         uint32_t i0, uint32_t i1, const bool by_pos, struct err *e)
+                         uint32_t i0, uint32_t i1, const int by, struct err *e)
 {
     const struct mesh *m = w->m;
     const struct mesh_clusters *cs = m->clusters;
-    if (by_pos && positions_begin(fe, w, e))
+    if (by != BY_VERTEX && positions_begin(fe, w, by, e))
         return -1;
     uint32_t vdone = 0; /* vertices below it made, or read by no cluster still to come (by
                            position: read ahead, as filter does) */
@@ -681,22 +718,34 @@ static int walk_clusters(struct frontend *fe, struct frame *f, struct tri_walk *
             continue;
         }
         uint32_t list[CLUSTER_MAX_TRIS];
-        if (by_pos) { /* (filter projects the positions and reads the vertices ahead) */
-            const uint32_t n = filter(f, w, a, b, &vdone, true, list);
-            if (n && walk(fe, f, w, list, n, true, e))
+        if (by == BY_POSITION) { /* (filter projects the positions and reads the vertices
+                                    ahead) */
+            const uint32_t n = filter(f, w, a, b, &vdone, BY_POSITION, list);
+            if (n && walk(fe, f, w, list, n, BY_POSITION, e))
                 return -1;
             continue;
         }
-        /* the vertex stage from the lowest vertex this or a later cluster reads (those
-         * below it that dropped clusters alone read are never made) to this one's last */
+        /* the vertex stage (or the heads') from the lowest vertex this or a later cluster
+         * reads (those below it that dropped clusters alone read are never made) to this
+         * one's last */
         vdone = vdone > c->v_need ? vdone : c->v_need;
         if (vdone < c->v_end) {
-            vertex_stage(f, w, vdone, c->v_end);
+            if (by == BY_HEAD)
+                position_stage(f, m, w->pos, vdone, c->v_end, BY_HEAD);
+            else
+                vertex_stage(f, w, vdone, c->v_end);
             vdone = c->v_end;
         }
         uint32_t all = m->n_verts;
-        const uint32_t n = filter(f, w, a, b, &all, false, list);
-        if (n && walk(fe, f, w, list, n, false, e))
+        if (by == BY_HEAD) {
+            w->pos_done = m->n_verts; /* (filter: nothing ahead to make) */
+            const uint32_t n = filter(f, w, a, b, &all, BY_HEAD, list);
+            if (n && walk(fe, f, w, list, n, BY_HEAD, e))
+                return -1;
+            continue;
+        }
+        const uint32_t n = filter(f, w, a, b, &all, BY_VERTEX, list);
+        if (n && walk(fe, f, w, list, n, BY_VERTEX, e))
             return -1;
     }
     w->n_rejected += dropped[CLUSTER_FRUSTUM];
@@ -719,12 +768,12 @@ static int walk_clusters(struct frontend *fe, struct frame *f, struct tri_walk *
  * positions, and only the vertices of the triangles that pass made (their records the
  * same bits as the vertex stage's: vertex_run on each). */
 static int walk_by_position(struct frontend *fe, struct frame *f, struct tri_walk *w,
-                            uint32_t i0, uint32_t i1, struct err *e)
+                            uint32_t i0, uint32_t i1, const int by, struct err *e)
 {
-    if (positions_begin(fe, w, e))
+    if (positions_begin(fe, w, by, e))
         return -1;
-    uint32_t vdone = 0;
-    return walk_range(fe, f, w, i0, i1, &vdone, true, e);
+    uint32_t vdone = by == BY_HEAD ? w->m->n_verts : 0; /* (heads: made by filter ahead) */
+    return walk_range(fe, f, w, i0, i1, &vdone, by, e);
 }
 
 /* lod.h's lod_pixels_per_unit for an item's spheres in object space, its per-frame parts
@@ -782,7 +831,7 @@ static int cut_marked(struct frontend *fe, struct frame *f, struct tri_walk *w, 
         const uint32_t b = wd < words ? (uint32_t)(wd * 64) + (uint32_t)__builtin_ctzll(rest)
                                       : (uint32_t)(words * 64);
         const uint32_t lo = a > i0 ? a : i0, hi = b < i1 ? b : i1;
-        if (lo < hi && walk_range(fe, f, w, lo, hi, &vdone, false, e))
+        if (lo < hi && walk_range(fe, f, w, lo, hi, &vdone, BY_VERTEX, e))
             return -1;
         if (wd < words) /* (word wd's bits below b are done) */
             tmark[wd] &= ~0ull << (b % 64);
@@ -954,6 +1003,13 @@ static bool walks_by_position(const struct mesh *m, int fb_w, int fb_h)
            m->n_tris > (uint64_t)fb_w * (uint64_t)fb_h;
 }
 
+/* by heads (render_opts.h, RENDER_HEADS_RATIO): as by position with every vertex a
+ * position of its own, the heads made from the vertices' positions in place */
+static bool walks_by_heads(const struct mesh *m, int fb_w, int fb_h, int ratio)
+{
+    return ratio >= 0 && m->n_verts > (uint64_t)ratio * (uint64_t)fb_w * (uint64_t)fb_h;
+}
+
 bool frontend_by_clusters(const struct mesh *m, const struct render_opts *o, bool wire)
 {
     return m->clusters && o->cluster_cull == CLUSTER_CULL_ON && !wire &&
@@ -986,10 +1042,13 @@ int frontend_triangles(struct frontend *fe, struct frame *f, const struct draw_i
     const bool cut = dag_is_cut_mesh(m) && !depth_only && !wire && o->view != VIEW_WIRE_OVERLAY;
     /* by position (walks_by_position): from the first vertex on, and only where no one else
      * reads the item's records (not wireframe's edges, not the hidden-line pre-pass) */
-    const bool by_pos = !cut && walks_by_position(m, f->fb->w, f->fb->h) &&
-                        (verts_from == 0 || clusters) && i0 < i1 && !depth_only && !wire &&
-                        o->view != VIEW_WIRE_OVERLAY;
-    if (by_pos)
+    const bool heads_ok = !cut && (verts_from == 0 || clusters) && i0 < i1 && !depth_only &&
+                          !wire && o->view != VIEW_WIRE_OVERLAY;
+    const int by = !heads_ok                                     ? BY_VERTEX
+                   : walks_by_position(m, f->fb->w, f->fb->h) ? BY_POSITION
+                   : walks_by_heads(m, f->fb->w, f->fb->h, o->heads_ratio) ? BY_HEAD
+                                                                 : BY_VERTEX;
+    if (by != BY_VERTEX)
         f->stats->tris_by_position += i1 - i0;
     /* hidden triangles (frontend.h): on the depth buffer the batches drawn so far wrote —
      * one thread's (with a pool, the batch in flight is still writing it) */
@@ -998,9 +1057,9 @@ int frontend_triangles(struct frontend *fe, struct frame *f, const struct draw_i
         o->view != VIEW_WIRE_OVERLAY)
         w.hide = f->fb->depth;
     int rc = cut        ? walk_cut(fe, f, &w, i0, i1, e)
-             : clusters ? walk_clusters(fe, f, &w, i0, i1, by_pos, e)
-             : by_pos   ? walk_by_position(fe, f, &w, i0, i1, e)
-                        : walk_range(fe, f, &w, i0, i1, &verts_from, false, e);
+             : clusters ? walk_clusters(fe, f, &w, i0, i1, by, e)
+             : by != BY_VERTEX ? walk_by_position(fe, f, &w, i0, i1, by, e)
+                        : walk_range(fe, f, &w, i0, i1, &verts_from, BY_VERTEX, e);
     if (rc)
         return -1;
     shade_queued(fe, f);

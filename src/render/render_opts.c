@@ -63,6 +63,7 @@ void render_opts_default(struct render_opts *o)
     o->cull = CULL_AUTO;
     o->cluster_cull = CLUSTER_CULL_ON;
     o->hidden_cull = HIDDEN_CULL_ON;
+    o->heads_ratio = RENDER_HEADS_RATIO;
     o->view = VIEW_COLOR;
     o->textures = true;
     o->wire_color[0] = o->wire_color[1] = o->wire_color[2] = 255;

@@ -6,7 +6,8 @@
  * kernel this build and CPU have, every shading mode, one thread and two (slices; by tiles
  * two threads leave it off: the batch in flight writes the depth buffer meanwhile), and
  * the features path (a material with an alpha cutout), with whole clusters hidden too
- * (cluster_cull.h: the smooth sphere is walked by clusters) against a frame with neither;
+ * (cluster_cull.h: the smooth sphere is walked by clusters; every third view by its
+ * vertices' heads, render_opts.h) against a frame with neither;
  * while many triangles and clusters are dropped. */
 #include <math.h>
 #include <stdlib.h>
@@ -61,7 +62,8 @@ TEST(hidden_triangles_dropped_change_no_byte_from_any_view)
     REQUIRE(faceted.n_tris > 80 * 48); /* (denser than the framebuffer: by position) */
     static const enum shade_mode modes[] = {SHADE_PHONG, SHADE_GOURAUD, SHADE_FLAT, SHADE_UNLIT};
     unsigned seed = 25;
-    uint64_t cases = 0, differ = 0, hidden = 0, some = 0, by_pos = 0, by_clusters = 0;
+    uint64_t cases = 0, differ = 0, hidden = 0, some = 0, by_pos = 0, by_clusters = 0,
+             by_heads = 0;
     for (int view = 0; view < 100; view++) {
         struct camera cam;
         camera_default(&cam);
@@ -100,7 +102,13 @@ TEST(hidden_triangles_dropped_change_no_byte_from_any_view)
                 REQUIRE(pipeline_draw(p, items, 2, NULL, &cam, &o, &a, &st_off, NULL) == 0);
                 o.hidden_cull = HIDDEN_CULL_ON;
                 o.cluster_cull = CLUSTER_CULL_ON;
+                /* every third view the smooth one by its vertices' heads (render_opts.h) */
+                const bool heads = view % 3 == 0;
+                o.heads_ratio = heads ? 0 : RENDER_HEADS_RATIO;
                 REQUIRE(pipeline_draw(p, items, 2, NULL, &cam, &o, &b, &st, NULL) == 0);
+                if (heads && run == 0) /* (both walked by their heads) */
+                    CHECK_EQ_INT(st.tris_by_position, st.tris_in);
+                by_heads += heads && st.tris_by_position == st.tris_in;
                 cases++;
                 differ += memcmp(a.rgb, b.rgb, (size_t)a.w * a.h * 3) != 0 ||
                           memcmp(a.depth, b.depth, (size_t)a.w * a.h * sizeof *a.depth) != 0;
@@ -128,6 +136,7 @@ TEST(hidden_triangles_dropped_change_no_byte_from_any_view)
     CHECK(some > cases / 3);
     CHECK(by_clusters > cases / 10);
     CHECK(by_pos > cases / 4);
+    CHECK(by_heads > cases / 6);
     fb_free(&a);
     fb_free(&b);
     pipeline_destroy(p);

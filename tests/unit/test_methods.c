@@ -928,7 +928,8 @@ TEST(walking_by_position_draws_the_vertex_stage_bytes)
      * triangles that pass: on a grid with a uv seam along every edge, low over it through
      * the near plane (clipped triangles near, most far ones holding no pixel centre), every
      * shading mode on one and two threads draws the same colour and depth bytes as with
-     * every vertex positioned by the vertex stage (pos_id NULL) */
+     * every vertex positioned by the vertex stage (pos_id NULL), and as walking that one by
+     * its vertices' heads (render_opts.heads_ratio 0) */
     enum { N = 90 };
     char *obj = seam_grid_obj(N, 6);
     struct scene1 a, b;
@@ -968,6 +969,18 @@ TEST(walking_by_position_draws_the_vertex_stage_bytes)
             CHECK_EQ_INT(sb.tris_by_position, 0);
             if (run < 2) /* (slices follow the last frame's times: their vertices too) */
                 CHECK_EQ_INT(sa.verts_lit, sb.verts_lit);
+            CHECK(memcmp(a.fb.rgb, b.fb.rgb, np * 3) == 0);
+            CHECK(memcmp(a.fb.depth, b.fb.depth, np * sizeof *a.fb.depth) == 0);
+            /* without positions, by heads (render_opts.h: each vertex's head made alone,
+             * the records of the triangles that draw): the same bytes again */
+            o.heads_ratio = 0;
+            struct frame_stats sh;
+            REQUIRE(pipeline_draw(b.p, &b.item, 1, NULL, &cam, &o, &a.fb, &sh, NULL) == 0);
+            o.heads_ratio = RENDER_HEADS_RATIO;
+            CHECK(run == 0 ? sh.tris_by_position == b.m.n_tris : sh.tris_by_position > 0);
+            CHECK_EQ_INT(sh.tris_drawn, sb.tris_drawn);
+            if (run < 2)
+                CHECK_EQ_INT(sh.verts_lit, sb.verts_lit);
             CHECK(memcmp(a.fb.rgb, b.fb.rgb, np * 3) == 0);
             CHECK(memcmp(a.fb.depth, b.fb.depth, np * sizeof *a.fb.depth) == 0);
         }

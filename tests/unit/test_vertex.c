@@ -162,10 +162,16 @@ TEST(vertex_run_is_the_reference)
                 want[i].fx = ref[i].fx, want[i].fy = ref[i].fy, want[i].z = (float)win[2];
             }
         }
+        const struct kernel *kk = kernel_set(isas[is])->by_size[SPAN_SIZE_LARGE];
         memset(pos, 0xff, sizeof pos);
-        kernel_set(isas[is])->by_size[SPAN_SIZE_LARGE]->position_run(xyz, &u, pos, 0, 29);
+        kk->position_run(xyz[0], sizeof xyz[0], &u, pos, 0, 29);
         CHECK(pos[29].outcode == 0xffffffffu && pos[30].outcode == 0xffffffffu);
-        kernel_set(isas[is])->by_size[SPAN_SIZE_LARGE]->position_run(xyz, &u, pos, 29, N);
+        kk->position_run(xyz[0], sizeof xyz[0], &u, pos, 29, N);
+        CHECK(memcmp(want, pos, sizeof want) == 0);
+        /* the vertices' positions in place (the walk by vertex heads), the same */
+        memset(pos, 0xff, sizeof pos);
+        kk->position_run(verts[0].pos, sizeof verts[0], &u, pos, 0, 7);
+        kk->position_run(verts[0].pos, sizeof verts[0], &u, pos, 7, N);
         CHECK(memcmp(want, pos, sizeof want) == 0);
     }
 }

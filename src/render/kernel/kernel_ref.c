@@ -220,11 +220,12 @@ static void ref_vertex_run(const struct mesh *m, const struct vertex_uniforms *u
     }
 }
 
-static void ref_position_run(const float (*xyz)[3], const struct vertex_uniforms *u,
+static void ref_position_run(const float *xyz, size_t stride, const struct vertex_uniforms *u,
                              struct vertex_pos *out, uint32_t p0, uint32_t p1)
 {
     for (uint32_t i = p0; i < p1; i++) {
-        const double x = xyz[i][0], y = xyz[i][1], z = xyz[i][2];
+        const float *q = (const float *)((const char *)xyz + (size_t)i * stride);
+        const double x = q[0], y = q[1], z = q[2];
         double clip[4];
         for (int r = 0; r < 4; r++) /* m4_mul_v4's sums, in its order */
             clip[r] = u->mvp.m[r][0] * x + u->mvp.m[r][1] * y + u->mvp.m[r][2] * z +

@@ -19,6 +19,7 @@ struct lanes_view { /* a frame's constants, broadcast */
 };
 struct lanes { /* four vertices positioned */
     d4 clip[4], wx, wy, sx, sy; /* window x, y; snapped x, y (whole numbers of 1/256 px) */
+    d4 rw;                      /* 1 / w */
     l4 oc;
 };
 
@@ -59,16 +60,19 @@ static inline void lanes_position(const struct lanes_view *L, const float *const
     const double mg = 6755399441055744.0, s = VIEWPORT_SUBPIX_ONE; /* viewport_snap's */
     const d4 magic = {mg, mg, mg, mg}, sub = {s, s, s, s};
     const d4 rw = one / w;
+    o->rw = rw;
     o->wx = (x * rw + 1.0) * half * L->fw;
     o->wy = (1.0 - y * rw) * half * L->fh;
     o->sx = (o->wx * sub + magic) - magic;
     o->sy = (o->wy * sub + magic) - magic;
 }
 
-/* lane l's window depth, as viewport_window makes it (only where it projects) */
-static inline double lanes_depth(const struct lanes *o, int l)
+/* the lanes' window depths, as viewport_window makes them (1 / w the same correctly
+ * rounded quotient in a lane as alone; meaningful only where a lane projects) */
+static inline void lanes_depth(const struct lanes *o, d4 *z)
 {
-    return 0.5 * o->clip[2][l] * (1.0 / o->clip[3][l]) + 0.5;
+    const d4 half = {0.5, 0.5, 0.5, 0.5};
+    *z = half * o->clip[2] * o->rw + half;
 }
 
 /* (the last run of fewer than four fills its empty lanes with its last vertex again, and
@@ -108,7 +112,7 @@ static void vertex_run(const struct mesh *m, const struct vertex_uniforms *u,
     }
 }
 
-static void position_run(const float (*xyz)[3], const struct vertex_uniforms *u,
+static void position_run(const float *xyz, size_t stride, const struct vertex_uniforms *u,
                          struct vertex_pos *out, uint32_t p0, uint32_t p1)
 {
     struct lanes_view L;
@@ -117,9 +121,11 @@ static void position_run(const float (*xyz)[3], const struct vertex_uniforms *u,
         const int n = p1 - i < 4 ? (int)(p1 - i) : 4;
         const float *pt[4];
         for (int l = 0; l < 4; l++)
-            pt[l] = xyz[i + (l < n ? l : n - 1)];
+            pt[l] = (const float *)((const char *)xyz + (size_t)(i + (l < n ? l : n - 1)) * stride);
         struct lanes q;
         lanes_position(&L, pt, &q);
+        d4 z;
+        lanes_depth(&q, &z);
         for (int l = 0; l < n; l++) {
             struct vertex_pos *o = &out[i + l];
             o->outcode = (uint32_t)q.oc[l];
@@ -128,7 +134,7 @@ static void position_run(const float (*xyz)[3], const struct vertex_uniforms *u,
             if (!(q.oc[l] & VERTEX_NEEDS_CLIP)) {
                 o->fx = (int32_t)(int64_t)q.sx[l];
                 o->fy = (int32_t)(int64_t)q.sy[l];
-                o->z = (float)lanes_depth(&q, l);
+                o->z = (float)z[l];
             }
         }
     }
