@@ -248,6 +248,7 @@ struct tri_walk {
                              NULL: all */
     struct vertex_pos *pos; /* by position (walk_by_position): each position's share */
     uint32_t *vslot;          /* by position: where vertex i's record is in vo (+ 1), or 0 */
+    uint8_t *made;            /* by heads: is vertex i's record vo[i] made (a byte each) */
     uint32_t n_made;          /* by position: records made, vo[0 .. n_made) */
     uint32_t pos_done;        /* by position: positions 0 .. pos_done-1 projected */
     const float *hide;        /* the depth buffer hidden triangles are tested on, or NULL */
@@ -281,17 +282,17 @@ static void position_stage(const struct frame *f, const struct mesh *m, struct v
 }
 
 /* vertex i's record (vertex_run's bytes: its clip and window positions computed again
- * from its position, the same doubles), made in the next free record of vo when the walk
- * by position has not made it yet: the records drawn triangles read lie together */
+ * from its position, the same doubles) when the walk has not made it yet: by position in
+ * the next free record of vo (the records drawn triangles read lie together), by heads in
+ * vo[i] */
 static inline struct vertex_out *make_vertex(const struct frame *f, struct tri_walk *w,
                                              uint32_t i, const int by)
 {
     struct vertex_out *o;
-    if (by == BY_HEAD) { /* (in place: a byte a vertex says it is made) */
-        uint8_t *made = (uint8_t *)w->vslot;
-        if (made[i])
+    if (by == BY_HEAD) { /* (in place) */
+        if (w->made[i])
             return &w->vo[i];
-        made[i] = 1;
+        w->made[i] = 1;
         o = &w->vo[i];
     } else {
         uint32_t s = w->vslot[i];
@@ -610,28 +611,28 @@ filter(const struct frame *f, struct tri_walk *w, uint32_t a, uint32_t b, uint32
     return n;
 }
 
+/* triangles a .. b-1 (at most FRONTEND_FILTER) filtered, then the kept ones walked: 0, or
+ * -1 (by: a constant at every call, so each walk is compiled for its own) */
+static inline __attribute__((always_inline)) int
+filter_walk(struct frontend *fe, struct frame *f, struct tri_walk *w, uint32_t a, uint32_t b,
+            uint32_t *vdone, const int by, struct err *e)
+{
+    uint32_t list[FRONTEND_FILTER];
+    const uint32_t n = filter(f, w, a, b, vdone, by, list);
+    return n && walk(fe, f, w, list, n, by, e) ? -1 : 0;
+}
+
 /* triangles i0 .. i1-1, FRONTEND_FILTER at a time: filtered, then walked; the vertex stage
- * (or by position the positions) just ahead of them from *vdone on, as filter says */
+ * (or the heads) just ahead of them from *vdone on, as filter says */
 static int walk_range(struct frontend *fe, struct frame *f, struct tri_walk *w, uint32_t i0,
                       uint32_t i1, uint32_t *vdone, const int by, struct err *e)
 {
-    uint32_t list[FRONTEND_FILTER];
     for (uint32_t a = i0; a < i1; a += FRONTEND_FILTER) {
         const uint32_t b = i1 - a > FRONTEND_FILTER ? a + FRONTEND_FILTER : i1;
-        uint32_t n;
-        if (by == BY_HEAD) {
-            n = filter(f, w, a, b, vdone, BY_HEAD, list);
-            if (n && walk(fe, f, w, list, n, BY_HEAD, e))
-                return -1;
-        } else if (by == BY_POSITION) {
-            n = filter(f, w, a, b, vdone, BY_POSITION, list);
-            if (n && walk(fe, f, w, list, n, BY_POSITION, e))
-                return -1;
-        } else {
-            n = filter(f, w, a, b, vdone, BY_VERTEX, list);
-            if (n && walk(fe, f, w, list, n, BY_VERTEX, e))
-                return -1;
-        }
+        if (by == BY_HEAD       ? filter_walk(fe, f, w, a, b, vdone, BY_HEAD, e)
+            : by == BY_POSITION ? filter_walk(fe, f, w, a, b, vdone, BY_POSITION, e)
+                                : filter_walk(fe, f, w, a, b, vdone, BY_VERTEX, e))
+            return -1;
     }
     return 0;
 }
@@ -651,7 +652,8 @@ static int zeroed(uint8_t **buf, size_t *cap, size_t n, struct err *e)
 }
 
 /* The walk by position's scratch for w's mesh: a record slot per vertex (none made yet)
- * and a projected position per position (none projected yet). 0, or -1 out of memory. */
+ * and a head per position (none made yet); by heads a byte per vertex (no record made) and
+ * a head per vertex. 0, or -1 out of memory. */
 static int positions_begin(struct frontend *fe, struct tri_walk *w, const int by,
                            struct err *e)
 {
@@ -669,6 +671,7 @@ static int positions_begin(struct frontend *fe, struct tri_walk *w, const int by
     }
     w->pos = fe->pos;
     w->vslot = fe->vslot;
+    w->made = (uint8_t *)fe->vslot;
     w->n_made = 0;
     w->pos_done = 0;
     return 0;
@@ -687,8 +690,11 @@ static int walk_clusters(struct frontend *fe, struct frame *f, struct tri_walk *
     const struct mesh_clusters *cs = m->clusters;
     if (by != BY_VERTEX && positions_begin(fe, w, by, e))
         return -1;
-    uint32_t vdone = 0; /* vertices below it made, or read by no cluster still to come (by
-                           position: read ahead, as filter does) */
+    if (by == BY_HEAD)
+        w->pos_done = m->n_verts; /* (made below, by each cluster's v_need and v_end: filter
+                                     has none to make ahead) */
+    uint32_t vdone = 0; /* vertices (or heads) below it made, or read by no cluster still to
+                           come (by position: unused, filter makes the positions ahead) */
     struct cluster_view cv;
     cluster_view_init(&cv, f->u.model, f->u.mvp, f->u.eye, f->u.ortho, f->u.view_back,
                       f->fb->w, f->fb->h, w->cull, w->by_material);
@@ -719,14 +725,13 @@ static int walk_clusters(struct frontend *fe, struct frame *f, struct tri_walk *
             dropped[cvd] += b - a;
             continue;
         }
-        uint32_t list[CLUSTER_MAX_TRIS];
         if (by == BY_POSITION) {
             /* filter projects the positions; the kept triangles' vertex data (read when
              * their records are made and lit) is fetched now and they are walked after
              * the next cluster's filter: the fetch has a cluster's walk to arrive in. (The
              * next cluster is tested before this one is walked, on the depth so far: a
              * little older, so it finds as many hidden or fewer, never wrongly.) */
-            uint32_t none = m->n_verts;
+            uint32_t list[CLUSTER_MAX_TRIS], none = m->n_verts;
             const uint32_t n = filter(f, w, a, b, &none, BY_POSITION, list);
             for (uint32_t q = 0; q < n; q++)
                 for (int k = 0; k < 3; k++)
@@ -749,15 +754,8 @@ static int walk_clusters(struct frontend *fe, struct frame *f, struct tri_walk *
             vdone = c->v_end;
         }
         uint32_t all = m->n_verts;
-        if (by == BY_HEAD) {
-            w->pos_done = m->n_verts; /* (filter: nothing ahead to make) */
-            const uint32_t n = filter(f, w, a, b, &all, BY_HEAD, list);
-            if (n && walk(fe, f, w, list, n, BY_HEAD, e))
-                return -1;
-            continue;
-        }
-        const uint32_t n = filter(f, w, a, b, &all, BY_VERTEX, list);
-        if (n && walk(fe, f, w, list, n, BY_VERTEX, e))
+        if (by == BY_HEAD ? filter_walk(fe, f, w, a, b, &all, BY_HEAD, e)
+                          : filter_walk(fe, f, w, a, b, &all, BY_VERTEX, e))
             return -1;
     }
     if (n_late && walk(fe, f, w, late, n_late, BY_POSITION, e))
@@ -901,10 +899,9 @@ static int cut_runs(struct frontend *fe, struct frame *f, struct tri_walk *w,
             const unsigned a = (unsigned)__builtin_ctzll(bits);
             const uint64_t from_a = bits >> a;
             const unsigned len = ~from_a ? (unsigned)__builtin_ctzll(~from_a) : 64 - a;
-            uint32_t list[CLUSTER_MAX_TRIS], all = m->n_verts;
-            const uint32_t n = filter(f, w, c->tri_first + a, c->tri_first + a + len, &all,
-                                      false, list);
-            if (n && walk(fe, f, w, list, n, false, e))
+            uint32_t all = m->n_verts;
+            if (filter_walk(fe, f, w, c->tri_first + a, c->tri_first + a + len, &all,
+                            BY_VERTEX, e))
                 return -1;
             bits = a + len < 64 ? bits & (~0ull << (a + len)) : 0;
         }
