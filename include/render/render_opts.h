@@ -104,10 +104,10 @@ enum kernel_isa { KERNEL_AUTO, KERNEL_REF, KERNEL_SSE2, KERNEL_AVX2, KERNEL_AVX2
 
 /* By heads (render_opts.heads_ratio, default this; render/frontend.c): a mesh with more
  * vertices than this many times the framebuffer's pixels, and no pos_id (walked by
- * position instead), is walked as by position with every
- * vertex its own position — the vertex stage makes each vertex's head alone (outcode,
- * snapped window position, depth: 16 bytes, position_run reading the vertices in place)
- * and the records only of the triangles that draw. Where the vertex records are the
+ * position instead), is walked as by position with every vertex its own position — the
+ * vertex stage makes each vertex's head alone (outcode, snapped window position, depth: 16
+ * bytes, position_run reading the vertices in place) and the records only of the
+ * triangles that draw. Where the vertex records are the
  * frame's cost it pays (160x96, one thread: the 1M sphere 10.3 -> 8.2 ms, 4M 37.4 -> 28.4;
  * at 640x480 the 4M sphere 54.1 -> 47.3, the 1M 22.0 -> 21.2); where many triangles draw
  * for the vertices staged it does not (the car at 160x96, 11 vertices a pixel: 4.59 ->

@@ -505,8 +505,8 @@ walk(struct frontend *fe, struct frame *f, struct tri_walk *w, const uint32_t *l
  * drops: the car at 160x96 4.3 -> 4.1 ms, lost_empire 7.3 -> 6.9.) */
 _Static_assert(CLUSTER_MAX_TRIS <= FRONTEND_FILTER, "filter takes a cluster at once");
 _Static_assert(offsetof(struct vertex_out, fy) == 4 && offsetof(struct vertex_out, outcode) == 8 &&
-                   offsetof(struct vertex_pos, fy) == 4 && offsetof(struct vertex_pos, outcode) == 8 &&
-                   sizeof(struct vertex_pos) == 16,
+                   offsetof(struct vertex_pos, fy) == 4 &&
+                   offsetof(struct vertex_pos, outcode) == 8 && sizeof(struct vertex_pos) == 16,
                "filter copies a record's first 16 bytes: fx, fy, outcode");
 static inline __attribute__((always_inline)) uint32_t
 filter(const struct frame *f, struct tri_walk *w, uint32_t a, uint32_t b, uint32_t *vdone,

@@ -247,7 +247,8 @@ TEST(filter_keeps_every_triangle_that_owns_a_pixel_centre)
                 REQUIRE(pipeline_draw(p, &it, 1, NULL, &cam, &o, &fb, &st, NULL) == 0);
                 frames++;
                 /* the pixel centres inside the grid's rectangle, strictly */
-                const double x0 = 40 + 8 * (-G / 2 * cell + off / 32.0), y0 = 24 - 8 * (G / 2 * cell + (off * 3 % 8) / 32.0);
+                const double x0 = 40 + 8 * (-G / 2 * cell + off / 32.0);
+                const double y0 = 24 - 8 * (G / 2 * cell + (off * 3 % 8) / 32.0);
                 int missing = 0, inside = 0;
                 for (int py = 0; py < fb.h; py++)
                     for (int px = 0; px < fb.w; px++) {
