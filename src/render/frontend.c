@@ -677,6 +677,27 @@ static int positions_begin(struct frontend *fe, struct tri_walk *w, const int by
     return 0;
 }
 
+/* cluster c's verdict (cluster_cull.h) into *out, with the hidden test on the depth drawn
+ * so far where w has one (the batch drawn first when it holds FRONTEND_CLUSTER_FLUSH
+ * triangles or more): every triangle's box lies in the cluster's rectangle, its corners at
+ * r.z_lo or behind, so hidden_behind asks for all of them at once. 0, or -1 (drawing
+ * failed). */
+static int cluster_verdict(struct frontend *fe, struct frame *f, const struct tri_walk *w,
+                           const struct cluster_view *cv, const struct mesh_cluster *c,
+                           enum cluster_verdict *out, struct err *e)
+{
+    struct cluster_rect r;
+    *out = cluster_test(cv, c, w->hide ? &r : NULL);
+    if (*out != CLUSTER_DRAW || !w->hide || !r.valid)
+        return 0;
+    if (fe->batch[fe->cur].n_tris >= FRONTEND_CLUSTER_FLUSH && flush(fe, f, e))
+        return -1;
+    const int64_t box[4] = {r.x0, r.y0, r.x1, r.y1};
+    if (hidden_behind(w->hide, f->fb->w, box, r.z_lo, FRONTEND_HIDDEN_MAX_RECT))
+        *out = CLUSTER_HIDDEN;
+    return 0;
+}
+
 /* Triangles i0 .. i1-1 by clusters (cluster.h, cluster_cull.h), in the file's order (which
  * decides ties of depth): each cluster tested whole first — outside the view, facing away,
  * between pixel centres, or (with the hidden test on) behind the depth drawn so far over
@@ -709,17 +730,9 @@ static int walk_clusters(struct frontend *fe, struct frame *f, struct tri_walk *
             break;
         const uint32_t a = c->tri_first > i0 ? c->tri_first : i0;
         const uint32_t b = c->tri_first + c->n_tris < i1 ? c->tri_first + c->n_tris : i1;
-        struct cluster_rect r;
-        enum cluster_verdict cvd = cluster_test(&cv, c, w->hide ? &r : NULL);
-        if (cvd == CLUSTER_DRAW && w->hide && r.valid) {
-            if (fe->batch[fe->cur].n_tris >= FRONTEND_CLUSTER_FLUSH && flush(fe, f, e))
-                return -1;
-            /* (every triangle's box lies in the rectangle, its corners at r.z_lo or
-             * behind: hidden_behind's question for all of them at once) */
-            const int64_t box[4] = {r.x0, r.y0, r.x1, r.y1};
-            if (hidden_behind(w->hide, f->fb->w, box, r.z_lo, FRONTEND_HIDDEN_MAX_RECT))
-                cvd = CLUSTER_HIDDEN;
-        }
+        enum cluster_verdict cvd;
+        if (cluster_verdict(fe, f, w, &cv, c, &cvd, e))
+            return -1;
         clusters[cvd] += c->tri_first >= i0; /* (with slices: the one with its first) */
         if (cvd != CLUSTER_DRAW) {
             dropped[cvd] += b - a;
@@ -877,15 +890,9 @@ static int cut_runs(struct frontend *fe, struct frame *f, struct tri_walk *w,
             bits &= (1ull << (i1 - c->tri_first)) - 1;
         if (!bits)
             continue;
-        struct cluster_rect r;
-        enum cluster_verdict cvd = cluster_test(cv, c, &r);
-        if (cvd == CLUSTER_DRAW && r.valid) {
-            if (fe->batch[fe->cur].n_tris >= FRONTEND_CLUSTER_FLUSH && flush(fe, f, e))
-                return -1;
-            const int64_t box[4] = {r.x0, r.y0, r.x1, r.y1};
-            if (hidden_behind(w->hide, f->fb->w, box, r.z_lo, FRONTEND_HIDDEN_MAX_RECT))
-                cvd = CLUSTER_HIDDEN;
-        }
+        enum cluster_verdict cvd;
+        if (cluster_verdict(fe, f, w, cv, c, &cvd, e))
+            return -1;
         if (cvd != CLUSTER_DRAW) {
             dropped[cvd] += (uint64_t)__builtin_popcountll(bits);
             continue;
