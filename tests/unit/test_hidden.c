@@ -106,7 +106,8 @@ TEST(hidden_triangles_dropped_change_no_byte_from_any_view)
                 const bool heads = view % 3 == 0;
                 o.heads_ratio = heads ? 0 : RENDER_HEADS_RATIO;
                 REQUIRE(pipeline_draw(p, items, 2, NULL, &cam, &o, &b, &st, NULL) == 0);
-                if (heads && run == 0) /* (both walked by their heads) */
+                if (heads && run == 0) /* (the faceted one by position, the smooth one by
+                                          heads: every triangle by its heads) */
                     CHECK_EQ_INT(st.tris_by_position, st.tris_in);
                 by_heads += heads && st.tris_by_position == st.tris_in;
                 cases++;
