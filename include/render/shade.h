@@ -159,6 +159,12 @@ static inline void shade_slot_uv(const struct tex_slot *sl, const struct vary_ri
         uv[0] = u, uv[1] = v;
         d[0] = dudx, d[1] = dvdx, d[2] = dudy, d[3] = dvdy;
     }
+    if (sl->tile) { /* (the tile's own repeat; its texels per unit scale the derivatives) */
+        const float *r = sl->rect;
+        uv[0] = r[0] + (uv[0] - floorf(uv[0])) * r[2];
+        uv[1] = r[1] + (uv[1] - floorf(uv[1])) * r[3];
+        d[0] *= r[2], d[1] *= r[3], d[2] *= r[2], d[3] *= r[3];
+    }
 }
 
 /* slot sl of texture t sampled at the pixel: rgba */

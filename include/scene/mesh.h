@@ -41,6 +41,9 @@ struct tex_slot {
     bool xform;       /* xf applies (else the identity) */
     float xf[6];      /* uv' = (xf0 u + xf1 v + xf2, xf3 u + xf4 v + xf5), in rastty's uv space
                          (v up: glTF's transform conjugated by its v flip) */
+    bool tile;        /* uv (after xf) wraps inside rect, not the image: u' = rect0 + (u -
+                         floor u) rect2, v' likewise (dag.h: an atlas tile's faces merged) */
+    float rect[4];    /* u0, v0, du, dv */
 };
 
 enum mat_alpha { MAT_OPAQUE, MAT_MASK, MAT_BLEND };

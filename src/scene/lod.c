@@ -139,12 +139,18 @@ static float extent(const struct mesh *m)
     return meshopt_simplifyScale(m->verts[0].pos, m->n_verts, sizeof *m->verts);
 }
 
+/* Can m have a chain? (A mesh drawn by the features path is drawn in full: its levels
+ * would need its second uvs and tangents, and its blended triangles stay apart; it may
+ * have a hierarchy, dag.h.) */
+static bool chain_fits(const struct mesh *m)
+{
+    return m->n_tris >= 2 * LOD_MIN_TRIS && m->vert_material && !m->features && !m->uv1 &&
+           !m->tangents && m->n_opaque == m->n_tris;
+}
+
 static bool eligible(const struct mesh *m)
 {
-    /* (a mesh drawn by the features path is drawn in full: its levels would need its second
-     * uvs and tangents, and its blended triangles stay apart) */
-    return m->n_tris >= 2 * LOD_MIN_TRIS && m->vert_material && !m->lod && !m->features &&
-           !m->uv1 && !m->tangents && m->n_opaque == m->n_tris;
+    return !m->lod && chain_fits(m);
 }
 
 uint64_t lod_chain_key(const struct mesh *m)
@@ -287,7 +293,7 @@ static void *job_main(void *arg)
                                    fewer levels, still fine) */
             if (j->clusters)
                 dag_build(&j->meshes[i], &j->cancel);
-            if (!dag_of(&j->meshes[i]))
+            if (!dag_of(&j->meshes[i]) && chain_fits(&j->meshes[i]))
                 build_chain(&j->meshes[i], j->meshes[i].lod, &j->cancel);
         }
     atomic_store(&j->done, true);
@@ -298,8 +304,8 @@ int lod_start(struct mesh *meshes, int n, bool clusters, struct lod_job **out, s
 {
     *out = NULL;
     int want = 0;
-    for (int i = 0; i < n; i++)
-        if (eligible(&meshes[i])) {
+    for (int i = 0; i < n; i++) /* (a mesh drawn by the features path: a hierarchy only) */
+        if (eligible(&meshes[i]) || (clusters && !meshes[i].lod && dag_eligible(&meshes[i]))) {
             if (attach(&meshes[i]))
                 return err_set(e, "out of memory");
             want++;

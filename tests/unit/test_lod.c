@@ -1003,3 +1003,177 @@ TEST(dag_cut_with_hidden_runs_dropped_draws_the_same_bytes)
         mesh_free(&m[k]);
     }
 }
+
+/* ---- atlas tiles (dag.c's tile classes) ---- */
+
+/* A block world as voxel exporters write it (lost_empire): an n x n heightmap of unit
+ * columns in plateaus of 8 x 8 (heights 1 to 3), closed — every exposed face of every
+ * block a unit quad of its own corners, mapping one whole tile of a 32 x 32 atlas of four
+ * 16 x 16 tiles (tops, sides, bottoms; each its own colour with gradients across it, so a
+ * tile wrapped wrong shows), so that every vertex is a uv seam. One material on the features path (a cut-out
+ * map, all opaque), as lost_empire's. */
+static int voxels(struct mesh *m, int n)
+{
+    const int H = 4;
+#define HT(x, z) ((x) < 0 || (z) < 0 || (x) >= n || (z) >= n ? 0 : 1 + ((x) / 8 + 2 * ((z) / 8)) % 3)
+#define PI(x, y, z) ((uint32_t)(((x) * (H + 1) + (y)) * (n + 1) + (z)))
+    const int n_pos = (n + 1) * (H + 1) * (n + 1);
+    float *pos = malloc((size_t)n_pos * 3 * sizeof *pos);
+    struct mesh_corner *c = malloc((size_t)n * n * 12 * H * 3 * sizeof *c);
+    if (!pos || !c)
+        return -1;
+    for (int x = 0; x <= n; x++)
+        for (int y = 0; y <= H; y++)
+            for (int z = 0; z <= n; z++) {
+                float *p = &pos[3 * PI(x, y, z)];
+                p[0] = (float)x - n / 2, p[1] = (float)y, p[2] = (float)z - n / 2;
+            }
+    /* tiles: 0 top, 1 side, 2 bottom; uv corner k of tile: (lo|hi, lo|hi) */
+    float uv[3 * 4 * 2];
+    for (int tile = 0; tile < 3; tile++)
+        for (int k = 0; k < 4; k++) {
+            float u0 = (tile % 2) * 0.5f, v0 = (tile / 2) * 0.5f;
+            uv[2 * (4 * tile + k)] = u0 + (k == 1 || k == 2 ? 0.5f : 0);
+            uv[2 * (4 * tile + k) + 1] = v0 + (k >= 2 ? 0.5f : 0);
+        }
+    const float nrm[6][3] = {{0, 1, 0}, {0, -1, 0}, {1, 0, 0}, {-1, 0, 0}, {0, 0, 1}, {0, 0, -1}};
+    int t = 0;
+    /* a quad a b d e (counter-clockwise seen from outside), normal k, tile */
+#define QUAD(a, b, d, e, k, tile)                                                          \
+    do {                                                                                   \
+        const uint32_t q_[4] = {a, b, d, e};                                               \
+        const int o_[6] = {0, 1, 2, 0, 2, 3};                                              \
+        for (int i_ = 0; i_ < 6; i_++)                                                     \
+            c[3 * t + i_] = (struct mesh_corner){q_[o_[i_]], (uint32_t)(4 * (tile) + o_[i_]), \
+                                                 (uint32_t)(k)};                           \
+        t += 2;                                                                            \
+    } while (0)
+    for (int x = 0; x < n; x++)
+        for (int z = 0; z < n; z++) {
+            const int h = HT(x, z);
+            QUAD(PI(x, h, z + 1), PI(x + 1, h, z + 1), PI(x + 1, h, z), PI(x, h, z), 0, 0);
+            QUAD(PI(x, 0, z), PI(x + 1, 0, z), PI(x + 1, 0, z + 1), PI(x, 0, z + 1), 1, 2);
+            for (int y = HT(x + 1, z); y < h; y++)
+                QUAD(PI(x + 1, y, z + 1), PI(x + 1, y, z), PI(x + 1, y + 1, z), PI(x + 1, y + 1, z + 1), 2, 1);
+            for (int y = HT(x - 1, z); y < h; y++)
+                QUAD(PI(x, y, z), PI(x, y, z + 1), PI(x, y + 1, z + 1), PI(x, y + 1, z), 3, 1);
+            for (int y = HT(x, z + 1); y < h; y++)
+                QUAD(PI(x, y, z + 1), PI(x + 1, y, z + 1), PI(x + 1, y + 1, z + 1), PI(x, y + 1, z + 1), 4, 1);
+            for (int y = HT(x, z - 1); y < h; y++)
+                QUAD(PI(x + 1, y, z), PI(x, y, z), PI(x, y + 1, z), PI(x + 1, y + 1, z), 5, 1);
+        }
+#undef QUAD
+#undef PI
+#undef HT
+    struct mesh_source src = {.pos = pos, .uv = uv, .nrm = &nrm[0][0], .n_pos = (uint32_t)n_pos,
+                              .n_uv = 12, .n_nrm = 6, .corners = c, .n_tris = (uint32_t)t};
+    memset(m, 0, sizeof *m);
+    int rc = mesh_build(&src, m, NULL);
+    free(pos);
+    free(c);
+    if (rc)
+        return -1;
+    m->materials = calloc(1, sizeof *m->materials);
+    m->textures = calloc(2, sizeof *m->textures);
+    uint8_t atlas[32 * 32 * 4], white[4] = {255, 255, 255, 255};
+    for (int y = 0; y < 32; y++)
+        for (int x = 0; x < 32; x++) {
+            uint8_t *p = &atlas[4 * (32 * y + x)];
+            const int tile = x / 16 + 2 * (y / 16);
+            p[0] = (uint8_t)(60 * tile + 3 * (x % 16)), p[1] = (uint8_t)(200 - 50 * tile + 2 * (y % 16));
+            p[2] = (uint8_t)(40 + 50 * (tile % 2) + 3 * ((x + y) % 16)), p[3] = 255;
+        }
+    if (!m->materials || !m->textures || texture_from_rgba(32, 32, atlas, &m->textures[0], NULL) ||
+        texture_from_rgba(1, 1, white, &m->textures[1], NULL))
+        return -1;
+    m->n_textures = 2;
+    m->n_materials = 1;
+    struct material *mt = &m->materials[0];
+    mt->kd[0] = mt->kd[1] = mt->kd[2] = 1;
+    mt->ns = 32;
+    mt->texture = mt->base.tex = 0;
+    mt->alpha_map.tex = 1;
+    mt->alpha = 1;
+    mt->alpha_mode = MAT_MASK;
+    mt->alpha_cutoff = 0.5f;
+    mt->features = m->features = true;
+    for (int k = 0; k < 3; k++)
+        mt->ks[k] = 0.5f;
+    return 0;
+}
+
+/* Faces that each map a whole atlas tile weld into surfaces of their tile (dag.c's tile
+ * classes): a block world, every vertex a uv seam, gets a hierarchy whose coarser levels
+ * merge each plateau's faces (its cut a fraction of the source's triangles) and draw the
+ * tile repeated (tex_slot.tile): the picture of --lod off within a few pixels, no crack at
+ * any level mix, and the bytes of off when no level is coarsened. */
+TEST(dag_welds_an_atlas_tiles_faces_and_draws_the_same_picture)
+{
+    struct mesh m, plain;
+    REQUIRE(voxels(&m, 64) == 0 && voxels(&plain, 64) == 0);
+    REQUIRE(m.n_tris >= DAG_MIN_TRIS);
+    REQUIRE(dag_build(&m, NULL) == 0);
+    const struct mesh_dag *d = dag_of(&m);
+    REQUIRE(d && d->levels >= 3);
+    CHECK(d->mesh.n_materials > m.n_materials); /* (the tiles') */
+    int folds0 = 0;
+    CHECK_EQ_INT(cracks(&m, &folds0), 0); /* (closed; where plateaus meet corner to corner,
+                                             an edge is four faces') */
+    int worst_open = 0;
+    for (double dist = 20; dist < 2000; dist *= 2)
+        for (double px = 0.05; px < 20; px *= 3) {
+            uint32_t levels;
+            struct mesh l = cut_at(d, dist, px, &levels);
+            REQUIRE(l.tris);
+            int folds = 0, open = cracks(&l, &folds);
+            worst_open = open > worst_open ? open : worst_open;
+            free(l.tris);
+        }
+    CHECK_EQ_INT(worst_open, 0);
+    struct fb a, b;
+    REQUIRE(fb_init(&a, 160, 96, false, NULL) == 0 && fb_init(&b, 160, 96, false, NULL) == 0);
+    struct pipeline *p = pipeline_new();
+    REQUIRE(p);
+    struct draw_item it = {.mesh = &m, .model = m4_identity()};
+    struct draw_item ip = {.mesh = &plain, .model = m4_identity()};
+    double worst = INFINITY, fewest = 1;
+    int same = 0, cases = 0;
+    for (int view = 0; view < 8; view++)
+        for (int filter = TEX_NEAREST; filter <= TEX_TRILINEAR; filter += TEX_TRILINEAR) {
+            struct camera cam;
+            camera_default(&cam);
+            double dist = 40 * pow(1.5, view / 2), th = 0.8 * view;
+            /* (off the lattice: a pixel centre on a block's edge is a tie of texels) */
+            cam.eye = v3(dist * sin(th) + 0.37, 0.6 * dist + 0.21, dist * cos(th) - 0.13);
+            cam.target = v3(0.31, 1.13, -0.27);
+            cam.far = 1000;
+            struct render_opts o;
+            render_opts_default(&o);
+            o.threads = 1;
+            o.filter = (enum tex_filter)filter;
+            struct frame_stats st;
+            REQUIRE(pipeline_draw(p, &ip, 1, NULL, &cam, &o, &a, &st, NULL) == 0);
+            o.lod = LOD_CLUSTERS;
+            o.lod_px = 1e-9f; /* no level coarsened: the same bytes */
+            REQUIRE(pipeline_draw(p, &it, 1, NULL, &cam, &o, &b, &st, NULL) == 0);
+            CHECK_EQ_INT(st.dag_tris, m.n_tris);
+            cases++;
+            same += memcmp(a.rgb, b.rgb, (size_t)a.w * a.h * 3) == 0;
+            o.lod_px = LOD_DEFAULT_PX;
+            REQUIRE(pipeline_draw(p, &it, 1, NULL, &cam, &o, &b, &st, NULL) == 0);
+            fewest = fmin(fewest, (double)st.dag_tris / m.n_tris);
+            double db = psnr_db(psnr_sse(a.rgb, b.rgb, (size_t)a.w * a.h * 3) / (a.w * a.h * 3.0));
+            worst = fmin(worst, db);
+        }
+    printf("    cut: as few as %.1f%% of %u triangles; worst PSNR %.1f dB\n", 100 * fewest,
+           (unsigned)m.n_tris, worst);
+    CHECK_EQ_INT(same, cases);
+    CHECK(fewest < 0.25);
+    CHECK(worst >= 40);
+    pipeline_destroy(p);
+    fb_free(&a);
+    fb_free(&b);
+    lod_free(&m);
+    mesh_free(&m);
+    mesh_free(&plain);
+}
