@@ -496,7 +496,8 @@ walk(struct frontend *fe, struct frame *f, struct tri_walk *w, const uint32_t *l
     return 0;
 }
 
-/* Triangles a .. b-1 (at most FRONTEND_FILTER): the work just ahead of them first (the
+/* Triangles a .. b-1 (at most FRONTEND_FILTER; with a mask other than ~0, only a + j for
+ * mask's bits j: the cut's marked ones in a run): the work just ahead of them first (the
  * vertex stage on the vertices from *vdone on, none when it is m->n_verts: the caller ran
  * it; by position, the positions from w->pos_done on projected and the vertices' mesh data
  * read ahead for the few whose records are made), then the ones outside the view or
@@ -510,7 +511,7 @@ _Static_assert(offsetof(struct vertex_out, fy) == 4 && offsetof(struct vertex_ou
                "filter copies a record's first 16 bytes: fx, fy, outcode");
 static inline __attribute__((always_inline)) uint32_t
 filter(const struct frame *f, struct tri_walk *w, uint32_t a, uint32_t b, uint32_t *vdone,
-       const int by, uint32_t *list)
+       const int by, const uint64_t mask, uint32_t *list)
 {
     const bool by_pos = by != BY_VERTEX;
     const struct mesh *m = w->m;
@@ -521,8 +522,13 @@ filter(const struct frame *f, struct tri_walk *w, uint32_t a, uint32_t b, uint32
         int32_t fx, fy;
         uint32_t outcode, rest;
     } h[3][FRONTEND_FILTER];
+    uint32_t cnt = 0, tri[FRONTEND_FILTER]; /* (masked: lane j's triangle) */
     for (uint32_t i = a; i < b; i++) {
+        if (mask != ~0ull && !((mask >> (i - a)) & 1))
+            continue;
         const uint32_t *c = m->tris[i];
+        const uint32_t j = cnt++;
+        tri[j] = i;
         if (verts_done < m->n_verts) { /* the vertex stage just ahead of the triangles */
             uint32_t hi = c[0] > c[1] ? c[0] : c[1];
             hi = c[2] > hi ? c[2] : hi;
@@ -541,7 +547,6 @@ filter(const struct frame *f, struct tri_walk *w, uint32_t a, uint32_t b, uint32
                 verts_done = to;
             }
         }
-        const uint32_t j = i - a;
         if (by_pos) {
             const uint32_t q0 = by == BY_HEAD ? c[0] : m->pos_id[c[0]];
             const uint32_t q1 = by == BY_HEAD ? c[1] : m->pos_id[c[1]];
@@ -566,7 +571,6 @@ filter(const struct frame *f, struct tri_walk *w, uint32_t a, uint32_t b, uint32
             memcpy(&h[2][j], &vo[c[2]], sizeof h[2][j]);
         }
     }
-    const uint32_t cnt = b - a;
     for (uint32_t j = cnt; j < FRONTEND_FILTER; j++) /* (the fixed count's spare lanes) */
         for (int k = 0; k < 3; k++)
             h[k][j] = (struct head){0, 0, 0, 0};
@@ -601,7 +605,7 @@ filter(const struct frame *f, struct tri_walk *w, uint32_t a, uint32_t b, uint32
     }
     for (uint32_t j = 0; j < cnt; j++) { /* (each one out, kept, or else holding no centre) */
         rejected += (uint32_t)out[j];
-        list[n] = a + j;
+        list[n] = mask == ~0ull ? a + j : tri[j];
         n += (uint32_t)keep[j];
     }
     no_centre = cnt - rejected - n;
@@ -618,7 +622,7 @@ filter_walk(struct frontend *fe, struct frame *f, struct tri_walk *w, uint32_t a
             uint32_t *vdone, const int by, struct err *e)
 {
     uint32_t list[FRONTEND_FILTER];
-    const uint32_t n = filter(f, w, a, b, vdone, by, list);
+    const uint32_t n = filter(f, w, a, b, vdone, by, ~0ull, list);
     return n && walk(fe, f, w, list, n, by, e) ? -1 : 0;
 }
 
@@ -745,7 +749,7 @@ static int walk_clusters(struct frontend *fe, struct frame *f, struct tri_walk *
              * next cluster is tested before this one is walked, on the depth so far: a
              * little older, so it finds as many hidden or fewer, never wrongly.) */
             uint32_t list[CLUSTER_MAX_TRIS], none = m->n_verts;
-            const uint32_t n = filter(f, w, a, b, &none, BY_POSITION, list);
+            const uint32_t n = filter(f, w, a, b, &none, BY_POSITION, ~0ull, list);
             for (uint32_t q = 0; q < n; q++)
                 for (int k = 0; k < 3; k++)
                     __builtin_prefetch(&m->verts[m->tris[list[q]][k]]);
@@ -870,15 +874,22 @@ static int cut_marked(struct frontend *fe, struct frame *f, struct tri_walk *w, 
  * word k), in the mesh's order: a run with a marked triangle tested whole as walk_clusters
  * tests a cluster — with the hidden test on the depth drawn so far, which the hierarchy's
  * own clusters, tested before anything is drawn, cannot have — and dropped (its marked
- * triangles counted in dropped[] by verdict), or its vertex stage run and its marked
- * triangles walked. (Its box holds its unmarked triangles too: only larger.) */
+ * triangles counted in dropped[] by verdict), or its marked triangles walked: by vertex
+ * after its vertex stage, a stretch of marked ones at a time; by position all at once
+ * (filter's mask), walked after the next run's filter as walk_clusters does; by heads all
+ * at once after its heads. (Its box holds its unmarked triangles too: only larger.) */
 static int cut_runs(struct frontend *fe, struct frame *f, struct tri_walk *w,
                     const struct cluster_view *cv, const uint64_t *tmark, uint32_t i0,
-                    uint32_t i1, uint64_t dropped[CLUSTER_VERDICTS], struct err *e)
+                    uint32_t i1, const int by, uint64_t dropped[CLUSTER_VERDICTS],
+                    struct err *e)
 {
     const struct mesh *m = w->m;
     const struct mesh_clusters *cs = m->clusters;
-    uint32_t vdone = 0;
+    if (by != BY_VERTEX && positions_begin(fe, w, by, e))
+        return -1;
+    if (by == BY_HEAD)
+        w->pos_done = m->n_verts; /* (made run by run below) */
+    uint32_t vdone = 0, late[CLUSTER_MAX_TRIS], n_late = 0;
     for (uint32_t id = i0 / CLUSTER_MAX_TRIS; id < cs->n; id++) {
         const struct mesh_cluster *c = &cs->c[id];
         if (c->tri_first >= i1)
@@ -897,7 +908,33 @@ static int cut_runs(struct frontend *fe, struct frame *f, struct tri_walk *w,
             dropped[cvd] += (uint64_t)__builtin_popcountll(bits);
             continue;
         }
+        if (by == BY_POSITION) { /* the run's marked triangles filtered at once, walked
+                                    after the next run's filter (walk_clusters' late walk) */
+            uint32_t list[CLUSTER_MAX_TRIS], none = m->n_verts;
+            const uint32_t n = filter(f, w, c->tri_first, c->tri_first + c->n_tris, &none,
+                                      BY_POSITION, bits, list);
+            for (uint32_t q = 0; q < n; q++)
+                for (int k = 0; k < 3; k++)
+                    __builtin_prefetch(&m->verts[m->tris[list[q]][k]]);
+            if (n_late && walk(fe, f, w, late, n_late, BY_POSITION, e))
+                return -1;
+            memcpy(late, list, n * sizeof *list);
+            n_late = n;
+            continue;
+        }
         vdone = vdone > c->v_need ? vdone : c->v_need;
+        if (by == BY_HEAD) { /* the run's heads, then its marked triangles at once */
+            if (vdone < c->v_end) {
+                position_stage(f, m, w->pos, vdone, c->v_end, BY_HEAD);
+                vdone = c->v_end;
+            }
+            uint32_t list[CLUSTER_MAX_TRIS], none = m->n_verts;
+            const uint32_t n = filter(f, w, c->tri_first, c->tri_first + c->n_tris, &none,
+                                      BY_HEAD, bits, list);
+            if (n && walk(fe, f, w, list, n, BY_HEAD, e))
+                return -1;
+            continue;
+        }
         if (vdone < c->v_end) {
             vertex_stage(f, w, vdone, c->v_end);
             vdone = c->v_end;
@@ -913,22 +950,26 @@ static int cut_runs(struct frontend *fe, struct frame *f, struct tri_walk *w,
             bits = a + len < 64 ? bits & (~0ull << (a + len)) : 0;
         }
     }
-    return 0;
+    return n_late && walk(fe, f, w, late, n_late, BY_POSITION, e) ? -1 : 0;
 }
 
 /* The hierarchy's cut (dag.h) for triangles i0 .. i1-1 of its mesh: each cluster whose own
  * error projects to at most lod_px and its parent's to more, unless culled whole
- * (cluster_cull.h), marks its triangles in the slice (a bit each) and their vertices (a
- * byte each); then the marked triangles are walked in the mesh's order, the vertex stage
- * on the marked vertices just ahead of them: by the mesh's runs with the hidden test on
- * (cut_runs), else in runs of marked triangles (cut_marked). */
+ * (cluster_cull.h), marks its triangles in the slice (a bit each) and, by vertex, their
+ * vertices (a byte each); then the marked triangles are walked in the mesh's order: by
+ * vertex, the vertex stage on the marked vertices just ahead of them, by the mesh's runs
+ * with the hidden test on (cut_runs), else in runs of marked triangles (cut_marked); by
+ * position (`by`: a mesh walks_by_position takes), by the mesh's runs, each run's marked
+ * triangles at once, by heads instead when the runs the cut touches hold fewer vertices
+ * than the mesh has positions. */
 static int walk_cut(struct frontend *fe, struct frame *f, struct tri_walk *w, uint32_t i0,
-                    uint32_t i1, struct err *e)
+                    uint32_t i1, const int by, struct err *e)
 {
     const struct mesh *m = w->m;
     const struct mesh_dag *d = m->dag;
     const size_t words = ((size_t)m->n_opaque + 63) / 64;
-    if (zeroed(&fe->vdone, &fe->vdone_cap, (size_t)m->n_verts + 8, e) ||
+    const bool vmarks = by == BY_VERTEX; /* (by position the walk makes what it needs) */
+    if ((vmarks && zeroed(&fe->vdone, &fe->vdone_cap, (size_t)m->n_verts + 8, e)) ||
         zeroed((uint8_t **)&fe->marks, &fe->marks_cap, words * sizeof *fe->marks, e))
         return -1;
     uint64_t *tmark = fe->marks;
@@ -978,20 +1019,35 @@ static int walk_cut(struct frontend *fe, struct frame *f, struct tri_walk *w, ui
         for (uint32_t q = 0; q < c->n_tris; q++)
             if (whole || (t[q] >= i0 && t[q] < i1)) {
                 tmark[t[q] >> 6] |= 1ull << (t[q] & 63);
-                if (!whole)
+                if (!whole && vmarks)
                     for (int j = 0; j < 3; j++)
                         vmark[m->tris[t[q]][j]] = 1;
             }
-        if (whole) {
+        if (whole && vmarks) {
             const uint32_t *v = d->verts + c->vert_first;
             for (uint32_t q = 0; q < c->n_verts; q++)
                 vmark[v[q]] = 1;
         }
     }
-    w->vmark = vmark;
-    if (m->clusters && w->hide) { /* the marked triangles by the mesh's runs, hidden ones
-                                     dropped (cut_runs) */
-        if (cut_runs(fe, f, w, &cv, tmark, i0, i1, dropped, e)) {
+    w->vmark = vmarks ? vmark : NULL;
+    int by_cut = by;
+    if (by == BY_POSITION) { /* by heads when the runs the cut touches have fewer vertices
+                                than the mesh has positions (a far view of a block world:
+                                most of level 0 replaced by coarser clusters) */
+        uint64_t heads = 0;
+        uint32_t vd = 0;
+        for (uint32_t id = i0 / CLUSTER_MAX_TRIS; id < m->clusters->n && heads < m->n_pos; id++)
+            if (tmark[id]) {
+                const struct mesh_cluster *c = &m->clusters->c[id];
+                vd = vd > c->v_need ? vd : c->v_need;
+                heads += c->v_end > vd ? c->v_end - vd : 0;
+                vd = c->v_end > vd ? c->v_end : vd;
+            }
+        by_cut = heads < m->n_pos ? BY_HEAD : BY_POSITION;
+    }
+    if (m->clusters && (w->hide || by == BY_POSITION)) { /* the marked triangles by the mesh's
+                                                            runs, hidden ones dropped */
+        if (cut_runs(fe, f, w, &cv, tmark, i0, i1, by_cut, dropped, e)) {
             w->vmark = NULL;
             return -1;
         }
@@ -1062,11 +1118,13 @@ int frontend_triangles(struct frontend *fe, struct frame *f, const struct draw_i
      * reads the item's records (not wireframe's edges, not the hidden-line pre-pass) */
     const bool heads_ok = !cut && (verts_from == 0 || clusters) && i0 < i1 && !depth_only &&
                           !wire && o->view != VIEW_WIRE_OVERLAY;
-    const int by = !heads_ok                                     ? BY_VERTEX
+    const bool cut_pos = cut && m->clusters && walks_by_position(m, f->fb->w, f->fb->h);
+    const int by = cut_pos                                      ? BY_POSITION
+                   : !heads_ok                                  ? BY_VERTEX
                    : walks_by_position(m, f->fb->w, f->fb->h) ? BY_POSITION
                    : walks_by_heads(m, f->fb->w, f->fb->h, o->heads_ratio) ? BY_HEAD
                                                                  : BY_VERTEX;
-    if (by != BY_VERTEX)
+    if (by != BY_VERTEX && !cut) /* (the cut's: its own triangles, counted below) */
         f->stats->tris_by_position += i1 - i0;
     /* hidden triangles (frontend.h): on the depth buffer the batches drawn so far wrote —
      * one thread's (with a pool, the batch in flight is still writing it) */
@@ -1074,7 +1132,7 @@ int frontend_triangles(struct frontend *fe, struct frame *f, const struct draw_i
         f->fb->depth_mode == DEPTH_Z && !f->fb->overdraw && f->span.mode != SHADE_WIRE &&
         o->view != VIEW_WIRE_OVERLAY)
         w.hide = f->fb->depth;
-    int rc = cut        ? walk_cut(fe, f, &w, i0, i1, e)
+    int rc = cut        ? walk_cut(fe, f, &w, i0, i1, by, e)
              : clusters ? walk_clusters(fe, f, &w, i0, i1, by, e)
              : by != BY_VERTEX ? walk_by_position(fe, f, &w, i0, i1, by, e)
                         : walk_range(fe, f, &w, i0, i1, &verts_from, BY_VERTEX, e);
@@ -1083,6 +1141,7 @@ int frontend_triangles(struct frontend *fe, struct frame *f, const struct draw_i
     shade_queued(fe, f);
     struct frame_stats *stats = f->stats;
     stats->tris_in += cut ? w.n_cut : i1 - i0;
+    stats->tris_by_position += cut && by != BY_VERTEX ? w.n_cut : 0;
     stats->tris_rejected += w.n_rejected;
     stats->tris_culled += w.n_culled;
     stats->tris_no_centre += w.n_no_centre;
