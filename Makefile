@@ -144,7 +144,7 @@ build/asan/rastty: $(BUILD)/librastty.a $(MAINOBJ)
 	@echo "  LD      $@"
 	$(Q)$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $(MAINOBJ) $(BUILD)/librastty.a $(LDLIBS)
 
-bench: rastty assets oracle-build build/bench/reorder build/bench/gensphere floor-build
+bench: rastty assets oracle-build build/bench/reorder build/bench/gensphere build/bench/genvoxels floor-build
 	@tests/bench.sh
 
 # Measuring builds for tests/bench_floor.sh (never installed): the same sources with the
@@ -170,6 +170,11 @@ build/bench/reorder: tests/bench/reorder.c $(BUILD)/librastty.a
 build/bench/gensphere: tests/bench/gensphere.c
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) $(CFLAGS) -o $@ $< -lm
+
+# the scale benchmark's block world (tests/bench_scale.sh)
+build/bench/genvoxels: tests/bench/genvoxels.c
+	@mkdir -p $(dir $@)
+	$(Q)$(CC) $(CFLAGS) -o $@ $<
 
 # The README's chart: every method on the scene set at 160x96 and 640x480 (several minutes;
 # run it on a quiet machine). Shared models from ../shared/models (or RASTTY_SHARED).

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # tests/bench_scale.sh: does a frame cost what the screen shows or what the file holds? The
 # same displaced sphere (build/bench/gensphere: 10k, 100k, 1M and 4M triangles, framed: the
-# same size on screen) and the dense shared models (lost_empire, sports car, bunny) at
+# same size on screen), a generated block world (build/bench/genvoxels) and the dense shared
+# models (lost_empire, sports car, bunny) at
 # 160x96 and 640x480, one thread and two. `make bench` prints it (issue 24's table).
 #
 #   tests/bench_scale.sh [--repeat N] [--sizes "10000 ..."] [--screens "160x96 ..."]
@@ -63,6 +64,15 @@ for n in $sizes; do
     [ -f "$f" ] || "$GEN" "$n" "$f" >/dev/null || { echo "-- scale: $GEN $n failed"; exit 1; }
     models+=("$f")
 done
+# the block world (build/bench/genvoxels 160: 121k triangles, every vertex a uv seam)
+VOX=build/bench/genvoxels
+if [ -x "$VOX" ]; then
+    b=$D/blocks_160
+    { [ -f "$b/blocks.obj" ] || { mkdir -p "$b" && "$VOX" 160 "$b" >/dev/null; }; } &&
+        models+=("$b/blocks.obj")
+else
+    echo "   (no block world: make build/bench/genvoxels)"
+fi
 for m in lost_empire/lost_empire.obj sports_car/sportsCar.obj bunny/bunny.obj; do
     if [ -f "$S/$m" ]; then models+=("$S/$m"); else echo "   (no $S/$m: skipped)"; fi
 done
