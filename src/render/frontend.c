@@ -626,6 +626,30 @@ filter_walk(struct frontend *fe, struct frame *f, struct tri_walk *w, uint32_t a
     return n && walk(fe, f, w, list, n, by, e) ? -1 : 0;
 }
 
+/* By position, a cluster's (or a run's, mask as filter's) triangles a .. b-1: filter
+ * projects the positions; the kept triangles' vertex data (read when their records are
+ * made and lit) is fetched now, and they are walked after the next cluster's filter, left
+ * in late[0 .. *n_late) (the caller walks the last ones): the fetch has a cluster's walk
+ * to arrive in. (The next cluster is tested before this one is walked, on the depth so
+ * far: a little older, so it finds as many hidden or fewer, never wrongly.) 0, or -1. */
+static inline __attribute__((always_inline)) int
+filter_late(struct frontend *fe, struct frame *f, struct tri_walk *w, uint32_t a, uint32_t b,
+            const uint64_t mask, uint32_t late[CLUSTER_MAX_TRIS], uint32_t *n_late,
+            struct err *e)
+{
+    const struct mesh *m = w->m;
+    uint32_t list[CLUSTER_MAX_TRIS], none = m->n_verts;
+    const uint32_t n = filter(f, w, a, b, &none, BY_POSITION, mask, list);
+    for (uint32_t q = 0; q < n; q++)
+        for (int k = 0; k < 3; k++)
+            __builtin_prefetch(&m->verts[m->tris[list[q]][k]]);
+    if (*n_late && walk(fe, f, w, late, *n_late, BY_POSITION, e))
+        return -1;
+    memcpy(late, list, n * sizeof *list);
+    *n_late = n;
+    return 0;
+}
+
 /* triangles i0 .. i1-1, FRONTEND_FILTER at a time: filtered, then walked; the vertex stage
  * (or the heads) just ahead of them from *vdone on, as filter says */
 static int walk_range(struct frontend *fe, struct frame *f, struct tri_walk *w, uint32_t i0,
@@ -743,20 +767,8 @@ static int walk_clusters(struct frontend *fe, struct frame *f, struct tri_walk *
             continue;
         }
         if (by == BY_POSITION) {
-            /* filter projects the positions; the kept triangles' vertex data (read when
-             * their records are made and lit) is fetched now and they are walked after
-             * the next cluster's filter: the fetch has a cluster's walk to arrive in. (The
-             * next cluster is tested before this one is walked, on the depth so far: a
-             * little older, so it finds as many hidden or fewer, never wrongly.) */
-            uint32_t list[CLUSTER_MAX_TRIS], none = m->n_verts;
-            const uint32_t n = filter(f, w, a, b, &none, BY_POSITION, ~0ull, list);
-            for (uint32_t q = 0; q < n; q++)
-                for (int k = 0; k < 3; k++)
-                    __builtin_prefetch(&m->verts[m->tris[list[q]][k]]);
-            if (n_late && walk(fe, f, w, late, n_late, BY_POSITION, e))
+            if (filter_late(fe, f, w, a, b, ~0ull, late, &n_late, e))
                 return -1;
-            memcpy(late, list, n * sizeof *list);
-            n_late = n;
             continue;
         }
         /* the vertex stage (or the heads') from the lowest vertex this or a later cluster
@@ -908,18 +920,10 @@ static int cut_runs(struct frontend *fe, struct frame *f, struct tri_walk *w,
             dropped[cvd] += (uint64_t)__builtin_popcountll(bits);
             continue;
         }
-        if (by == BY_POSITION) { /* the run's marked triangles filtered at once, walked
-                                    after the next run's filter (walk_clusters' late walk) */
-            uint32_t list[CLUSTER_MAX_TRIS], none = m->n_verts;
-            const uint32_t n = filter(f, w, c->tri_first, c->tri_first + c->n_tris, &none,
-                                      BY_POSITION, bits, list);
-            for (uint32_t q = 0; q < n; q++)
-                for (int k = 0; k < 3; k++)
-                    __builtin_prefetch(&m->verts[m->tris[list[q]][k]]);
-            if (n_late && walk(fe, f, w, late, n_late, BY_POSITION, e))
+        if (by == BY_POSITION) { /* the run's marked triangles at once */
+            if (filter_late(fe, f, w, c->tri_first, c->tri_first + c->n_tris, bits, late,
+                            &n_late, e))
                 return -1;
-            memcpy(late, list, n * sizeof *list);
-            n_late = n;
             continue;
         }
         vdone = vdone > c->v_need ? vdone : c->v_need;
