@@ -54,6 +54,24 @@ static inline uint32_t welded(const struct build *B, uint32_t v)
     return B->weld ? B->weld[v] : v;
 }
 
+/* order[0 .. n) (numbers of records of `size` bytes at base) sorted by their records'
+ * bytes, then by number: equal records come together, the lowest number first */
+static const unsigned char *sort_base; /* qsort's context */
+static size_t sort_size;
+
+static int by_record(const void *a, const void *b)
+{
+    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
+    int c = memcmp(sort_base + x * sort_size, sort_base + y * sort_size, sort_size);
+    return c ? c : (x > y) - (x < y);
+}
+
+static void sort_by_record(uint32_t *order, size_t n, const void *base, size_t size)
+{
+    sort_base = base, sort_size = size;
+    qsort(order, n, sizeof *order, by_record);
+}
+
 static struct dag_cluster *new_cluster(struct build *B)
 {
     if (B->n == B->cap) {
@@ -275,14 +293,6 @@ static bool tri_class(const struct mesh *m, uint32_t t, bool textured, struct ti
     return true;
 }
 
-static const struct tile_key *sort_key; /* qsort's context */
-
-static int by_class(const void *a, const void *b)
-{
-    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
-    int c = memcmp(&sort_key[x], &sort_key[y], sizeof *sort_key);
-    return c ? c : (x > y) - (x < y);
-}
 
 /* a vertex's weld key: position, normal, colour and class */
 struct weld_key {
@@ -291,14 +301,6 @@ struct weld_key {
     int32_t cls;
 };
 
-static const struct weld_key *sort_wk; /* qsort's context */
-
-static int by_weld(const void *a, const void *b)
-{
-    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
-    int c = memcmp(&sort_wk[x], &sort_wk[y], sizeof *sort_wk);
-    return c ? c : (x > y) - (x < y);
-}
 
 /* Tile classes for a mesh on the features path (the hierarchy's derived materials are
  * drawn there; a mesh on the default path keeps its seams): each triangle of a material
@@ -341,8 +343,7 @@ static int tiles(struct build *B)
     for (uint32_t t = 0; t < nt; t++)
         if (mat_ok[2 * m->tri_material[t]])
             order[n++] = t;
-    sort_key = key;
-    qsort(order, n, sizeof *order, by_class);
+    sort_by_record(order, n, key, sizeof *key);
     for (uint32_t t = 0; t < nt; t++)
         tcls[t] = -1;
     B->n_cls = 0;
@@ -428,8 +429,7 @@ static int tiles(struct build *B)
         wk[v].cls = B->vcls[v];
         order[n++] = v;
     }
-    sort_wk = wk;
-    qsort(order, n, sizeof *order, by_weld);
+    sort_by_record(order, n, wk, sizeof *wk);
     for (uint32_t i = 1; i < n; i++)
         if (!memcmp(&wk[order[i]], &wk[order[i - 1]], sizeof *wk))
             B->weld[order[i]] = B->weld[order[i - 1]];
@@ -548,14 +548,6 @@ struct group {
     size_t e_cap;
 };
 
-static const float *sort_pos; /* qsort's context */
-
-static int by_pos(const void *a, const void *b)
-{
-    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
-    int c = memcmp(&sort_pos[3 * (size_t)x], &sort_pos[3 * (size_t)y], 3 * sizeof *sort_pos);
-    return c ? c : (x > y) - (x < y);
-}
 
 /* the directed edges of idx[0 .. n) (by position id) whose reverse is not there, sorted,
  * into out; their number */
@@ -602,8 +594,7 @@ static int border_kept(struct group *g, size_t got)
     g->pid = pid;
     for (uint32_t v = 0; v < nv; v++)
         order[v] = v;
-    sort_pos = g->pos;
-    qsort(order, nv, sizeof *order, by_pos);
+    sort_by_record(order, nv, g->pos, 3 * sizeof *g->pos);
     for (size_t i = 0; i < nv; i++)
         pid[order[i]] = i > 0 && memcmp(&g->pos[3 * (size_t)order[i]], &g->pos[3 * (size_t)order[i - 1]],
                                         3 * sizeof *g->pos) == 0
