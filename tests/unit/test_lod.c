@@ -401,6 +401,13 @@ TEST(lod_ratio_picks_the_level_nearest_by_ratio)
     mesh_free(&m);
 }
 
+/* the PSNR of b's picture against a's (same size), dB */
+static double fb_psnr(const struct fb *a, const struct fb *b)
+{
+    const size_t n = (size_t)a->w * a->h * 3;
+    return psnr_db(psnr_sse(a->rgb, b->rgb, n) / (double)n);
+}
+
 static int covered_count(const struct fb *fb)
 {
     int n = 0;
@@ -553,8 +560,7 @@ TEST(lod_auto_at_the_default_bounds_keeps_40_db_against_off_at_every_distance)
             draws++;
             coarser += st.lod_max > 0;
             deepest = st.lod_max > deepest ? st.lod_max : deepest;
-            worst = fmin(worst, psnr_db(psnr_sse(a.rgb, b.rgb, (size_t)a.w * a.h * 3) /
-                                        (a.w * a.h * 3.0)));
+            worst = fmin(worst, fb_psnr(&a, &b));
         }
     CHECK(worst >= 40);
     CHECK(coarser > draws / 2); /* (it still pays: most draws take a coarser level) */
@@ -889,8 +895,7 @@ TEST(dag_draws_the_bytes_of_lod_off_with_no_level_coarsened_and_near_them_coarse
             REQUIRE(pipeline_draw(p, &it, 1, NULL, &cam, &o, &b, &st, NULL) == 0);
             coarse += st.dag_levels > 1 && st.dag_tris < m.n_tris;
             CHECK_EQ_INT(st.tris_full, m.n_tris);
-            double db = psnr_db(psnr_sse(a.rgb, b.rgb, (size_t)a.w * a.h * 3) / (a.w * a.h * 3.0));
-            worst = fmin(worst, db);
+            worst = fmin(worst, fb_psnr(&a, &b));
         }
     CHECK_EQ_INT(same, cases);
     CHECK(coarse > cases / 2);
@@ -1112,7 +1117,12 @@ TEST(dag_welds_an_atlas_tiles_faces_and_draws_the_same_picture)
     struct mesh m, plain;
     REQUIRE(voxels(&m, 64) == 0 && voxels(&plain, 64) == 0);
     REQUIRE(m.n_tris >= DAG_MIN_TRIS);
-    REQUIRE(dag_build(&m, NULL) == 0);
+    struct lod_job *j;
+    REQUIRE(lod_start(&m, 1, false, &j, NULL) == 0); /* (the features path: no chain) */
+    CHECK(!j && !m.lod);
+    REQUIRE(lod_start(&m, 1, true, &j, NULL) == 0); /* (--lod clusters: the hierarchy) */
+    REQUIRE(j);
+    lod_finish(j, false);
     const struct mesh_dag *d = dag_of(&m);
     REQUIRE(d && d->levels >= 3);
     CHECK(d->mesh.n_materials > m.n_materials); /* (the tiles') */
@@ -1162,8 +1172,7 @@ TEST(dag_welds_an_atlas_tiles_faces_and_draws_the_same_picture)
             o.lod_px = LOD_DEFAULT_PX;
             REQUIRE(pipeline_draw(p, &it, 1, NULL, &cam, &o, &b, &st, NULL) == 0);
             fewest = fmin(fewest, (double)st.dag_tris / m.n_tris);
-            double db = psnr_db(psnr_sse(a.rgb, b.rgb, (size_t)a.w * a.h * 3) / (a.w * a.h * 3.0));
-            worst = fmin(worst, db);
+            worst = fmin(worst, fb_psnr(&a, &b));
         }
     printf("    cut: as few as %.1f%% of %u triangles; worst PSNR %.1f dB\n", 100 * fewest,
            (unsigned)m.n_tris, worst);
