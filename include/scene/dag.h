@@ -108,6 +108,8 @@ struct mesh_dag {
     int levels;             /* levels built (1: none coarser than the source) */
     uint32_t n_level0;      /* clusters of level 0 */
     double build_ms;
+    size_t bytes;           /* what it holds: its mesh's geometry (mesh_geometry_bytes), runs
+                               and materials, its clusters and their lists */
 };
 
 /* Is cluster c in the cut for an error bound of max_px pixels, its own group's error

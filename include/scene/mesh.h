@@ -242,6 +242,9 @@ int mesh_tangents(struct mesh *m, bool second);
 void mesh_turn_up(struct mesh *m, char axis);
 /* Whether every vertex position is finite (the simplifiers of lod.h and dag.h need it). */
 bool mesh_positions_finite(const struct mesh *m);
+/* The bytes of m's own geometry: vertices, triangles, their materials, positions, colours,
+ * second uvs, tangents (not textures, materials, clusters or levels). */
+size_t mesh_geometry_bytes(const struct mesh *m);
 /* Frees everything the mesh owns (its textures) and zeroes it; a zeroed mesh is fine. Its
  * levels of detail, if any were built, are lod_free's (scene_free calls both). */
 void mesh_free(struct mesh *m);

@@ -7,6 +7,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "dag.h"
 #include "file.h"
 #include "image.h"
 #include "light.h"
@@ -89,6 +90,24 @@ int cmd_render(const struct options *o, struct err *e)
             }
             if (read || written)
                 fprintf(stderr, "lod cache: %d chains read, %d written\n", read, written);
+            /* the hierarchies (issue 24: at most 1.5x their meshes' own memory) */
+            int n_dag = 0;
+            size_t dag_b = 0, own_b = 0;
+            double dag_ms = 0;
+            for (int i = 0; i < scene->n_meshes; i++) {
+                const struct mesh_dag *d = dag_of(&scene->meshes[i]);
+                if (d) {
+                    n_dag++;
+                    dag_b += d->bytes;
+                    own_b += mesh_geometry_bytes(&scene->meshes[i]);
+                    dag_ms += d->build_ms;
+                }
+            }
+            if (n_dag)
+                fprintf(stderr, "hierarchy: %d meshes, %.1f MB, %.2fx their own geometry's "
+                                "%.1f MB; built in %.0f ms\n",
+                        n_dag, dag_b / 1048576.0, (double)dag_b / (double)own_b,
+                        own_b / 1048576.0, dag_ms);
             double med = timing_median(ms, drawn); /* sorts ms: ms[0] is the fastest */
             fprintf(stderr,
                     "frames=%d median_ms=%.4f min_ms=%.4f load_ms=%.2f simd=%s threads=%d "

@@ -1054,6 +1054,9 @@ int dag_build(struct mesh *m, const atomic_bool *cancel)
     B.tris.a = NULL;
     d->levels = levels;
     d->build_ms = timing_now_ms() - t0;
+    d->bytes = sizeof *d + mesh_geometry_bytes(hm) + cluster_bytes(hm) +
+               (hm->materials != m->materials ? hm->n_materials * sizeof *hm->materials : 0) +
+               d->n * sizeof *d->c + B.tris.n * sizeof *d->tris + nvl * sizeof *d->verts;
     __atomic_store_n(&m->dag, d, __ATOMIC_RELEASE);
     d = NULL;
     rc = 0;

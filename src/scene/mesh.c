@@ -740,3 +740,13 @@ void mesh_free(struct mesh *m)
     free(m->textures);
     memset(m, 0, sizeof *m);
 }
+
+size_t mesh_geometry_bytes(const struct mesh *m)
+{
+    const size_t nv = m->n_verts, nt = m->n_tris;
+    return nv * sizeof *m->verts + nt * (sizeof *m->tris + sizeof *m->tri_material) +
+           (m->vert_material ? nv * sizeof *m->vert_material : 0) +
+           (m->pos_id ? nv * sizeof *m->pos_id + m->n_pos * sizeof *m->pos_xyz : 0) +
+           (m->colors ? nv * sizeof *m->colors : 0) + (m->uv1 ? nv * sizeof *m->uv1 : 0) +
+           (m->tangents ? nv * sizeof *m->tangents : 0);
+}
