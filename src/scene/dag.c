@@ -191,31 +191,30 @@ static int close_cluster(struct build *B, size_t from)
 
 /* a tile class: a material, the tile its faces map (none: a material without a texture,
  * whose uvs nothing reads) and how, in tile units: t = g pos + c (c modulo 1) */
-struct tile_key {
+struct tile_key { /* (compared as bytes: no padding; sorted, a tile's classes together) */
     uint32_t mat;
     float rect[4];    /* u0, v0, du, dv of the tile; du = 0: no texture */
-    int32_t gq[2][3]; /* g, 10 significant bits */
     int32_t cq[2];    /* c, in 1/1024 of the tile */
+    uint32_t zero;
+    double g[2][3];   /* g, rounded to 10 significant bits (0: under 1e-4 of the largest) */
 };
+_Static_assert(sizeof(struct tile_key) == 6 * 8 + 8 * 4, "struct tile_key has no padding");
 struct tile_class {
     struct tile_key k;
-    double g[2][3], c[2]; /* its first face's (g snapped; c from it) */
-    uint32_t derived;     /* its material in the hierarchy's mesh */
+    double c[2];      /* its first face's */
+    uint32_t derived; /* its material in the hierarchy's mesh */
 };
 
 #define TILE_CQ 1024
 
-/* x to 10 significant bits (0 below tiny), as an integer key and the value it stands for */
-static int32_t snap(double x, double tiny, double *out)
+/* x rounded to 10 significant bits, 0 when not above tiny */
+static double snap(double x, double tiny)
 {
-    if (!(fabs(x) > tiny)) {
-        *out = 0;
+    if (!(fabs(x) > tiny))
         return 0;
-    }
     int ex;
-    double fr = frexp(x, &ex), r = round(ldexp(fr, 10));
-    *out = ldexp(r, ex - 10);
-    return (int32_t)((uint32_t)(ex + 512) << 11 | (uint32_t)(r + 1024));
+    double fr = frexp(x, &ex);
+    return ldexp(round(ldexp(fr, 10)), ex - 10);
 }
 
 /* Can material mt's faces be tile classes: its textures all read uv set 0, untransformed,
@@ -283,8 +282,8 @@ static bool tri_class(const struct mesh *m, uint32_t t, bool textured, struct ti
             gr[q] = (d1 * a[q] + d2 * b[q]) / nn, big = fmax(big, fabs(gr[q]));
         double c = (v[0]->uv[k] - o->k.rect[k]) / s;
         for (int q = 0; q < 3; q++) {
-            o->k.gq[k][q] = snap(gr[q], 1e-4 * big, &o->g[k][q]);
-            c -= o->g[k][q] * v[0]->pos[q];
+            o->k.g[k][q] = snap(gr[q], 1e-4 * big);
+            c -= o->k.g[k][q] * v[0]->pos[q];
         }
         c -= floor(c);
         o->c[k] = c;
@@ -293,14 +292,12 @@ static bool tri_class(const struct mesh *m, uint32_t t, bool textured, struct ti
     return true;
 }
 
-
 /* a vertex's weld key: position, normal, colour and class */
 struct weld_key {
     float pos[3], nrm[3];
     uint8_t col[4];
     int32_t cls;
 };
-
 
 /* Tile classes for a mesh on the features path (the hierarchy's derived materials are
  * drawn there; a mesh on the default path keeps its seams): each triangle of a material
@@ -947,8 +944,9 @@ static int own_vertices(struct build *B, struct mesh_dag *d)
                         const struct tile_class *tc = &B->cls[k];
                         for (int a = 0; a < 2; a++)
                             hm->verts[nv].uv[a] =
-                                (float)(tc->g[a][0] * m->verts[v].pos[0] + tc->g[a][1] * m->verts[v].pos[1] +
-                                        tc->g[a][2] * m->verts[v].pos[2] + tc->c[a]);
+                                (float)(tc->k.g[a][0] * m->verts[v].pos[0] +
+                                        tc->k.g[a][1] * m->verts[v].pos[1] +
+                                        tc->k.g[a][2] * m->verts[v].pos[2] + tc->c[a]);
                         hm->vert_material[nv] = (uint16_t)tc->derived;
                     }
                     if (hm->colors)
