@@ -373,6 +373,13 @@ static int tiles(struct build *B)
                                  B->vcls[m->tris[t][2]] != tcls[t]))
                 tcls[t] = -1, changed = true;
     }
+    uint32_t n_tiled = 0;
+    for (uint32_t v = 0; v < nv; v++)
+        n_tiled += B->vcls[v] >= 0;
+    if (!n_tiled) { /* (nothing to weld: the seams stay) */
+        rc = 0;
+        goto none;
+    }
     /* derived materials: one per textured (material, tile) */
     uint32_t n_der = 0;
     for (uint32_t i = 0; i < B->n_cls; i++) {
