@@ -523,11 +523,19 @@ filter(const struct frame *f, struct tri_walk *w, uint32_t a, uint32_t b, uint32
         uint32_t outcode, rest;
     } h[3][FRONTEND_FILTER];
     uint32_t cnt = 0, tri[FRONTEND_FILTER]; /* (masked: lane j's triangle) */
-    for (uint32_t i = a; i < b; i++) {
-        if (mask != ~0ull && !((mask >> (i - a)) & 1))
-            continue;
+    for (uint64_t todo = mask;; cnt++) { /* (masked: its set bits, lowest first) */
+        uint32_t i;
+        if (mask == ~0ull) {
+            if ((i = a + cnt) >= b)
+                break;
+        } else {
+            if (!todo)
+                break;
+            i = a + (uint32_t)__builtin_ctzll(todo);
+            todo &= todo - 1;
+        }
         const uint32_t *c = m->tris[i];
-        const uint32_t j = cnt++;
+        const uint32_t j = cnt;
         tri[j] = i;
         if (verts_done < m->n_verts) { /* the vertex stage just ahead of the triangles */
             uint32_t hi = c[0] > c[1] ? c[0] : c[1];
