@@ -34,22 +34,9 @@
  *   source's; the hierarchy's mesh (mesh_dag.mesh) holds the source's opaque triangles
  *   first, as they are, then every coarser cluster's on copies of its vertices, and borrows
  *   the source's textures (and its materials, but for the tiles' below).
- *   Atlas tiles (a mesh on the features path, as voxel exporters' block worlds are: every
- *   face a quad of its own corners mapping one whole tile of a texture atlas, so that every
- *   vertex is a uv seam and nothing simplifies): the faces of a material whose faces all
- *   have their uvs on the corners of their uv box (that box: the face's tile) are put in
- *   tile classes — one material, one tile, one mapping from position to tile units (t = g
- *   pos + c, g to 10 significant bits, c modulo 1 to 1/1024: neighbouring faces of one
- *   plane and tile agree) — and the vertices of one class at one position, with one normal
- *   and colour, are one vertex to the grouping and the simplifier (a vertex whose
- *   triangles are of two classes, or of none, is in none, nor are its triangles). A
- *   plateau's faces become a surface of their own, its inside free to collapse. The coarser
- *   clusters' copies of a tiled vertex get the class's t as their uv and a derived
- *   material, the source's with every texture slot wrapping inside the tile (tex_slot.tile:
- *   u' = u0 + (t - floor t) du, its derivatives scaled by du: the texel and mip level of
- *   the source's face at the same point), one per (material, tile). Untextured materials'
- *   faces are classes by material alone (their uvs unread). A mesh on the default path
- *   keeps its seams: its derived materials would put its level 0 on the features path.
+ *   Atlas tiles (tiles.h; a mesh on the features path, as voxel exporters' block worlds
+ *   are): the source's vertices welded per tile class for the grouping and the
+ *   simplifier, the coarser clusters' copies given their tile uvs and derived materials.
  *   Measured: a 121k-triangle block world's (build/bench/genvoxels) framed cut is 22k
  *   triangles, the same bytes; lost_empire's 182k of 225k (its blocks' kinds change every
  *   few blocks, and three classes meet at most corners: 0.18 locks those).
