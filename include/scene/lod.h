@@ -17,10 +17,17 @@
  * (lod_level_error) is the sum of the steps' errors down to it, in object-space units: an
  * estimate of how far its surface lies from the source's (quadric error, a mean-square
  * plane distance, not a bound). The chain stops where a step cannot reach 3/4 of its
- * triangles (everything is a seam or a border: the lost_empire's blocks), where a level
+ * triangles (everything is a seam or a border: a block world's faces), where a level
  * would have fewer than LOD_MIN_TRIS triangles, where its error passes LOD_MAX_ERROR of the
  * mesh's extent, or at LOD_MAX_LEVELS. Meshes smaller than 2 * LOD_MIN_TRIS, without
  * vert_material, or with non-finite positions get no levels.
+ *   A mesh on the features path (mesh.h) gets a chain only when it has atlas tiles (tiles.h:
+ * a block world, every vertex a seam): level 1 is the source over its vertices welded per
+ * tile, simplified only where that costs no error (LOD_TILE_ERROR: coplanar faces of a
+ * tile merged, LOD_TILE_CHUNK triangles of the file's order at a time, each chunk's border
+ * locked; made when it merges a tenth or more), the chain going on from it as above;
+ * its levels draw the tiles' derived materials, and it keeps no cache file. Without tiles,
+ * or with a second uv set, tangents or blended triangles, such a mesh gets none.
  *
  *   A level also has a shading error (lod_level_shade_error, lod_shade_error): the
  * simplifier weighs positions only, but a level keeps the source's normals at the vertices
@@ -84,6 +91,8 @@ enum lod_mode { LOD_OFF, LOD_AUTO, LOD_RATIO, LOD_CLUSTERS };
 #define LOD_CACHE_MIN_TRIS 131072 /* meshes this large keep their chain in the cache */
 #define LOD_MIN_TRIS 512   /* no level smaller than this */
 #define LOD_MAX_ERROR 0.05 /* of meshopt_simplifyScale (the largest side of the box) */
+#define LOD_TILE_ERROR 1e-6f /* of it: a tiled chain's first level, merged flat faces */
+#define LOD_TILE_CHUNK 1024  /* triangles: a tiled chain's first level merges within them */
 
 /* Build m's chain now, on this thread. 0, or -1 out of memory (m keeps the levels made so
  * far and is still fine to draw). */

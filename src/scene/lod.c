@@ -14,6 +14,7 @@
 #include "cluster.h"
 #include "dag.h"
 #include "lod_cache.h"
+#include "tiles.h"
 
 struct mesh_lod {
     atomic_int n_ready;                 /* levels[0 .. n_ready) are complete */
@@ -24,6 +25,8 @@ struct mesh_lod {
     uint32_t *root[LOD_MAX_LEVELS];     /* levels[k]'s vertices as the source's (while the
                                            chain is built, for the cache) */
     int cache;                          /* enum lod_cache_use */
+    struct material *mats;              /* a tiled chain's materials (tiles.h), every
+                                           level's; NULL: the source's */
 };
 
 struct lod_job {
@@ -55,7 +58,7 @@ static void level_free(struct mesh *l)
  * in order of first use; materials, textures and bounds are the source mesh's (borrowed). */
 static int make_level(const struct mesh *root, const struct mesh *src, const uint32_t *idx,
                       size_t n_idx, struct mesh *out, const uint32_t *src_root,
-                      uint32_t **root_out)
+                      uint32_t **root_out, const struct mesh_tiles *tiles)
 {
     memset(out, 0, sizeof *out);
     uint32_t *remap = malloc((size_t)src->n_verts * sizeof *remap);
@@ -88,6 +91,8 @@ static int make_level(const struct mesh *root, const struct mesh *src, const uin
             continue;
         out->verts[d] = src->verts[v];
         out->vert_material[d] = src->vert_material[v];
+        if (tiles) /* (src is the root: its tiled vertices get their tile uvs) */
+            tiles_vertex(tiles, root, v, &out->verts[d], &out->vert_material[d]);
         if (to_root)
             to_root[d] = src_root ? src_root[v] : v;
         if (out->colors)
@@ -104,8 +109,10 @@ static int make_level(const struct mesh *root, const struct mesh *src, const uin
         *root_out = to_root;
     out->n_verts = (uint32_t)nv;
     out->n_tris = out->n_opaque = nt;
-    out->materials = root->materials;
-    out->n_materials = root->n_materials;
+    out->materials = src->materials; /* (the root's, or a tiled chain's) */
+    out->n_materials = src->n_materials;
+    out->features = root->features;
+    out->one_sided = root->one_sided;
     out->textures = root->textures;
     out->n_textures = root->n_textures;
     out->has_uvs = root->has_uvs;
@@ -144,8 +151,8 @@ static float extent(const struct mesh *m)
  * have a hierarchy, dag.h.) */
 static bool chain_fits(const struct mesh *m)
 {
-    return m->n_tris >= 2 * LOD_MIN_TRIS && m->vert_material && !m->features && !m->uv1 &&
-           !m->tangents && m->n_opaque == m->n_tris;
+    return m->n_tris >= 2 * LOD_MIN_TRIS && m->vert_material && !m->uv1 && !m->tangents &&
+           m->n_opaque == m->n_tris; /* (on the features path: atlas tiles only, build_chain) */
 }
 
 static bool eligible(const struct mesh *m)
@@ -168,7 +175,7 @@ static int chain_from_cache(struct mesh *m, struct mesh_lod *l, uint64_t key)
         return -1;
     int k = 0;
     for (; k < c.n_levels; k++) {
-        if (make_level(m, m, c.idx[k], (size_t)c.n_tris[k] * 3, &l->levels[k], NULL, NULL))
+        if (make_level(m, m, c.idx[k], (size_t)c.n_tris[k] * 3, &l->levels[k], NULL, NULL, NULL))
             break;
         l->error[k] = c.error[k];
         l->shade[k] = c.shade[k];
@@ -206,6 +213,101 @@ static void chain_to_cache(struct mesh *m, struct mesh_lod *l, uint64_t key, int
     lod_cached_free(&c);
 }
 
+/* w's triangles merged where that costs no error (LOD_TILE_ERROR), LOD_TILE_CHUNK of them
+ * at a time in the file's order (which decides ties of depth, and keeps a voxel exporter's
+ * neighbouring blocks together), each chunk's border locked: no merged face spans more
+ * than its chunk (a face long across the model draws the ties of its edges apart from the
+ * short ones it replaced: on the test's block world, merged whole, 36 dB where chunks keep
+ * 42). The result into out[0 .. *n), *rel the largest error; 0, or -1 out of memory. */
+static int merge_chunks(const struct mesh *w, uint32_t *out, size_t *n, float *rel)
+{
+    const uint32_t nt = w->n_tris;
+    uint32_t *loc = malloc((size_t)w->n_verts * sizeof *loc);
+    uint32_t *back = malloc((size_t)LOD_TILE_CHUNK * 3 * sizeof *back);
+    uint32_t *in = malloc((size_t)LOD_TILE_CHUNK * 3 * sizeof *in);
+    uint32_t *dst = malloc((size_t)LOD_TILE_CHUNK * 3 * sizeof *dst);
+    float *pos = malloc((size_t)LOD_TILE_CHUNK * 9 * sizeof *pos);
+    int rc = -1;
+    if (!loc || !back || !in || !dst || !pos)
+        goto out;
+    for (uint32_t v = 0; v < w->n_verts; v++)
+        loc[v] = UINT32_MAX;
+    *n = 0, *rel = 0;
+    for (uint32_t c0 = 0; c0 < nt; c0 += LOD_TILE_CHUNK) {
+        const uint32_t c1 = nt - c0 > LOD_TILE_CHUNK ? c0 + LOD_TILE_CHUNK : nt;
+        uint32_t nv = 0;
+        for (uint32_t t = c0; t < c1; t++)
+            for (int k = 0; k < 3; k++) {
+                const uint32_t v = w->tris[t][k];
+                if (loc[v] == UINT32_MAX) {
+                    loc[v] = nv, back[nv] = v;
+                    memcpy(&pos[3 * (size_t)nv], w->verts[v].pos, 3 * sizeof *pos);
+                    nv++;
+                }
+                in[3 * (size_t)(t - c0) + (size_t)k] = loc[v];
+            }
+        float r = 0;
+        const size_t got = meshopt_simplify(dst, in, (size_t)(c1 - c0) * 3, pos, nv,
+                                            3 * sizeof *pos, 0, LOD_TILE_ERROR,
+                                            meshopt_SimplifyLockBorder, &r);
+        *rel = r > *rel ? r : *rel;
+        for (size_t i = 0; i < got; i++)
+            out[(*n)++] = back[dst[i]];
+        for (uint32_t i = 0; i < nv; i++)
+            loc[back[i]] = UINT32_MAX;
+    }
+    rc = 0;
+out:
+    free(loc);
+    free(back);
+    free(in);
+    free(dst);
+    free(pos);
+    return rc;
+}
+
+/* A tiled chain's first level: the source over its welded vertices (tiles.h: their tile
+ * uvs, the derived materials, which l keeps for every level), merged where that costs no
+ * error (merge_chunks: coplanar faces of a tile). *k0: 1 when it
+ * made the level, 0 when it merges under a tenth (the chain stops: the seams stay). 0, or
+ * -1 out of memory. idx: room for the source's corners. */
+static int tiled_level(struct mesh *m, struct mesh_lod *l, struct mesh_tiles *tiles,
+                       uint32_t *idx, float scale0, double *error, int *k0)
+{
+    *k0 = 0;
+    const size_t n3 = (size_t)m->n_tris * 3;
+    for (size_t i = 0; i < n3; i++)
+        idx[i] = tiles->weld[m->tris[i / 3][i % 3]];
+    struct mesh w; /* (only the welded vertices: the simplifier sees no wedge unused) */
+    if (make_level(m, m, idx, n3, &w, NULL, NULL, tiles))
+        return -1;
+    w.materials = tiles->mats, w.n_materials = tiles->n_mats;
+    float rel = 0;
+    size_t n = 0;
+    int rc = merge_chunks(&w, idx, &n, &rel);
+    if (rc == 0 && n / 3 <= (size_t)m->n_tris * 9 / 10 && n / 3 >= LOD_MIN_TRIS) {
+        if (make_level(m, &w, idx, n, &l->levels[0], NULL, NULL, NULL)) {
+            rc = -1;
+        } else {
+            double shade = lod_shade_error(m, &l->levels[0]);
+            if (shade < 0) {
+                level_free(&l->levels[0]);
+                rc = -1;
+            } else {
+                *error = (double)rel * scale0;
+                l->error[0] = *error;
+                l->shade[0] = shade;
+                l->mats = tiles->mats; /* (the levels' materials: l's from now on) */
+                tiles->mats = NULL;
+                atomic_store_explicit(&l->n_ready, 1, memory_order_release);
+                *k0 = 1;
+            }
+        }
+    }
+    level_free(&w);
+    return rc;
+}
+
 /* Level after level, each from the one before, until a stop rule of lod.h says no (or, for
  * a large mesh, from the cache: lod_cache.h). */
 static int build_chain(struct mesh *m, struct mesh_lod *l, const atomic_bool *cancel)
@@ -216,17 +318,31 @@ static int build_chain(struct mesh *m, struct mesh_lod *l, const atomic_bool *ca
     if (!(scale0 > 0) || !isfinite(scale0)) /* all at one point, or too far apart */
         return 0;
     l->area = mesh_area(m);
-    const bool cached = m->n_tris >= LOD_CACHE_MIN_TRIS && lod_cache_enabled();
+    /* a mesh on the features path: a chain only of atlas tiles (tiles.h), from a first level
+     * of their welded faces merged where it costs no error */
+    struct mesh_tiles tiles = {0};
+    if (m->features && tiles_build(m, &tiles))
+        return -1;
+    if (m->features && !tiles.weld)
+        return 0;
+    const bool cached = !m->features && m->n_tris >= LOD_CACHE_MIN_TRIS && lod_cache_enabled();
     const uint64_t key = cached ? lod_chain_key(m) : 0;
     if (cached && chain_from_cache(m, l, key) == 0)
         return 0;
     uint32_t *idx = malloc((size_t)m->n_tris * 3 * sizeof *idx);
-    if (!idx)
+    if (!idx) {
+        tiles_free(&tiles);
         return -1;
+    }
     const struct mesh *src = m;
     double error = 0;
-    int rc = 0;
-    for (int k = 0; k < LOD_MAX_LEVELS && !(cancel && atomic_load(cancel)); k++) {
+    int rc = 0, k0 = 0;
+    if (tiles.weld)
+        rc = tiled_level(m, l, &tiles, idx, scale0, &error, &k0);
+    if (k0 > 0)
+        src = &l->levels[0];
+    for (int k = k0; rc == 0 && k < LOD_MAX_LEVELS && !(cancel && atomic_load(cancel)) &&
+                     !(tiles.weld && !k0); k++) {
         size_t target = src->n_tris / 2;
         float scale = k == 0 ? scale0 : extent(src);
         double budget = (LOD_MAX_ERROR * scale0 - error) / scale; /* relative, what is left */
@@ -239,7 +355,7 @@ static int build_chain(struct mesh *m, struct mesh_lod *l, const atomic_bool *ca
         if (n / 3 > (size_t)src->n_tris * 3 / 4 || n / 3 < LOD_MIN_TRIS)
             break; /* stalled: seams and borders everywhere, or the error budget is spent */
         if (make_level(m, src, idx, n, &l->levels[k], k ? l->root[k - 1] : NULL,
-                       cached ? &l->root[k] : NULL)) {
+                       cached ? &l->root[k] : NULL, NULL)) {
             rc = -1;
             break;
         }
@@ -256,6 +372,7 @@ static int build_chain(struct mesh *m, struct mesh_lod *l, const atomic_bool *ca
         src = &l->levels[k];
     }
     free(idx);
+    tiles_free(&tiles);
     int n = atomic_load_explicit(&l->n_ready, memory_order_relaxed);
     if (cached && rc == 0 && n > 0 && !(cancel && atomic_load(cancel)))
         chain_to_cache(m, l, key, n); /* (a chain cut short by a cancel is not the chain) */
@@ -358,6 +475,7 @@ void lod_free(struct mesh *m)
     int n = atomic_load(&m->lod->n_ready);
     for (int k = 0; k < n; k++)
         level_free(&m->lod->levels[k]);
+    free(m->lod->mats);
     free(m->lod);
     m->lod = NULL;
 }

@@ -1118,12 +1118,11 @@ TEST(dag_welds_an_atlas_tiles_faces_and_draws_the_same_picture)
     REQUIRE(voxels(&m, 64) == 0 && voxels(&plain, 64) == 0);
     REQUIRE(m.n_tris >= DAG_MIN_TRIS);
     struct lod_job *j;
-    REQUIRE(lod_start(&m, 1, false, &j, NULL) == 0); /* (the features path: no chain) */
-    CHECK(!j && !m.lod);
     REQUIRE(lod_start(&m, 1, true, &j, NULL) == 0); /* (--lod clusters: the hierarchy) */
     REQUIRE(j);
     lod_finish(j, false);
     const struct mesh_dag *d = dag_of(&m);
+    CHECK_EQ_INT(lod_level_count(&m), 1); /* (the hierarchy instead of the chain) */
     REQUIRE(d && d->levels >= 3);
     CHECK_EQ_INT(d->mesh.n_materials, m.n_materials + 3); /* (one a tile: tops, sides,
                                                                bottoms) */
@@ -1185,5 +1184,65 @@ TEST(dag_welds_an_atlas_tiles_faces_and_draws_the_same_picture)
     fb_free(&b);
     lod_free(&m);
     mesh_free(&m);
+    mesh_free(&plain);
+}
+
+/* The chain of a mesh on the features path (lod.h): only of atlas tiles — a block world gets
+ * a first level of its tiles' faces merged at no error (a fraction of its triangles, the
+ * tiles' derived materials) and coarser ones after it; --lod auto draws them, near the
+ * picture of --lod off at every distance; the same world with one face's uvs off its tile
+ * (that material tiles no more) gets no chain, as no features mesh did before. */
+TEST(lod_chain_of_a_block_world_merges_its_tiles_and_keeps_the_picture)
+{
+    struct mesh m, plain;
+    REQUIRE(voxels(&m, 64) == 0 && voxels(&plain, 64) == 0);
+    REQUIRE(lod_build(&m, NULL) == 0);
+    REQUIRE(lod_level_count(&m) >= 2);
+    const struct mesh *l1 = lod_level(&m, 1);
+    CHECK(lod_level_error(&m, 1) <= 1e-4);          /* (flat faces merged: no error) */
+    CHECK(l1->n_tris * 5 < m.n_tris * 2);           /* 19,776 -> under 40% (6,812) */
+    CHECK_EQ_INT(l1->n_materials, m.n_materials + 3); /* (the three tiles') */
+    CHECK(l1->features);
+    struct fb a, b;
+    REQUIRE(fb_init(&a, 160, 96, false, NULL) == 0 && fb_init(&b, 160, 96, false, NULL) == 0);
+    struct pipeline *p = pipeline_new();
+    REQUIRE(p);
+    struct draw_item it = {.mesh = &m, .model = m4_identity()};
+    struct draw_item ip = {.mesh = &plain, .model = m4_identity()};
+    double worst = INFINITY;
+    int coarse = 0, cases = 0;
+    for (int view = 0; view < 8; view++)
+        for (int filter = TEX_NEAREST; filter <= TEX_TRILINEAR; filter += TEX_TRILINEAR) {
+            struct camera cam;
+            camera_default(&cam);
+            double dist = 40 * pow(1.5, view / 2), th = 0.8 * view;
+            cam.eye = v3(dist * sin(th) + 0.37, 0.6 * dist + 0.21, dist * cos(th) - 0.13);
+            cam.target = v3(0.31, 1.13, -0.27);
+            cam.far = 1000;
+            struct render_opts o;
+            render_opts_default(&o);
+            o.filter = (enum tex_filter)filter;
+            struct frame_stats st;
+            REQUIRE(pipeline_draw(p, &ip, 1, NULL, &cam, &o, &a, &st, NULL) == 0);
+            o.lod = LOD_AUTO;
+            REQUIRE(pipeline_draw(p, &it, 1, NULL, &cam, &o, &b, &st, NULL) == 0);
+            cases++;
+            coarse += st.lod_max >= 1;
+            worst = fmin(worst, fb_psnr(&a, &b));
+        }
+    printf("    levels %d, level 1 %u of %u triangles; %d of %d views coarser; worst PSNR %.1f dB\n",
+           lod_level_count(&m), (unsigned)l1->n_tris, (unsigned)m.n_tris, coarse, cases, worst);
+    CHECK_EQ_INT(coarse, cases); /* (level 1 costs no error: drawn at every distance) */
+    CHECK(worst >= 40);
+    pipeline_destroy(p);
+    fb_free(&a);
+    fb_free(&b);
+    lod_free(&m);
+    mesh_free(&m);
+    /* one face off its tile: its material tiles no more, and the mesh gets no chain */
+    plain.verts[plain.tris[0][0]].uv[0] += 0.1f;
+    REQUIRE(lod_build(&plain, NULL) == 0);
+    CHECK_EQ_INT(lod_level_count(&plain), 1);
+    lod_free(&plain);
     mesh_free(&plain);
 }
