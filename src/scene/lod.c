@@ -109,8 +109,8 @@ static int make_level(const struct mesh *root, const struct mesh *src, const uin
         *root_out = to_root;
     out->n_verts = (uint32_t)nv;
     out->n_tris = out->n_opaque = nt;
-    out->materials = src->materials; /* (the root's, or a tiled chain's) */
-    out->n_materials = src->n_materials;
+    out->materials = tiles ? tiles->mats : src->materials; /* (a tiled chain's, or the root's) */
+    out->n_materials = tiles ? tiles->n_mats : src->n_materials;
     out->features = root->features;
     out->one_sided = root->one_sided;
     out->textures = root->textures;
@@ -281,7 +281,6 @@ static int tiled_level(struct mesh *m, struct mesh_lod *l, struct mesh_tiles *ti
     struct mesh w; /* (only the welded vertices: the simplifier sees no wedge unused) */
     if (make_level(m, m, idx, n3, &w, NULL, NULL, tiles))
         return -1;
-    w.materials = tiles->mats, w.n_materials = tiles->n_mats;
     float rel = 0;
     size_t n = 0;
     int rc = merge_chunks(&w, idx, &n, &rel);
