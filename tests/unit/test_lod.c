@@ -1107,6 +1107,20 @@ static int voxels(struct mesh *m, int n)
     return 0;
 }
 
+/* view k (0 .. 7) of voxels(64): from 40 to 135 units, around it, looking down; the render
+ * defaults with texture filter `filter` */
+static void voxel_view(int k, int filter, struct camera *cam, struct render_opts *o)
+{
+    camera_default(cam);
+    double dist = 40 * pow(1.5, k / 2), th = 0.8 * k;
+    /* (off the lattice: a pixel centre on a block's edge is a tie of texels) */
+    cam->eye = v3(dist * sin(th) + 0.37, 0.6 * dist + 0.21, dist * cos(th) - 0.13);
+    cam->target = v3(0.31, 1.13, -0.27);
+    cam->far = 1000;
+    render_opts_default(o);
+    o->filter = (enum tex_filter)filter;
+}
+
 /* Faces that each map a whole atlas tile weld into surfaces of their tile (dag.c's tile
  * classes): a block world, every vertex a uv seam, gets a hierarchy whose coarser levels
  * merge each plateau's faces (its cut a fraction of the source's triangles) and draw the
@@ -1151,16 +1165,9 @@ TEST(dag_welds_an_atlas_tiles_faces_and_draws_the_same_picture)
     for (int view = 0; view < 8; view++)
         for (int filter = TEX_NEAREST; filter <= TEX_TRILINEAR; filter += TEX_TRILINEAR) {
             struct camera cam;
-            camera_default(&cam);
-            double dist = 40 * pow(1.5, view / 2), th = 0.8 * view;
-            /* (off the lattice: a pixel centre on a block's edge is a tie of texels) */
-            cam.eye = v3(dist * sin(th) + 0.37, 0.6 * dist + 0.21, dist * cos(th) - 0.13);
-            cam.target = v3(0.31, 1.13, -0.27);
-            cam.far = 1000;
             struct render_opts o;
-            render_opts_default(&o);
+            voxel_view(view, filter, &cam, &o);
             o.threads = 1;
-            o.filter = (enum tex_filter)filter;
             struct frame_stats st;
             REQUIRE(pipeline_draw(p, &ip, 1, NULL, &cam, &o, &a, &st, NULL) == 0);
             o.lod = LOD_CLUSTERS;
@@ -1214,14 +1221,8 @@ TEST(lod_chain_of_a_block_world_merges_its_tiles_and_keeps_the_picture)
     for (int view = 0; view < 8; view++)
         for (int filter = TEX_NEAREST; filter <= TEX_TRILINEAR; filter += TEX_TRILINEAR) {
             struct camera cam;
-            camera_default(&cam);
-            double dist = 40 * pow(1.5, view / 2), th = 0.8 * view;
-            cam.eye = v3(dist * sin(th) + 0.37, 0.6 * dist + 0.21, dist * cos(th) - 0.13);
-            cam.target = v3(0.31, 1.13, -0.27);
-            cam.far = 1000;
             struct render_opts o;
-            render_opts_default(&o);
-            o.filter = (enum tex_filter)filter;
+            voxel_view(view, filter, &cam, &o);
             struct frame_stats st;
             REQUIRE(pipeline_draw(p, &ip, 1, NULL, &cam, &o, &a, &st, NULL) == 0);
             o.lod = LOD_AUTO;
