@@ -69,6 +69,10 @@ in_tmux() {
     echo "attached: $(tm capture-pane -t t2 -p | tail -n 1 | cut -c1-70)"
     hud_has t2 "| truecolor |"; local rc=$?
     tmux -L $outer kill-server
+    # the outer client gone from this server too: while it lingers, tmux sizes a new
+    # session's window to it (120 columns), and the spin test's 200-column status line
+    # would lose its "spin paused" field (seen once under the full suite's load)
+    wait_for 10 sh -c "! tmux -L $SOCK list-clients 2>/dev/null | grep -q ." || rc=1
     return $rc
 }
 check truecolor_inside_tmux_without_colorterm in_tmux
