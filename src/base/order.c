@@ -4,8 +4,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const unsigned char *sort_base; /* qsort's context */
-static size_t sort_size;
+/* qsort's context, one a thread: the background builds of several scenes sort at once */
+static _Thread_local const unsigned char *sort_base;
+static _Thread_local size_t sort_size;
 
 static int by_record(const void *a, const void *b)
 {

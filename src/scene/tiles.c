@@ -104,6 +104,8 @@ static bool tri_class(const struct mesh *m, uint32_t t, bool textured, struct ti
             o->k.g[k][q] = snap(gr[q], 1e-4 * big);
             c -= o->k.g[k][q] * v[0]->pos[q];
         }
+        if (!isfinite(c)) /* (a tile too small for its face, or far out) */
+            return false;
         c -= floor(c);
         o->c[k] = c;
         o->k.cq[k] = (int32_t)lround(c * TILE_CQ) % TILE_CQ;
