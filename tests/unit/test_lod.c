@@ -1284,3 +1284,61 @@ TEST(lod_tiled_chains_built_at_once_are_the_chain_built_alone)
     lod_free(&ref);
     mesh_free(&ref);
 }
+
+/* A block world whose file is damaged in places — a face with a NaN uv, a quad whose tile has
+ * no width, a face folded flat onto a line, each in a material of its own (a copy of the
+ * first) — still builds its chain and its hierarchy (under the sanitizers too): the damaged
+ * materials are in no class (their seams stay), the rest merges as before, and every vertex
+ * the tiles made has finite uvs. (tiles.c stops a zero-width tile three times over — the
+ * uv box, a finite offset, tiles_vertex's width — with all three off, this fails.) */
+TEST(lod_tiles_of_damaged_faces_stay_out_and_every_uv_stays_finite)
+{
+    struct mesh m;
+    REQUIRE(voxels(&m, 64) == 0);
+    struct material *mt = realloc(m.materials, 4 * sizeof *mt);
+    REQUIRE(mt);
+    m.materials = mt;
+    for (int k = 1; k < 4; k++)
+        m.materials[k] = m.materials[0];
+    m.n_materials = 4;
+    const uint32_t quad[3] = {50, 100, 150}; /* (a quad: triangles 2q, 2q + 1, its own corners) */
+    for (int k = 0; k < 3; k++)
+        for (int h = 0; h < 2; h++) {
+            const uint32_t tr = 2 * quad[k] + (uint32_t)h;
+            m.tri_material[tr] = (uint16_t)(k + 1);
+            for (int j = 0; j < 3; j++)
+                m.vert_material[m.tris[tr][j]] = (uint16_t)(k + 1);
+        }
+    m.verts[m.tris[100][0]].uv[0] = NAN;
+    for (int h = 0; h < 2; h++) /* (no width: the quad's every corner at one u) */
+        for (int j = 0; j < 3; j++)
+            m.verts[m.tris[200 + h][j]].uv[0] = m.verts[m.tris[200][0]].uv[0];
+    memcpy(m.verts[m.tris[300][2]].pos, m.verts[m.tris[300][1]].pos, sizeof m.verts[0].pos);
+    REQUIRE(lod_build(&m, NULL) == 0);
+    /* the tiled vertices (a derived material's) with uvs the tiles made */
+    int bad = 0, tiled = 0, damaged = 0;
+    for (int k = 1; k < lod_level_count(&m); k++) {
+        const struct mesh *l = lod_level(&m, k);
+        for (uint32_t v = 0; v < l->n_verts; v++) {
+            const bool derived = l->vert_material[v] >= m.n_materials;
+            tiled += derived;
+            damaged += l->vert_material[v] >= 1 && l->vert_material[v] <= 3;
+            bad += derived && (!isfinite(l->verts[v].uv[0]) || !isfinite(l->verts[v].uv[1]));
+        }
+    }
+    REQUIRE(dag_build(&m, NULL) == 0);
+    const struct mesh_dag *d = dag_of(&m);
+    for (uint32_t v = m.n_verts; d && v < d->mesh.n_verts; v++) /* (the coarser copies) */
+        bad += d->mesh.vert_material[v] >= m.n_materials &&
+               (!isfinite(d->mesh.verts[v].uv[0]) || !isfinite(d->mesh.verts[v].uv[1]));
+    CHECK(tiled > 0);
+    CHECK(damaged >= 12); /* (the damaged quads' corners, kept as they are, level after level) */
+    printf("    levels %d, level 1 %u of %u triangles; hierarchy %s\n", lod_level_count(&m),
+           lod_level_count(&m) > 1 ? (unsigned)lod_level(&m, 1)->n_tris : 0, (unsigned)m.n_tris,
+           d ? "built" : "none");
+    CHECK(lod_level_count(&m) >= 2 && lod_level(&m, 1)->n_tris * 2 < m.n_tris);
+    CHECK(d && d->levels >= 3);
+    CHECK_EQ_INT(bad, 0);
+    lod_free(&m);
+    mesh_free(&m);
+}
