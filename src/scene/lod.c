@@ -55,7 +55,9 @@ static void level_free(struct mesh *l)
 }
 
 /* A level's geometry: the triangles idx[0 .. n_idx) of src, with only the vertices they use,
- * in order of first use; materials, textures and bounds are the source mesh's (borrowed). */
+ * in order of first use; textures and bounds are the source mesh's (borrowed), materials
+ * src's (the source's, or a tiled chain's). tiles: src is the root, and its tiled vertices
+ * get their tile uvs and derived materials (tiles.h), tiles->mats the level's. */
 static int make_level(const struct mesh *root, const struct mesh *src, const uint32_t *idx,
                       size_t n_idx, struct mesh *out, const uint32_t *src_root,
                       uint32_t **root_out, const struct mesh_tiles *tiles)
@@ -146,13 +148,13 @@ static float extent(const struct mesh *m)
     return meshopt_simplifyScale(m->verts[0].pos, m->n_verts, sizeof *m->verts);
 }
 
-/* Can m have a chain? (A mesh drawn by the features path is drawn in full: its levels
- * would need its second uvs and tangents, and its blended triangles stay apart; it may
- * have a hierarchy, dag.h.) */
+/* Can m have a chain? (Not with second uvs or tangents, which its levels would need, nor
+ * with blended triangles, which stay apart; a mesh drawn by the features path only of atlas
+ * tiles, which build_chain finds.) */
 static bool chain_fits(const struct mesh *m)
 {
     return m->n_tris >= 2 * LOD_MIN_TRIS && m->vert_material && !m->uv1 && !m->tangents &&
-           m->n_opaque == m->n_tris; /* (on the features path: atlas tiles only, build_chain) */
+           m->n_opaque == m->n_tris;
 }
 
 static bool eligible(const struct mesh *m)
@@ -250,7 +252,7 @@ static int merge_chunks(const struct mesh *w, uint32_t *out, size_t *n, float *r
         const size_t got = meshopt_simplify(dst, in, (size_t)(c1 - c0) * 3, pos, nv,
                                             3 * sizeof *pos, 0, LOD_TILE_ERROR,
                                             meshopt_SimplifyLockBorder, &r);
-        *rel = r > *rel ? r : *rel;
+        *rel = r > *rel ? r : *rel; /* (of the chunk's extent: as of the mesh's, larger) */
         for (size_t i = 0; i < got; i++)
             out[(*n)++] = back[dst[i]];
         for (uint32_t i = 0; i < nv; i++)
@@ -420,7 +422,7 @@ int lod_start(struct mesh *meshes, int n, bool clusters, struct lod_job **out, s
 {
     *out = NULL;
     int want = 0;
-    for (int i = 0; i < n; i++) /* (a mesh drawn by the features path: a hierarchy only) */
+    for (int i = 0; i < n; i++)
         if (eligible(&meshes[i]) || (clusters && !meshes[i].lod && dag_eligible(&meshes[i]))) {
             if (attach(&meshes[i]))
                 return err_set(e, "out of memory");
