@@ -49,6 +49,8 @@ int tiles_build(const struct mesh *m, struct mesh_tiles *t);
  * to v's own) get v's tile uv and derived material when v is in a textured class. */
 void tiles_vertex(const struct mesh_tiles *t, const struct mesh *m, uint32_t v,
                   struct mesh_vertex *out, uint16_t *material);
+/* m's triangle corners as the vertices they are welded to (t->weld set): out[3 n_tris) */
+void tiles_welded_corners(const struct mesh_tiles *t, const struct mesh *m, uint32_t *out);
 void tiles_free(struct mesh_tiles *t);
 
 #endif

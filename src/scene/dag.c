@@ -174,9 +174,7 @@ static int level0(struct build *B)
     if (B->T.weld) {
         if (!(wt = malloc((size_t)n * sizeof *wt)))
             return -1;
-        for (uint32_t t = 0; t < n; t++)
-            for (int j = 0; j < 3; j++)
-                wt[t][j] = B->T.weld[m->tris[t][j]];
+        tiles_welded_corners(&B->T, m, &wt[0][0]);
     }
     struct meshlets ms;
     if (make_meshlets(&ms, &wt[0][0], n, m->verts[0].pos, m->n_verts, sizeof *m->verts)) {
@@ -261,7 +259,6 @@ struct group {
     uint64_t *e, *bin, *bout; /* edges; the input's and the output's open ones */
     size_t e_cap;
 };
-
 
 /* the directed edges of idx[0 .. n) (by position id) whose reverse is not there, sorted,
  * into out; their number */

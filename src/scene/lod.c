@@ -278,8 +278,7 @@ static int tiled_level(struct mesh *m, struct mesh_lod *l, struct mesh_tiles *ti
 {
     *k0 = 0;
     const size_t n3 = (size_t)m->n_tris * 3;
-    for (size_t i = 0; i < n3; i++)
-        idx[i] = tiles->weld[m->tris[i / 3][i % 3]];
+    tiles_welded_corners(tiles, m, idx);
     struct mesh w; /* (only the welded vertices: the simplifier sees no wedge unused) */
     if (make_level(m, m, idx, n3, &w, NULL, NULL, tiles))
         return -1;

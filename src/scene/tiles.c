@@ -282,6 +282,13 @@ void tiles_vertex(const struct mesh_tiles *T, const struct mesh *m, uint32_t v,
     *material = (uint16_t)tc->derived;
 }
 
+void tiles_welded_corners(const struct mesh_tiles *T, const struct mesh *m, uint32_t *out)
+{
+    const uint32_t *c = &m->tris[0][0];
+    for (size_t i = 0; i < (size_t)m->n_tris * 3; i++)
+        out[i] = T->weld[c[i]];
+}
+
 void tiles_free(struct mesh_tiles *T)
 {
     free(T->weld);
