@@ -33,7 +33,17 @@
  *   Vertices: the simplifier collapses onto existing vertices, so every level's are the
  *   source's; the hierarchy's mesh (mesh_dag.mesh) holds the source's opaque triangles
  *   first, as they are, then every coarser cluster's on copies of its vertices, and borrows
- *   the source's textures (and its materials, but for the tiles' below).
+ *   the source's textures (and its materials, but for the tiles' below). A coarser
+ *   cluster's triangles and copies are consecutive there, so only level 0's clusters keep
+ *   lists (mesh_dag.tris, .verts). Memory: once the build is done and nothing draws
+ *   (dag_settle; the viewer's loop between frames, render after its build), the source
+ *   frees its arrays and points to the first part of the hierarchy's mesh, the same
+ *   bytes: the hierarchy then costs its coarser levels (about as many triangles as the
+ *   source, on 0.7-0.8 vertex copies a triangle, whose locality the cut needs: drawn from
+ *   the source's own vertices the 1M sphere's cut took 4.5 ms, not 2.7), level 0's lists
+ *   and runs, and a position table when the source has none. render --stats: the car
+ *   1.79x its mesh's own geometry, the 1M sphere 2.05x, the bunny 2.02x, lost_empire 0.45x
+ *   (its positions shared too); before, with level 0 repeated, 2.98x, 3.28x, 3.25x, 1.49x.
  *   Atlas tiles (tiles.h; a mesh on the features path, as voxel exporters' block worlds
  *   are): the source's vertices welded per tile class for the grouping and the
  *   simplifier, the coarser clusters' copies given their tile uvs and derived materials.
@@ -77,8 +87,12 @@
 struct dag_cluster {
     float center[3], radius, error;       /* the group that made it (level 0: its own; 0) */
     float p_center[3], p_radius, p_error; /* the group it is simplified in; p_error < 0: none */
-    uint32_t tri_first, n_tris;           /* its triangles: mesh_dag.tris[tri_first ..] */
-    uint32_t vert_first, n_verts;         /* its vertices: mesh_dag.verts[vert_first ..] */
+    uint32_t tri_first, n_tris;           /* its triangles (dag_tri): level 0,
+                                             mesh_dag.tris[tri_first ..]; coarser (made
+                                             consecutive), tri_first .. + n_tris - 1 */
+    uint32_t vert_first, n_verts;         /* its vertices (dag_vert), the same way:
+                                             mesh_dag.verts[vert_first ..], or its copies
+                                             vert_first .. + n_verts - 1 */
     uint32_t tri_lo, tri_hi;              /* its lowest and highest triangle */
     uint32_t level;                       /* 0: the source's triangles */
     struct mesh_cluster box;              /* culling bounds (cluster.h's cluster_bounds) */
@@ -90,14 +104,29 @@ struct mesh_dag {
                                copies (read forward when walked in order) */
     struct dag_cluster *c;  /* every level's clusters */
     uint32_t n;
-    uint32_t *tris;         /* the clusters' triangles (into mesh.tris), cluster by cluster */
-    uint32_t *verts;        /* the clusters' vertices, cluster by cluster */
+    uint32_t *tris;         /* level 0's clusters' triangles (into mesh.tris), cluster by
+                               cluster */
+    uint32_t *verts;        /* level 0's clusters' vertices, cluster by cluster */
     int levels;             /* levels built (1: none coarser than the source) */
     uint32_t n_level0;      /* clusters of level 0 */
     double build_ms;
     size_t bytes;           /* what it holds: its mesh's geometry (mesh_geometry_bytes), runs
-                               and materials, its clusters and their lists */
+                               and materials, its clusters and their lists — less what its
+                               source shares once settled (dag_settle) */
+    uint8_t shared;         /* the arrays of mesh its source owns and shares (DAG_SHARES_*) */
 };
+enum { DAG_SHARES_VERTS = 1, DAG_SHARES_TRIS = 2, DAG_SHARES_COLORS = 4,
+       DAG_SHARES_POSITIONS = 8, DAG_SETTLED = 128 };
+
+/* Triangle q of cluster c (into d->mesh.tris), and its vertex q (into d->mesh.verts). */
+static inline uint32_t dag_tri(const struct mesh_dag *d, const struct dag_cluster *c, uint32_t q)
+{
+    return c->level ? c->tri_first + q : d->tris[c->tri_first + q];
+}
+static inline uint32_t dag_vert(const struct mesh_dag *d, const struct dag_cluster *c, uint32_t q)
+{
+    return c->level ? c->vert_first + q : d->verts[c->vert_first + q];
+}
 
 /* Is cluster c in the cut for an error bound of max_px pixels, its own group's error
  * projecting to own_px and its parent's to parent_px (dag.h's rule; a root has no parent,
@@ -117,6 +146,12 @@ int dag_build(struct mesh *m, const atomic_bool *cancel);
 const struct mesh_dag *dag_of(const struct mesh *m);
 /* Is m a hierarchy's mesh (drawn by its cut)? */
 bool dag_is_cut_mesh(const struct mesh *m);
+/* Let m and its complete hierarchy share what they have in common: m's vertices, triangles,
+ * their materials, colours and positions are the first of the hierarchy's mesh's (the same
+ * bytes), so m frees its own and points to those (then owning them: dag_free leaves them).
+ * Only while nothing else reads m (no frame drawn, no build running: scene.h's
+ * scene_lod_settle). Does nothing when m has no hierarchy, or again. */
+void dag_settle(struct mesh *m);
 /* Free m's hierarchy (lod_free does it). */
 void dag_free(struct mesh *m);
 

@@ -69,6 +69,7 @@
 #define RASTTY_LOD_H
 
 #include <stdbool.h>
+#include <stddef.h>
 
 #include "camera.h"
 #include "mesh.h"
@@ -111,6 +112,8 @@ void lod_finish(struct lod_job *j, bool cancel);
 /* Free m's levels (scene_free does it, before mesh_free). */
 void lod_free(struct mesh *m);
 
+/* Bytes m's chain holds (its levels' geometry and clusters; 0: none). */
+size_t lod_bytes(const struct mesh *m);
 /* Levels ready to draw, level 0 included (1 when m has no chain). */
 int lod_level_count(const struct mesh *m);
 /* Level k (0 = m itself), k < lod_level_count(m). */

@@ -102,6 +102,10 @@ int scene_build_lod(struct scene *s, bool wait, bool clusters, struct err *e);
 int scene_build_clusters(struct scene *s, struct err *e);
 /* Are the levels built (or none asked for)? */
 bool scene_lod_done(const struct scene *s);
+/* Once the levels are built, let every mesh share its hierarchy's copy of its own arrays
+ * (dag_settle: its memory freed); call it where no frame is being drawn. With wait,
+ * scene_build_lod does it. */
+void scene_lod_settle(struct scene *s);
 /* Stops a background build first. */
 void scene_free(struct scene *s);
 

@@ -108,6 +108,21 @@ int cmd_render(const struct options *o, struct err *e)
                                 "%.1f MB; built in %.0f ms\n",
                         n_dag, dag_b / 1048576.0, (double)dag_b / (double)own_b,
                         own_b / 1048576.0, dag_ms);
+            /* the chains (the same bound) */
+            int n_chain = 0;
+            size_t chain_b = 0, chain_own = 0;
+            for (int i = 0; i < scene->n_meshes; i++) {
+                const struct mesh *m = &scene->meshes[i];
+                if (lod_level_count(m) > 1) {
+                    n_chain++;
+                    chain_b += lod_bytes(m);
+                    chain_own += mesh_geometry_bytes(m);
+                }
+            }
+            if (n_chain)
+                fprintf(stderr, "levels: %d meshes, %.1f MB, %.2fx their own geometry's %.1f MB\n",
+                        n_chain, chain_b / 1048576.0, (double)chain_b / (double)chain_own,
+                        chain_own / 1048576.0);
             double med = timing_median(ms, drawn); /* sorts ms: ms[0] is the fastest */
             fprintf(stderr,
                     "frames=%d median_ms=%.4f min_ms=%.4f load_ms=%.2f simd=%s threads=%d "

@@ -1002,13 +1002,14 @@ static int walk_cut(struct frontend *fe, struct frame *f, struct tri_walk *w, ui
                            c->p_error >= 0 ? c->p_error * ppu_at(&pu, c->p_center, c->p_radius) : 0,
                            tau))
             continue;
-        const uint32_t *t = d->tris + c->tri_first;
         const bool whole = c->tri_lo >= i0 && c->tri_hi < i1;
         uint32_t n = c->n_tris;
         if (!whole) {
             n = 0;
-            for (uint32_t q = 0; q < c->n_tris; q++)
-                n += t[q] >= i0 && t[q] < i1;
+            for (uint32_t q = 0; q < c->n_tris; q++) {
+                const uint32_t t = dag_tri(d, c, q);
+                n += t >= i0 && t < i1;
+            }
         }
         const bool counts = c->tri_lo >= i0;
         st->dag_cut += counts;
@@ -1028,17 +1029,21 @@ static int walk_cut(struct frontend *fe, struct frame *f, struct tri_walk *w, ui
             continue;
         }
         st->clusters_drawn += counts;
-        for (uint32_t q = 0; q < c->n_tris; q++)
-            if (whole || (t[q] >= i0 && t[q] < i1)) {
-                tmark[t[q] >> 6] |= 1ull << (t[q] & 63);
+        for (uint32_t q = 0; q < c->n_tris; q++) {
+            const uint32_t t = dag_tri(d, c, q);
+            if (whole || (t >= i0 && t < i1)) {
+                tmark[t >> 6] |= 1ull << (t & 63);
                 if (!whole && vmarks)
                     for (int j = 0; j < 3; j++)
-                        vmark[m->tris[t[q]][j]] = 1;
+                        vmark[m->tris[t][j]] = 1;
             }
+        }
         if (whole && vmarks) {
-            const uint32_t *v = d->verts + c->vert_first;
-            for (uint32_t q = 0; q < c->n_verts; q++)
-                vmark[v[q]] = 1;
+            if (c->level) /* (its copies: consecutive) */
+                memset(vmark + c->vert_first, 1, c->n_verts);
+            else
+                for (uint32_t q = 0; q < c->n_verts; q++)
+                    vmark[d->verts[c->vert_first + q]] = 1;
         }
     }
     w->vmark = vmarks ? vmark : NULL;

@@ -727,39 +727,59 @@ int dag_build(struct mesh *m, const atomic_bool *cancel)
         goto fail;
     B.stamp = st2;
     memset(B.stamp + m->n_verts, 0, (size_t)(hm->n_verts - m->n_verts) * sizeof *B.stamp);
-    /* per cluster: its culling box, triangle span and vertices */
-    size_t nvl = 0;
+    /* per cluster: its culling box, triangle span and vertices. A coarser cluster's
+     * triangles and vertices (its copies, own_vertices) are consecutive: it keeps its first
+     * of each (dag.h), and the lists hold level 0's alone (its clusters come first) */
+    size_t nvl = 0, ntl = 0;
     B.owner++;
     for (size_t i = 0; i < B.n; i++, B.owner++) {
         struct dag_cluster *c = &B.c[i];
         const uint32_t *t = B.tris.a + c->tri_first;
+        const bool coarse = c->level > 0;
+        if (!coarse && (i != d->n_level0 || c->tri_first != ntl))
+            goto fail; /* (cannot happen: level0 makes them first) */
         cluster_bounds(hm, t, c->n_tris, &c->box);
         c->tri_lo = UINT32_MAX, c->tri_hi = 0;
-        c->vert_first = (uint32_t)nvl;
+        const size_t v0 = nvl;
+        bool consecutive = true;
         for (uint32_t k = 0; k < c->n_tris; k++) {
             c->tri_lo = t[k] < c->tri_lo ? t[k] : c->tri_lo;
             c->tri_hi = t[k] > c->tri_hi ? t[k] : c->tri_hi;
+            consecutive &= t[k] == t[0] + k;
             for (int j = 0; j < 3; j++) {
                 uint32_t v = hm->tris[t[k]][j];
                 if (B.stamp[v] != B.owner)
                     B.stamp[v] = B.owner, d->verts[nvl++] = v;
             }
         }
-        c->n_verts = (uint32_t)(nvl - c->vert_first);
-        d->n_level0 += c->level == 0;
+        c->n_verts = (uint32_t)(nvl - v0);
+        for (size_t q = v0 + 1; q < nvl; q++)
+            consecutive &= d->verts[q] == d->verts[q - 1] + 1;
+        if (coarse) {
+            if (!consecutive)
+                goto fail; /* (cannot happen: simplify_group, own_vertices) */
+            c->tri_first = t[0];
+            c->vert_first = d->verts[v0];
+            nvl = v0;
+        } else {
+            c->vert_first = (uint32_t)v0;
+            d->n_level0++;
+            ntl += c->n_tris;
+        }
     }
     uint32_t *sv = realloc(d->verts, (nvl ? nvl : 1) * sizeof *sv);
     d->verts = sv ? sv : d->verts;
+    uint32_t *st = realloc(B.tris.a, (ntl ? ntl : 1) * sizeof *st);
+    d->tris = st ? st : B.tris.a;
+    B.tris.a = NULL;
     d->c = B.c;
     d->n = (uint32_t)B.n;
     B.c = NULL;
-    d->tris = B.tris.a;
-    B.tris.a = NULL;
     d->levels = levels;
     d->build_ms = timing_now_ms() - t0;
     d->bytes = sizeof *d + mesh_geometry_bytes(hm) + cluster_bytes(hm) +
                (hm->materials != m->materials ? hm->n_materials * sizeof *hm->materials : 0) +
-               d->n * sizeof *d->c + B.tris.n * sizeof *d->tris + nvl * sizeof *d->verts;
+               d->n * sizeof *d->c + ntl * sizeof *d->tris + nvl * sizeof *d->verts;
     __atomic_store_n(&m->dag, d, __ATOMIC_RELEASE);
     d = NULL;
     rc = 0;
@@ -799,6 +819,54 @@ bool dag_is_cut_mesh(const struct mesh *m)
     return m->dag && m == &m->dag->mesh;
 }
 
+/* does the array a of n bytes start with m's b (n_b bytes)? */
+static bool starts_with(const void *a, size_t n, const void *b, size_t n_b)
+{
+    return a && b && n >= n_b && memcmp(a, b, n_b) == 0;
+}
+
+void dag_settle(struct mesh *m)
+{
+    struct mesh_dag *d = m->dag;
+    if (!d || dag_is_cut_mesh(m) || (d->shared & DAG_SETTLED))
+        return;
+    d->shared |= DAG_SETTLED;
+    struct mesh *hm = &d->mesh;
+    const size_t nv = m->n_verts, hv = hm->n_verts, nt = m->n_tris, ht = hm->n_tris;
+    size_t saved = 0;
+    if (starts_with(hm->verts, hv * sizeof *hm->verts, m->verts, nv * sizeof *m->verts) &&
+        starts_with(hm->vert_material, hv * 2, m->vert_material, nv * 2)) {
+        free(m->verts), free(m->vert_material);
+        m->verts = hm->verts, m->vert_material = hm->vert_material;
+        d->shared |= DAG_SHARES_VERTS;
+        saved += nv * (sizeof *m->verts + 2);
+    }
+    if (starts_with(hm->tris, ht * sizeof *hm->tris, m->tris, nt * sizeof *m->tris) &&
+        starts_with(hm->tri_material, ht * 2, m->tri_material, nt * 2)) {
+        free(m->tris), free(m->tri_material);
+        m->tris = hm->tris, m->tri_material = hm->tri_material;
+        d->shared |= DAG_SHARES_TRIS;
+        saved += nt * (sizeof *m->tris + 2);
+    }
+    if (starts_with(hm->colors, hv * sizeof *hm->colors, m->colors, nv * sizeof *m->colors)) {
+        free(m->colors);
+        m->colors = hm->colors;
+        d->shared |= DAG_SHARES_COLORS;
+        saved += nv * sizeof *m->colors;
+    }
+    /* the copies' positions are their sources': the same positions, numbered alike */
+    if (hm->n_pos == m->n_pos &&
+        starts_with(hm->pos_id, hv * sizeof *hm->pos_id, m->pos_id, nv * sizeof *m->pos_id) &&
+        starts_with(hm->pos_xyz, hm->n_pos * sizeof *hm->pos_xyz, m->pos_xyz,
+                    m->n_pos * sizeof *m->pos_xyz)) {
+        free(m->pos_id), free(m->pos_xyz);
+        m->pos_id = hm->pos_id, m->pos_xyz = hm->pos_xyz;
+        d->shared |= DAG_SHARES_POSITIONS;
+        saved += nv * sizeof *m->pos_id + m->n_pos * sizeof *m->pos_xyz;
+    }
+    d->bytes -= saved < d->bytes ? saved : 0;
+}
+
 void dag_free(struct mesh *m)
 {
     struct mesh_dag *d = m->dag;
@@ -807,13 +875,14 @@ void dag_free(struct mesh *m)
     mesh_free_clusters(&d->mesh);
     if (d->mesh.materials != m->materials)
         free(d->mesh.materials);
-    free(d->mesh.tris);
-    free(d->mesh.tri_material);
-    free(d->mesh.verts);
-    free(d->mesh.vert_material);
-    free(d->mesh.colors);
-    free(d->mesh.pos_id);
-    free(d->mesh.pos_xyz);
+    if (!(d->shared & DAG_SHARES_TRIS)) /* (else m's own now) */
+        free(d->mesh.tris), free(d->mesh.tri_material);
+    if (!(d->shared & DAG_SHARES_VERTS))
+        free(d->mesh.verts), free(d->mesh.vert_material);
+    if (!(d->shared & DAG_SHARES_COLORS))
+        free(d->mesh.colors);
+    if (!(d->shared & DAG_SHARES_POSITIONS))
+        free(d->mesh.pos_id), free(d->mesh.pos_xyz);
     free(d->c);
     free(d->tris);
     free(d->verts);

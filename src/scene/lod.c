@@ -480,6 +480,16 @@ void lod_free(struct mesh *m)
     m->lod = NULL;
 }
 
+size_t lod_bytes(const struct mesh *m)
+{
+    size_t b = 0;
+    for (int k = 1; k < lod_level_count(m); k++)
+        b += mesh_geometry_bytes(lod_level(m, k)) + cluster_bytes(lod_level(m, k));
+    if (m->lod)
+        b += sizeof *m->lod;
+    return b;
+}
+
 int lod_level_count(const struct mesh *m)
 {
     return m->lod ? 1 + atomic_load_explicit(&m->lod->n_ready, memory_order_acquire) : 1;

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "cluster.h"
+#include "dag.h"
 #include "file.h"
 #include "lex.h"
 #include "lod.h"
@@ -507,8 +508,20 @@ int scene_build_lod(struct scene *s, bool wait, bool clusters, struct err *e)
     if (wait) {
         lod_finish(s->lod_job, false);
         s->lod_job = NULL;
+        for (int i = 0; i < s->n_meshes; i++)
+            dag_settle(&s->meshes[i]);
     }
     return 0;
+}
+
+void scene_lod_settle(struct scene *s)
+{
+    if (!s->lod_job || !lod_done(s->lod_job))
+        return;
+    lod_finish(s->lod_job, false); /* (joins the finished builder: nothing reads the meshes) */
+    s->lod_job = NULL;
+    for (int i = 0; i < s->n_meshes; i++)
+        dag_settle(&s->meshes[i]);
 }
 
 int scene_build_clusters(struct scene *s, struct err *e)

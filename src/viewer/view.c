@@ -641,6 +641,8 @@ static int loop(struct view *v, struct err *e)
             v->s.hud_dirty = true;
         }
         start_levels(v, t); /* after the first frame; under --lod off, after L */
+        for (int i = 0; v->lod_started && i < v->n_scenes; i++)
+            scene_lod_settle(v->scenes[i]); /* (no frame in flight here) */
         if (v->lod_pending && scene_lod_done(v->scenes[v->cur])) {
             v->lod_pending = false; /* the levels are in: draw with them */
             view_frames_note(&v->vf, "levels-ready", 0, timing_now_s());

@@ -787,6 +787,8 @@ TEST(lod_background_build_makes_the_same_levels)
 /* ---- the cluster hierarchy (dag.h) ---- */
 
 /* 2 * 128 * 69 = 17,664 triangles: past DAG_MIN_TRIS, with sphere_r's seams and materials */
+static int voxels(struct mesh *m, int n);
+
 static int dag_sphere(struct mesh *m)
 {
     return sphere_r(m, 128, 70, 1);
@@ -816,7 +818,7 @@ static struct mesh cut_at(const struct mesh_dag *d, double dist, double max_px, 
             continue;
         *levels |= 1u << c->level;
         for (uint32_t t = 0; t < c->n_tris; t++)
-            memcpy(l.tris[l.n_tris++], d->mesh.tris[d->tris[c->tri_first + t]], sizeof *l.tris);
+            memcpy(l.tris[l.n_tris++], d->mesh.tris[dag_tri(d, c, t)], sizeof *l.tris);
     }
     return l;
 }
@@ -906,6 +908,67 @@ TEST(dag_draws_the_bytes_of_lod_off_with_no_level_coarsened_and_near_them_coarse
     lod_free(&m);
     mesh_free(&m);
     mesh_free(&plain);
+}
+
+/* Once built (dag_settle, at a point no frame is drawn), the source shares the first part of
+ * its hierarchy's mesh instead of holding a copy: its vertices, triangles, their materials,
+ * colours and positions are the hierarchy's, the hierarchy's bytes drop by that much, and
+ * --lod off and the cut draw the bytes they drew before; freed once (ASan). A mesh whose
+ * vertices share positions (block world) shares its positions too. */
+TEST(dag_settled_source_shares_the_hierarchys_arrays_and_draws_the_same_bytes)
+{
+    struct mesh m;
+    REQUIRE(dag_sphere(&m) == 0 && paint(&m) == 0);
+    REQUIRE(dag_build(&m, NULL) == 0);
+    const struct mesh_dag *d = dag_of(&m);
+    REQUIRE(d);
+    struct fb off[2], cut[2];
+    struct pipeline *p = pipeline_new();
+    REQUIRE(p);
+    struct draw_item it = {.mesh = &m, .model = m4_identity()};
+    struct camera cam;
+    camera_default(&cam);
+    cam.eye = v3(0.4, 0.8, 5);
+    struct render_opts o;
+    render_opts_default(&o);
+    struct frame_stats st;
+    const size_t before = d->bytes, own = mesh_geometry_bytes(&m);
+    for (int k = 0; k < 2; k++) {
+        REQUIRE(fb_init(&off[k], 160, 96, false, NULL) == 0 &&
+                fb_init(&cut[k], 160, 96, false, NULL) == 0);
+        if (k == 1) {
+            dag_settle(&m);
+            dag_settle(&m); /* (again: nothing) */
+        }
+        o.lod = LOD_OFF;
+        REQUIRE(pipeline_draw(p, &it, 1, NULL, &cam, &o, &off[k], &st, NULL) == 0);
+        o.lod = LOD_CLUSTERS;
+        REQUIRE(pipeline_draw(p, &it, 1, NULL, &cam, &o, &cut[k], &st, NULL) == 0);
+        CHECK(st.dag_levels > 1);
+    }
+    CHECK_EQ_INT(d->shared, DAG_SETTLED | DAG_SHARES_VERTS | DAG_SHARES_TRIS | DAG_SHARES_COLORS);
+    CHECK(m.verts == d->mesh.verts && m.tris == d->mesh.tris && m.colors == d->mesh.colors &&
+          m.tri_material == d->mesh.tri_material && m.vert_material == d->mesh.vert_material);
+    CHECK_EQ_INT(before - d->bytes, own); /* (the sphere keeps no positions of its own) */
+    CHECK_EQ_INT(mesh_geometry_bytes(&m), own);
+    for (int k = 0; k < 2; k++)
+        CHECK(covered_count(&off[k]) > 1000);
+    CHECK(memcmp(off[0].rgb, off[1].rgb, (size_t)160 * 96 * 3) == 0);
+    CHECK(memcmp(cut[0].rgb, cut[1].rgb, (size_t)160 * 96 * 3) == 0);
+    for (int k = 0; k < 2; k++)
+        fb_free(&off[k]), fb_free(&cut[k]);
+    pipeline_destroy(p);
+    lod_free(&m);
+    mesh_free(&m);
+    /* a block world: its positions shared as well */
+    REQUIRE(voxels(&m, 64) == 0);
+    REQUIRE(dag_build(&m, NULL) == 0);
+    REQUIRE((d = dag_of(&m)) && m.pos_id);
+    dag_settle(&m);
+    CHECK(d->shared & DAG_SHARES_POSITIONS);
+    CHECK(m.pos_id == d->mesh.pos_id && m.pos_xyz == d->mesh.pos_xyz);
+    lod_free(&m);
+    mesh_free(&m);
 }
 
 /* The viewer's L key goes from clusters to auto (and the viewer starts with auto): a mesh
