@@ -2,6 +2,9 @@
 #include "scene.h"
 
 #include <errno.h>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -499,6 +502,25 @@ int scene_load(const char *path, struct scene *s, struct err *e)
     return scene_load_with(path, NULL, s, e);
 }
 
+/* the meshes share their hierarchies' arrays (dag_settle), and what they held goes back to
+ * the system: glibc keeps freed heap pages (the viewer's 1M sphere under clusters: 258 MB
+ * resident without the trim, 219 with it) */
+static void settle_meshes(struct scene *s)
+{
+    bool any = false;
+    for (int i = 0; i < s->n_meshes; i++) {
+        const struct mesh_dag *d = s->meshes[i].dag;
+        dag_settle(&s->meshes[i]);
+        any |= d && (d->shared & ~DAG_SETTLED) != 0;
+    }
+#ifdef __GLIBC__
+    if (any)
+        malloc_trim(0);
+#else
+    (void)any;
+#endif
+}
+
 int scene_build_lod(struct scene *s, bool wait, bool clusters, struct err *e)
 {
     if (s->lod_job)
@@ -508,8 +530,7 @@ int scene_build_lod(struct scene *s, bool wait, bool clusters, struct err *e)
     if (wait) {
         lod_finish(s->lod_job, false);
         s->lod_job = NULL;
-        for (int i = 0; i < s->n_meshes; i++)
-            dag_settle(&s->meshes[i]);
+        settle_meshes(s);
     }
     return 0;
 }
@@ -520,8 +541,7 @@ void scene_lod_settle(struct scene *s)
         return;
     lod_finish(s->lod_job, false); /* (joins the finished builder: nothing reads the meshes) */
     s->lod_job = NULL;
-    for (int i = 0; i < s->n_meshes; i++)
-        dag_settle(&s->meshes[i]);
+    settle_meshes(s);
 }
 
 int scene_build_clusters(struct scene *s, struct err *e)
