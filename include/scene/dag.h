@@ -90,7 +90,7 @@ struct dag_cluster {
     uint32_t tri_first, n_tris;           /* its triangles (dag_tri): level 0,
                                              mesh_dag.tris[tri_first ..]; coarser (made
                                              consecutive), tri_first .. + n_tris - 1 */
-    uint32_t vert_first, n_verts;         /* its vertices (dag_vert), the same way:
+    uint32_t vert_first, n_verts;         /* its vertices, the same way:
                                              mesh_dag.verts[vert_first ..], or its copies
                                              vert_first .. + n_verts - 1 */
     uint32_t tri_lo, tri_hi;              /* its lowest and highest triangle */
@@ -118,14 +118,10 @@ struct mesh_dag {
 enum { DAG_SHARES_VERTS = 1, DAG_SHARES_TRIS = 2, DAG_SHARES_COLORS = 4,
        DAG_SHARES_POSITIONS = 8, DAG_SETTLED = 128 };
 
-/* Triangle q of cluster c (into d->mesh.tris), and its vertex q (into d->mesh.verts). */
+/* Triangle q of cluster c (into d->mesh.tris). */
 static inline uint32_t dag_tri(const struct mesh_dag *d, const struct dag_cluster *c, uint32_t q)
 {
     return c->level ? c->tri_first + q : d->tris[c->tri_first + q];
-}
-static inline uint32_t dag_vert(const struct mesh_dag *d, const struct dag_cluster *c, uint32_t q)
-{
-    return c->level ? c->vert_first + q : d->verts[c->vert_first + q];
 }
 
 /* Is cluster c in the cut for an error bound of max_px pixels, its own group's error

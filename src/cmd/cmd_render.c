@@ -90,39 +90,32 @@ int cmd_render(const struct options *o, struct err *e)
             }
             if (read || written)
                 fprintf(stderr, "lod cache: %d chains read, %d written\n", read, written);
-            /* the hierarchies (issue 24: at most 1.5x their meshes' own memory) */
-            int n_dag = 0;
-            size_t dag_b = 0, own_b = 0;
+            /* the hierarchies and the chains (issue 24: at most 1.5x their meshes' own
+             * memory): [0] hierarchies, [1] chains */
+            int n_with[2] = {0, 0};
+            size_t held[2] = {0, 0}, own[2] = {0, 0};
             double dag_ms = 0;
             for (int i = 0; i < scene->n_meshes; i++) {
-                const struct mesh_dag *d = dag_of(&scene->meshes[i]);
-                if (d) {
-                    n_dag++;
-                    dag_b += d->bytes;
-                    own_b += mesh_geometry_bytes(&scene->meshes[i]);
-                    dag_ms += d->build_ms;
-                }
-            }
-            if (n_dag)
-                fprintf(stderr, "hierarchy: %d meshes, %.1f MB, %.2fx their own geometry's "
-                                "%.1f MB; built in %.0f ms\n",
-                        n_dag, dag_b / 1048576.0, (double)dag_b / (double)own_b,
-                        own_b / 1048576.0, dag_ms);
-            /* the chains (the same bound) */
-            int n_chain = 0;
-            size_t chain_b = 0, chain_own = 0;
-            for (int i = 0; i < scene->n_meshes; i++) {
                 const struct mesh *m = &scene->meshes[i];
-                if (lod_level_count(m) > 1) {
-                    n_chain++;
-                    chain_b += lod_bytes(m);
-                    chain_own += mesh_geometry_bytes(m);
-                }
+                const struct mesh_dag *d = dag_of(m);
+                const size_t b[2] = {d ? d->bytes : 0, lod_bytes(m)};
+                for (int k = 0; k < 2; k++)
+                    if (k ? lod_level_count(m) > 1 : d != NULL) {
+                        n_with[k]++;
+                        held[k] += b[k];
+                        own[k] += mesh_geometry_bytes(m);
+                    }
+                dag_ms += d ? d->build_ms : 0;
             }
-            if (n_chain)
-                fprintf(stderr, "levels: %d meshes, %.1f MB, %.2fx their own geometry's %.1f MB\n",
-                        n_chain, chain_b / 1048576.0, (double)chain_b / (double)chain_own,
-                        chain_own / 1048576.0);
+            for (int k = 0; k < 2; k++)
+                if (n_with[k]) {
+                    fprintf(stderr, "%s: %d meshes, %.1f MB, %.2fx their own geometry's %.1f MB",
+                            k ? "levels" : "hierarchy", n_with[k], held[k] / 1048576.0,
+                            (double)held[k] / (double)own[k], own[k] / 1048576.0);
+                    if (!k)
+                        fprintf(stderr, "; built in %.0f ms", dag_ms);
+                    fputc('\n', stderr);
+                }
             double med = timing_median(ms, drawn); /* sorts ms: ms[0] is the fastest */
             fprintf(stderr,
                     "frames=%d median_ms=%.4f min_ms=%.4f load_ms=%.2f simd=%s threads=%d "
