@@ -35,14 +35,14 @@
  *   first, as they are, then every coarser cluster's on copies of its vertices, and borrows
  *   the source's textures (and its materials, but for the tiles' below). A coarser
  *   cluster's triangles and copies are consecutive there, so only level 0's clusters keep
- *   lists (mesh_dag.tris, .verts). Memory: once the build is done and nothing draws
+ *   a list (mesh_dag.tris). Memory: once the build is done and nothing draws
  *   (dag_settle; the viewer's loop between frames, render after its build), the source
  *   frees its arrays and points to the first part of the hierarchy's mesh, the same
  *   bytes: the hierarchy then costs its coarser levels (about as many triangles as the
  *   source, on 0.7-0.8 vertex copies a triangle, whose locality the cut needs: drawn from
- *   the source's own vertices the 1M sphere's cut took 4.5 ms, not 2.7), level 0's lists
+ *   the source's own vertices the 1M sphere's cut took 4.5 ms, not 2.7), level 0's list
  *   and runs, and a position table when the source has none. render --stats: the car
- *   1.79x its mesh's own geometry, the 1M sphere 2.05x, the bunny 2.02x, lost_empire 0.45x
+ *   1.71x its mesh's own geometry, the 1M sphere 1.97x, the bunny 1.94x, lost_empire 0.37x
  *   (its positions shared too); before, with level 0 repeated, 2.98x, 3.28x, 3.25x, 1.49x.
  *   Atlas tiles (tiles.h; a mesh on the features path, as voxel exporters' block worlds
  *   are): the source's vertices welded per tile class for the grouping and the
@@ -90,9 +90,9 @@ struct dag_cluster {
     uint32_t tri_first, n_tris;           /* its triangles (dag_tri): level 0,
                                              mesh_dag.tris[tri_first ..]; coarser (made
                                              consecutive), tri_first .. + n_tris - 1 */
-    uint32_t vert_first, n_verts;         /* its vertices, the same way:
-                                             mesh_dag.verts[vert_first ..], or its copies
-                                             vert_first .. + n_verts - 1 */
+    uint32_t vert_first, n_verts;         /* its vertices: coarser, its copies vert_first
+                                             .. + n_verts - 1; level 0, vert_first 0 (its
+                                             triangles' corners) */
     uint32_t tri_lo, tri_hi;              /* its lowest and highest triangle */
     uint32_t level;                       /* 0: the source's triangles */
     struct mesh_cluster box;              /* culling bounds (cluster.h's cluster_bounds) */
@@ -106,12 +106,11 @@ struct mesh_dag {
     uint32_t n;
     uint32_t *tris;         /* level 0's clusters' triangles (into mesh.tris), cluster by
                                cluster */
-    uint32_t *verts;        /* level 0's clusters' vertices, cluster by cluster */
     int levels;             /* levels built (1: none coarser than the source) */
     uint32_t n_level0;      /* clusters of level 0 */
     double build_ms;
     size_t bytes;           /* what it holds: its mesh's geometry (mesh_geometry_bytes), runs
-                               and materials, its clusters and their lists — less what its
+                               and materials, its clusters and level 0's list — less what its
                                source shares once settled (dag_settle) */
     uint8_t shared;         /* the arrays of mesh its source owns and shares (DAG_SHARES_*) */
 };

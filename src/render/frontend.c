@@ -1033,18 +1033,13 @@ static int walk_cut(struct frontend *fe, struct frame *f, struct tri_walk *w, ui
             const uint32_t t = dag_tri(d, c, q);
             if (whole || (t >= i0 && t < i1)) {
                 tmark[t >> 6] |= 1ull << (t & 63);
-                if (!whole && vmarks)
+                if (vmarks && !(whole && c->level))
                     for (int j = 0; j < 3; j++)
                         vmark[m->tris[t][j]] = 1;
             }
         }
-        if (whole && vmarks) {
-            if (c->level) /* (its copies: consecutive) */
-                memset(vmark + c->vert_first, 1, c->n_verts);
-            else
-                for (uint32_t q = 0; q < c->n_verts; q++)
-                    vmark[d->verts[c->vert_first + q]] = 1;
-        }
+        if (whole && vmarks && c->level) /* (its copies: consecutive) */
+            memset(vmark + c->vert_first, 1, c->n_verts);
     }
     w->vmark = vmarks ? vmark : NULL;
     int by_cut = by;

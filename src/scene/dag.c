@@ -707,8 +707,7 @@ int dag_build(struct mesh *m, const atomic_bool *cancel)
     hm->tris = (uint32_t(*)[3])B.tri3.a;
     B.tri3.a = NULL;
     hm->tri_material = malloc((size_t)hm->n_tris * sizeof *hm->tri_material);
-    d->verts = malloc(B.tris.n * 3 * sizeof *d->verts);
-    if (!hm->tri_material || !d->verts)
+    if (!hm->tri_material)
         goto fail;
     if (B.T.mats) { /* (the source's, and its tiles') */
         hm->materials = B.T.mats, hm->n_materials = B.T.n_mats;
@@ -727,10 +726,10 @@ int dag_build(struct mesh *m, const atomic_bool *cancel)
         goto fail;
     B.stamp = st2;
     memset(B.stamp + m->n_verts, 0, (size_t)(hm->n_verts - m->n_verts) * sizeof *B.stamp);
-    /* per cluster: its culling box, triangle span and vertices. A coarser cluster's
-     * triangles and vertices (its copies, own_vertices) are consecutive: it keeps its first
-     * of each (dag.h), and the lists hold level 0's alone (its clusters come first) */
-    size_t nvl = 0, ntl = 0;
+    /* per cluster: its culling box and triangle span; a coarser cluster's triangles and
+     * vertices (its copies, own_vertices) are consecutive: it keeps its first of each
+     * (dag.h), and only level 0's keep a list of triangles (its clusters come first) */
+    size_t ntl = 0;
     B.owner++;
     for (size_t i = 0; i < B.n; i++, B.owner++) {
         struct dag_cluster *c = &B.c[i];
@@ -740,7 +739,7 @@ int dag_build(struct mesh *m, const atomic_bool *cancel)
             goto fail; /* (cannot happen: level0 makes them first) */
         cluster_bounds(hm, t, c->n_tris, &c->box);
         c->tri_lo = UINT32_MAX, c->tri_hi = 0;
-        const size_t v0 = nvl;
+        c->n_verts = 0;
         bool consecutive = true;
         for (uint32_t k = 0; k < c->n_tris; k++) {
             c->tri_lo = t[k] < c->tri_lo ? t[k] : c->tri_lo;
@@ -748,27 +747,23 @@ int dag_build(struct mesh *m, const atomic_bool *cancel)
             consecutive &= t[k] == t[0] + k;
             for (int j = 0; j < 3; j++) {
                 uint32_t v = hm->tris[t[k]][j];
-                if (B.stamp[v] != B.owner)
-                    B.stamp[v] = B.owner, d->verts[nvl++] = v;
+                if (B.stamp[v] != B.owner) { /* (a copy: each the one after the last) */
+                    B.stamp[v] = B.owner;
+                    consecutive &= !c->n_verts || v == c->vert_first + c->n_verts;
+                    c->vert_first = c->n_verts++ ? c->vert_first : v;
+                }
             }
         }
-        c->n_verts = (uint32_t)(nvl - v0);
-        for (size_t q = v0 + 1; q < nvl; q++)
-            consecutive &= d->verts[q] == d->verts[q - 1] + 1;
         if (coarse) {
             if (!consecutive)
                 goto fail; /* (cannot happen: simplify_group, own_vertices) */
             c->tri_first = t[0];
-            c->vert_first = d->verts[v0];
-            nvl = v0;
         } else {
-            c->vert_first = (uint32_t)v0;
+            c->vert_first = 0; /* (no list: its triangles' corners) */
             d->n_level0++;
             ntl += c->n_tris;
         }
     }
-    uint32_t *sv = realloc(d->verts, (nvl ? nvl : 1) * sizeof *sv);
-    d->verts = sv ? sv : d->verts;
     uint32_t *st = realloc(B.tris.a, (ntl ? ntl : 1) * sizeof *st);
     d->tris = st ? st : B.tris.a;
     B.tris.a = NULL;
@@ -779,7 +774,7 @@ int dag_build(struct mesh *m, const atomic_bool *cancel)
     d->build_ms = timing_now_ms() - t0;
     d->bytes = sizeof *d + mesh_geometry_bytes(hm) + cluster_bytes(hm) +
                (hm->materials != m->materials ? hm->n_materials * sizeof *hm->materials : 0) +
-               d->n * sizeof *d->c + ntl * sizeof *d->tris + nvl * sizeof *d->verts;
+               d->n * sizeof *d->c + ntl * sizeof *d->tris;
     __atomic_store_n(&m->dag, d, __ATOMIC_RELEASE);
     d = NULL;
     rc = 0;
@@ -797,7 +792,6 @@ fail:
     }
     free(d->mesh.pos_id);
     free(d->mesh.pos_xyz);
-    free(d->verts);
     free(d);
 out:
     free(B.stamp);
@@ -885,7 +879,6 @@ void dag_free(struct mesh *m)
         free(d->mesh.pos_id), free(d->mesh.pos_xyz);
     free(d->c);
     free(d->tris);
-    free(d->verts);
     free(d);
     m->dag = NULL;
 }

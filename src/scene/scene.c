@@ -504,7 +504,7 @@ int scene_load(const char *path, struct scene *s, struct err *e)
 
 /* the meshes share their hierarchies' arrays (dag_settle), and what they held goes back to
  * the system: glibc keeps freed heap pages (the viewer's 1M sphere under clusters: 258 MB
- * resident without the trim, 219 with it) */
+ * resident without the trim, 217 with it) */
 static void settle_meshes(struct scene *s)
 {
     bool any = false;

@@ -95,7 +95,7 @@ cache() {
 check cache_reads_the_chain_a_render_wrote_and_draws_the_same_bytes cache
 
 # --lod clusters: the hierarchy's memory against its mesh's own geometry (issue 24's bound:
-# 1.5x; the grid's 1.71x: its source shares level 0, dag_settle) and its build time; auto's
+# 1.5x; the grid's 1.63x: its source shares level 0, dag_settle) and its build time; auto's
 # chain, the same
 hierarchy_stats() {
     [ -f $OUT/grid.ply ] || grid_ply $OUT/grid.ply || return 1
