@@ -30,8 +30,10 @@
 # thread, =2 for two; median of N frames after 2 of warm-up): gl_ms, and the ratios
 # rastty/llvmpipe of off, auto and clusters (issue 24's target: <= 0.2x at 160x96, one
 # thread). Without OSMesa (no glbench) those columns are "-". The
-# sphere's files are made once in build/bench/scale (never in the repository). Numbers,
-# never verdicts.
+# sphere's files are made once in build/bench/scale (never in the repository). Then the
+# memory each model's chain and hierarchy hold against its own geometry (render --stats's
+# "levels:" and "hierarchy:" lines, from the first screen's runs), and the level cache's
+# load times. Numbers, never verdicts.
 set -u
 cd "$(dirname "$0")/.."
 BIN=${RASTTY_BIN:-./rastty}
@@ -94,6 +96,7 @@ printf '  %-20s %-8s %2s %9s %9s %9s %8s %9s %6s %9s %6s %8s %9s %7s %15s %5s %9
     off_ms tris auto_ms PSNR dag_ms PSNR dag_tris noclu_ms speedup culled/tested bytes \
     nohide_ms hidden hbytes gl_ms off/gl auto/gl dag/gl
 [ -n "$csv" ] && echo "model,size,threads,load_ms,rss_mb,off_ms,tris,auto_ms,auto_psnr,dag_ms,dag_psnr,dag_tris,noclu_ms,speedup,culled_tested,same_bytes,nohide_ms,hidden,nohide_same_bytes,gl_ms,off_gl,auto_gl,dag_gl" > "$csv"
+declare -A mem_chain mem_dag
 for m in "${models[@]}"; do
     name=$(basename "$m"); name=${name%.*}
     for size in $screens; do
@@ -124,6 +127,7 @@ for m in "${models[@]}"; do
             st=$("$BIN" render "$m" "${cam[@]}" --lod auto --out "$o.auto.ppm" \
                 --depth-out "$o.auto.pfm" 2>&1)
             auto=$(ms_of <<<"$st")
+            mem_chain[$name]=$(sed -n 's/^levels: .*, \([0-9.]*\) MB, \([0-9.]*x\) .*/\1 MB \2/p' <<<"$st")
             psnr=-
             [ -x "$CMP" ] && psnr=$("$CMP" "$o.auto.ppm" "$o.auto.pfm" "$o.off.ppm" "$o.off.pfm" |
                 sed -n 's/.*psnr=\([0-9.inf]*\).*/\1/p')
@@ -132,6 +136,7 @@ for m in "${models[@]}"; do
                 st=$("$BIN" render "$m" "${cam[@]}" --lod clusters --out "$o.dag.ppm" \
                     --depth-out "$o.dag.pfm" 2>&1)
                 dag=$(ms_of <<<"$st")
+                mem_dag[$name]=$(sed -n 's/^hierarchy: .*, \([0-9.]*\) MB, \([0-9.]*x\) their own geometry.s \([0-9.]*\) MB.*/\1 MB \2 \3/p' <<<"$st")
                 dtris=$(sed -n 's/^lod: cluster hierarchy, .*, \([0-9]*\) triangles$/\1/p' <<<"$st")
                 dtris=${dtris:--}
                 [ -x "$CMP" ] && dpsnr=$("$CMP" "$o.dag.ppm" "$o.dag.pfm" "$o.off.ppm" "$o.off.pfm" |
@@ -161,6 +166,16 @@ for m in "${models[@]}"; do
             [ -n "$csv" ] && echo "$name,$size,$th,$load,$rss,$off,$tris,$auto,$psnr,$dag,$dpsnr,$dtris,$nc,$sp,$cl,$eq,$nh,$hid,$heq,$gl,$ro,$ra,$rd" >> "$csv"
         done
     done
+done
+# memory (issue 24: clusters and levels at most 1.5x the mesh's own): render --stats's
+# "levels:" (the chain, --lod auto) and "hierarchy:" (--lod clusters, after dag_settle)
+echo "-- memory: the chain's and the hierarchy's bytes, and their ratio to the mesh's own geometry"
+printf '  %-20s %9s %8s %9s %8s %9s\n' model chain_MB chain_x dag_MB dag_x own_MB
+for m in "${models[@]}"; do
+    name=$(basename "$m"); name=${name%.*}
+    read -r cb _ cx <<<"${mem_chain[$name]:-- - -}"
+    read -r db _ dx own <<<"${mem_dag[$name]:-- - - -}"
+    printf '  %-20s %9s %8s %9s %8s %9s\n' "$name" "$cb" "$cx" "$db" "$dx" "${own:--}"
 done
 # the cache of chains (lod_cache.h): render's load_ms with --lod off, with --lod auto
 # building the chain (an empty cache folder), and with --lod auto reading the file the run
