@@ -894,10 +894,10 @@ static int cut_marked(struct frontend *fe, struct frame *f, struct tri_walk *w, 
  * word k), in the mesh's order: a run with a marked triangle tested whole as walk_clusters
  * tests a cluster — with the hidden test on the depth drawn so far, which the hierarchy's
  * own clusters, tested before anything is drawn, cannot have — and dropped (its marked
- * triangles counted in dropped[] by verdict), or its marked triangles walked: by vertex
- * after its vertex stage, a stretch of marked ones at a time; by position all at once
- * (filter's mask), walked after the next run's filter as walk_clusters does; by heads all
- * at once after its heads. (Its box holds its unmarked triangles too: only larger.) */
+ * triangles counted in dropped[] by verdict), or its marked triangles walked, all at once
+ * (filter's mask): by vertex after its vertex stage; by position walked after the next
+ * run's filter as walk_clusters does; by heads after its heads. (Its box holds its
+ * unmarked triangles too: only larger.) */
 static int cut_runs(struct frontend *fe, struct frame *f, struct tri_walk *w,
                     const struct cluster_view *cv, const uint64_t *tmark, uint32_t i0,
                     uint32_t i1, const int by, uint64_t dropped[CLUSTER_VERDICTS],
@@ -951,16 +951,13 @@ static int cut_runs(struct frontend *fe, struct frame *f, struct tri_walk *w,
             vertex_stage(f, w, vdone, c->v_end);
             vdone = c->v_end;
         }
-        while (bits) { /* its runs of marked triangles */
-            const unsigned a = (unsigned)__builtin_ctzll(bits);
-            const uint64_t from_a = bits >> a;
-            const unsigned len = ~from_a ? (unsigned)__builtin_ctzll(~from_a) : 64 - a;
-            uint32_t all = m->n_verts;
-            if (filter_walk(fe, f, w, c->tri_first + a, c->tri_first + a + len, &all,
-                            BY_VERTEX, e))
-                return -1;
-            bits = a + len < 64 ? bits & (~0ull << (a + len)) : 0;
-        }
+        /* its marked triangles at once (filter's mask: one pass of its lanes, where a
+         * stretch at a time paid a full pass for each) */
+        uint32_t list[CLUSTER_MAX_TRIS], all = m->n_verts;
+        const uint32_t n = filter(f, w, c->tri_first, c->tri_first + c->n_tris, &all,
+                                  BY_VERTEX, bits, list);
+        if (n && walk(fe, f, w, list, n, BY_VERTEX, e))
+            return -1;
     }
     return n_late && walk(fe, f, w, late, n_late, BY_POSITION, e) ? -1 : 0;
 }
