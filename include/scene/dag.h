@@ -32,18 +32,20 @@
  *   the DAG, so the rule below picks, over any part of the surface, exactly one level.
  *   Vertices: the simplifier collapses onto existing vertices, so every level's are the
  *   source's; the hierarchy's mesh (mesh_dag.mesh) holds the source's opaque triangles
- *   first, as they are, then every coarser cluster's on copies of its vertices, and borrows
- *   the source's textures (and its materials, but for the tiles' below). A coarser
- *   cluster's triangles and copies are consecutive there, so only level 0's clusters keep
- *   a list (mesh_dag.tris). Memory: once the build is done and nothing draws
- *   (dag_settle; the viewer's loop between frames, render after its build), the source
- *   frees its arrays and points to the first part of the hierarchy's mesh, the same
- *   bytes: the hierarchy then costs its coarser levels (about as many triangles as the
- *   source, on 0.7-0.8 vertex copies a triangle, whose locality the cut needs: drawn from
- *   the source's own vertices the 1M sphere's cut took 4.5 ms, not 2.7), level 0's list
- *   and runs, and a position table when the source has none. render --stats: the car
- *   1.71x its mesh's own geometry, the 1M sphere 1.97x, the bunny 1.94x, lost_empire 0.37x
- *   (its positions shared too); before, with level 0 repeated, 2.98x, 3.28x, 3.25x, 1.49x.
+ *   first, as they are, then every coarser cluster's: those of level DAG_COPY_LEVEL and
+ *   coarser on copies of their vertices (laid out cluster by cluster: the cut reads them
+ *   forward), level 1's on the source's own (half the coarser triangles; a tiled mesh
+ *   copies level 1 too, for the tile uvs); it borrows the source's textures (and its
+ *   materials, but for the tiles' below). A coarser cluster's triangles, and a copying
+ *   one's copies, are consecutive there, so only level 0's clusters keep a list
+ *   (mesh_dag.tris). Memory: once the build is done and nothing draws (dag_settle; the
+ *   viewer's loop between frames, render after its build), the source frees its arrays and
+ *   points to the first part of the hierarchy's mesh, the same bytes: the hierarchy then
+ *   costs its coarser levels (about as many triangles as the source; 0.7-0.8 copies a
+ *   triangle of theirs where they copy), level 0's list and its runs. render --stats: the
+ *   car 1.00x its mesh's own geometry, the 1M sphere 1.21x, the bunny 1.20x, lost_empire
+ *   0.37x (its positions shared too); with level 0 repeated and every coarser level
+ *   copied, 2.98x, 3.28x, 3.25x, 1.49x (the README has the steps and the times).
  *   Atlas tiles (tiles.h; a mesh on the features path, as voxel exporters' block worlds
  *   are): the source's vertices welded per tile class for the grouping and the
  *   simplifier, the coarser clusters' copies given their tile uvs and derived materials.
@@ -83,6 +85,7 @@
 #define DAG_GROUP 8
 #define DAG_MAX_LEVELS 24
 #define DAG_MIN_STEP 1e-6 /* of the mesh's extent: a group's error exceeds its children's */
+#define DAG_COPY_LEVEL 2  /* clusters this coarse or more draw copies of their vertices */
 
 struct dag_cluster {
     float center[3], radius, error;       /* the group that made it (level 0: its own; 0) */
@@ -90,9 +93,10 @@ struct dag_cluster {
     uint32_t tri_first, n_tris;           /* its triangles (dag_tri): level 0,
                                              mesh_dag.tris[tri_first ..]; coarser (made
                                              consecutive), tri_first .. + n_tris - 1 */
-    uint32_t vert_first, n_verts;         /* its vertices: coarser, its copies vert_first
-                                             .. + n_verts - 1; level 0, vert_first 0 (its
-                                             triangles' corners) */
+    uint32_t vert_first, n_verts;         /* its vertex copies, vert_first .. + n_verts
+                                             - 1; n_verts 0: none (level 0, and levels
+                                             under DAG_COPY_LEVEL: the source's vertices,
+                                             its triangles' corners) */
     uint32_t tri_lo, tri_hi;              /* its lowest and highest triangle */
     uint32_t level;                       /* 0: the source's triangles */
     struct mesh_cluster box;              /* culling bounds (cluster.h's cluster_bounds) */

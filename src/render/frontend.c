@@ -1030,12 +1030,12 @@ static int walk_cut(struct frontend *fe, struct frame *f, struct tri_walk *w, ui
             const uint32_t t = dag_tri(d, c, q);
             if (whole || (t >= i0 && t < i1)) {
                 tmark[t >> 6] |= 1ull << (t & 63);
-                if (vmarks && !(whole && c->level))
+                if (vmarks && !(whole && c->n_verts))
                     for (int j = 0; j < 3; j++)
                         vmark[m->tris[t][j]] = 1;
             }
         }
-        if (whole && vmarks && c->level) /* (its copies: consecutive) */
+        if (whole && vmarks && c->n_verts) /* (its copies: consecutive) */
             memset(vmark + c->vert_first, 1, c->n_verts);
     }
     w->vmark = vmarks ? vmark : NULL;

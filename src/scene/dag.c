@@ -617,16 +617,19 @@ bool dag_eligible(const struct mesh *m)
     return mesh_positions_finite(m);
 }
 
-/* the hierarchy's own vertex array: the source's, then for each coarser cluster (their
- * triangles are consecutive, in the order the clusters were made) a copy of each vertex it
- * uses, its corners renumbered to them */
+/* the hierarchy's own vertex array: the source's, then for each cluster of level
+ * DAG_COPY_LEVEL or coarser (their triangles are consecutive, in the order the clusters were
+ * made) a copy of each vertex it uses, its corners renumbered to them; the finer ones keep
+ * the source's */
 static int own_vertices(struct build *B, struct mesh_dag *d)
 {
     const struct mesh *m = B->m;
     struct mesh *hm = &d->mesh;
+    /* (a tiled mesh copies every coarser level: its copies carry their tile uvs) */
+    const uint32_t from = B->T.vcls ? 1 : DAG_COPY_LEVEL;
     size_t extra = 0;
     for (size_t i = 0; i < B->n; i++)
-        if (B->c[i].level > 0)
+        if (B->c[i].level >= from)
             extra += 3 * (size_t)B->c[i].n_tris;
     const size_t cap = (size_t)m->n_verts + extra;
     hm->verts = malloc(cap * sizeof *hm->verts);
@@ -641,7 +644,7 @@ static int own_vertices(struct build *B, struct mesh_dag *d)
     uint32_t nv = m->n_verts;
     for (size_t i = 0; i < B->n; i++) {
         const struct dag_cluster *c = &B->c[i];
-        if (c->level == 0)
+        if (c->level < from)
             continue;
         B->owner++;
         for (uint32_t t = 0; t < c->n_tris; t++) {
@@ -726,26 +729,26 @@ int dag_build(struct mesh *m, const atomic_bool *cancel)
         goto fail;
     B.stamp = st2;
     memset(B.stamp + m->n_verts, 0, (size_t)(hm->n_verts - m->n_verts) * sizeof *B.stamp);
-    /* per cluster: its culling box and triangle span; a coarser cluster's triangles and
-     * vertices (its copies, own_vertices) are consecutive: it keeps its first of each
-     * (dag.h), and only level 0's keep a list of triangles (its clusters come first) */
+    /* per cluster: its culling box and triangle span; a coarser cluster's triangles are
+     * consecutive, and a copying one's vertices too (own_vertices): it keeps its first of
+     * each (dag.h), and only level 0's keep a list of triangles (its clusters come first) */
     size_t ntl = 0;
     B.owner++;
     for (size_t i = 0; i < B.n; i++, B.owner++) {
         struct dag_cluster *c = &B.c[i];
         const uint32_t *t = B.tris.a + c->tri_first;
-        const bool coarse = c->level > 0;
+        const bool coarse = c->level > 0, copies = c->level >= (B.T.vcls ? 1 : DAG_COPY_LEVEL);
         if (!coarse && (i != d->n_level0 || c->tri_first != ntl))
             goto fail; /* (cannot happen: level0 makes them first) */
         cluster_bounds(hm, t, c->n_tris, &c->box);
         c->tri_lo = UINT32_MAX, c->tri_hi = 0;
-        c->n_verts = 0;
+        c->vert_first = c->n_verts = 0;
         bool consecutive = true;
         for (uint32_t k = 0; k < c->n_tris; k++) {
             c->tri_lo = t[k] < c->tri_lo ? t[k] : c->tri_lo;
             c->tri_hi = t[k] > c->tri_hi ? t[k] : c->tri_hi;
-            consecutive &= t[k] == t[0] + k;
-            for (int j = 0; j < 3; j++) {
+            consecutive &= !coarse || t[k] == t[0] + k;
+            for (int j = 0; j < 3 && copies; j++) {
                 uint32_t v = hm->tris[t[k]][j];
                 if (B.stamp[v] != B.owner) { /* (a copy: each the one after the last) */
                     B.stamp[v] = B.owner;
@@ -754,12 +757,11 @@ int dag_build(struct mesh *m, const atomic_bool *cancel)
                 }
             }
         }
+        if (!consecutive)
+            goto fail; /* (cannot happen: simplify_group, own_vertices) */
         if (coarse) {
-            if (!consecutive)
-                goto fail; /* (cannot happen: simplify_group, own_vertices) */
             c->tri_first = t[0];
         } else {
-            c->vert_first = 0; /* (no list: its triangles' corners) */
             d->n_level0++;
             ntl += c->n_tris;
         }

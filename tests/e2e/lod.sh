@@ -94,16 +94,17 @@ cache() {
 }
 check cache_reads_the_chain_a_render_wrote_and_draws_the_same_bytes cache
 
-# --lod clusters: the hierarchy's memory against its mesh's own geometry (issue 24's bound:
-# 1.5x; the grid's 1.63x: its source shares level 0, dag_settle) and its build time; auto's
-# chain, the same
+# --lod clusters: the hierarchy's memory against its mesh's own geometry within issue 24's
+# bound, 1.5x (the grid's 1.19x: its source shares level 0, dag_settle, and level 1 draws
+# the source's vertices; 2.89x before either, 1.63x with level 1 copied) and its build
+# time; auto's chain, the same
 hierarchy_stats() {
     [ -f $OUT/grid.ply ] || grid_ply $OUT/grid.ply || return 1
     local s
     s=$(RASTTY_CACHE_DIR= render $OUT/grid.ply --eye 0,0,6 --lod clusters --stats --out $OUT/h.ppm) || return 1
     echo "$s" | grep -E '^(lod|hierarchy):'
     set -- $(echo "$s" | sed -n 's/^hierarchy: 1 meshes, \([0-9.]*\) MB, \([0-9.]*\)x their own geometry.s \([0-9.]*\) MB; built in [0-9]* ms$/\1 \2 \3/p')
-    [ $# = 3 ] && awk -v b="$1" -v r="$2" -v o="$3" 'BEGIN { exit !(r >= 1.2 && r <= 2.2 && b > o) }' ||
+    [ $# = 3 ] && awk -v b="$1" -v r="$2" -v o="$3" 'BEGIN { exit !(r >= 0.5 && r <= 1.5 && b > 0.5 * o) }' ||
         return 1
     s=$(RASTTY_CACHE_DIR= render $OUT/grid.ply --eye 0,0,6 --lod auto --stats --out $OUT/h.ppm) || return 1
     echo "$s" | grep -E '^levels:'

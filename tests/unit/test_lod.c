@@ -951,6 +951,18 @@ TEST(dag_settled_source_shares_the_hierarchys_arrays_and_draws_the_same_bytes)
           m.tri_material == d->mesh.tri_material && m.vert_material == d->mesh.vert_material);
     CHECK_EQ_INT(before - d->bytes, own); /* (the sphere keeps no positions of its own) */
     CHECK_EQ_INT(mesh_geometry_bytes(&m), own);
+    /* issue 24's bound: level 1 draws the source's vertices, the coarser levels copies */
+    printf("    hierarchy %.2fx the mesh's geometry once settled\n", (double)d->bytes / own);
+    CHECK(d->bytes <= 1.5 * own);
+    int own_verts[3] = {0, 0, 0}, n_level[3] = {0, 0, 0};
+    for (uint32_t k = 0; k < d->n; k++) {
+        const int l = d->c[k].level < 2 ? (int)d->c[k].level : 2;
+        n_level[l]++;
+        own_verts[l] += d->c[k].n_verts > 0;
+    }
+    CHECK(n_level[1] > 0 && n_level[2] > 0);
+    CHECK_EQ_INT(own_verts[0] + own_verts[1], 0);
+    CHECK_EQ_INT(own_verts[2], n_level[2]);
     for (int k = 0; k < 2; k++)
         CHECK(covered_count(&off[k]) > 1000);
     CHECK(memcmp(off[0].rgb, off[1].rgb, (size_t)160 * 96 * 3) == 0);
@@ -966,6 +978,11 @@ TEST(dag_settled_source_shares_the_hierarchys_arrays_and_draws_the_same_bytes)
     REQUIRE((d = dag_of(&m)) && m.pos_id);
     dag_settle(&m);
     CHECK(d->shared & DAG_SHARES_POSITIONS);
+    for (uint32_t k = 0; k < d->n; k++) /* (tiled: every coarser level copies, for its uvs) */
+        if (d->c[k].level > 0 && !d->c[k].n_verts) {
+            CHECK(!"a tiled cluster without copies");
+            break;
+        }
     CHECK(m.pos_id == d->mesh.pos_id && m.pos_xyz == d->mesh.pos_xyz);
     lod_free(&m);
     mesh_free(&m);
