@@ -935,28 +935,21 @@ static int cut_runs(struct frontend *fe, struct frame *f, struct tri_walk *w,
             continue;
         }
         vdone = vdone > c->v_need ? vdone : c->v_need;
-        if (by == BY_HEAD) { /* the run's heads, then its marked triangles at once */
-            if (vdone < c->v_end) {
+        if (vdone < c->v_end) { /* the run's heads, or its vertex stage */
+            if (by == BY_HEAD)
                 position_stage(f, m, w->pos, vdone, c->v_end, BY_HEAD);
-                vdone = c->v_end;
-            }
-            uint32_t list[CLUSTER_MAX_TRIS], none = m->n_verts;
-            const uint32_t n = filter(f, w, c->tri_first, c->tri_first + c->n_tris, &none,
-                                      BY_HEAD, bits, list);
-            if (n && walk(fe, f, w, list, n, BY_HEAD, e))
-                return -1;
-            continue;
-        }
-        if (vdone < c->v_end) {
-            vertex_stage(f, w, vdone, c->v_end);
+            else
+                vertex_stage(f, w, vdone, c->v_end);
             vdone = c->v_end;
         }
-        /* its marked triangles at once (filter's mask: one pass of its lanes, where a
-         * stretch at a time paid a full pass for each) */
-        uint32_t list[CLUSTER_MAX_TRIS], all = m->n_verts;
-        const uint32_t n = filter(f, w, c->tri_first, c->tri_first + c->n_tris, &all,
-                                  BY_VERTEX, bits, list);
-        if (n && walk(fe, f, w, list, n, BY_VERTEX, e))
+        /* then its marked triangles at once (filter's mask: one pass of its lanes, where a
+         * stretch at a time paid a full pass for each; `by` a constant at each call) */
+        uint32_t list[CLUSTER_MAX_TRIS], all = m->n_verts, n;
+        const uint32_t a = c->tri_first, b = c->tri_first + c->n_tris;
+        n = by == BY_HEAD ? filter(f, w, a, b, &all, BY_HEAD, bits, list)
+                          : filter(f, w, a, b, &all, BY_VERTEX, bits, list);
+        if (n && (by == BY_HEAD ? walk(fe, f, w, list, n, BY_HEAD, e)
+                                : walk(fe, f, w, list, n, BY_VERTEX, e)))
             return -1;
     }
     return n_late && walk(fe, f, w, late, n_late, BY_POSITION, e) ? -1 : 0;
