@@ -617,6 +617,13 @@ bool dag_eligible(const struct mesh *m)
     return mesh_positions_finite(m);
 }
 
+/* the first level whose clusters draw copies of their vertices: DAG_COPY_LEVEL, or for a
+ * tiled mesh every coarser level (its copies carry their tile uvs) */
+static uint32_t copy_level(const struct build *B)
+{
+    return B->T.vcls ? 1 : DAG_COPY_LEVEL;
+}
+
 /* the hierarchy's own vertex array: the source's, then for each cluster of level
  * DAG_COPY_LEVEL or coarser (their triangles are consecutive, in the order the clusters were
  * made) a copy of each vertex it uses, its corners renumbered to them; the finer ones keep
@@ -625,8 +632,7 @@ static int own_vertices(struct build *B, struct mesh_dag *d)
 {
     const struct mesh *m = B->m;
     struct mesh *hm = &d->mesh;
-    /* (a tiled mesh copies every coarser level: its copies carry their tile uvs) */
-    const uint32_t from = B->T.vcls ? 1 : DAG_COPY_LEVEL;
+    const uint32_t from = copy_level(B);
     size_t extra = 0;
     for (size_t i = 0; i < B->n; i++)
         if (B->c[i].level >= from)
@@ -737,7 +743,7 @@ int dag_build(struct mesh *m, const atomic_bool *cancel)
     for (size_t i = 0; i < B.n; i++, B.owner++) {
         struct dag_cluster *c = &B.c[i];
         const uint32_t *t = B.tris.a + c->tri_first;
-        const bool coarse = c->level > 0, copies = c->level >= (B.T.vcls ? 1 : DAG_COPY_LEVEL);
+        const bool coarse = c->level > 0, copies = c->level >= copy_level(&B);
         if (!coarse && (i != d->n_level0 || c->tri_first != ntl))
             goto fail; /* (cannot happen: level0 makes them first) */
         cluster_bounds(hm, t, c->n_tris, &c->box);
@@ -831,18 +837,20 @@ void dag_settle(struct mesh *m)
     const size_t nv = m->n_verts, hv = hm->n_verts, nt = m->n_tris, ht = hm->n_tris;
     size_t saved = 0;
     if (starts_with(hm->verts, hv * sizeof *hm->verts, m->verts, nv * sizeof *m->verts) &&
-        starts_with(hm->vert_material, hv * 2, m->vert_material, nv * 2)) {
+        starts_with(hm->vert_material, hv * sizeof *hm->vert_material, m->vert_material,
+                    nv * sizeof *m->vert_material)) {
         free(m->verts), free(m->vert_material);
         m->verts = hm->verts, m->vert_material = hm->vert_material;
         d->shared |= DAG_SHARES_VERTS;
-        saved += nv * (sizeof *m->verts + 2);
+        saved += nv * (sizeof *m->verts + sizeof *m->vert_material);
     }
     if (starts_with(hm->tris, ht * sizeof *hm->tris, m->tris, nt * sizeof *m->tris) &&
-        starts_with(hm->tri_material, ht * 2, m->tri_material, nt * 2)) {
+        starts_with(hm->tri_material, ht * sizeof *hm->tri_material, m->tri_material,
+                    nt * sizeof *m->tri_material)) {
         free(m->tris), free(m->tri_material);
         m->tris = hm->tris, m->tri_material = hm->tri_material;
         d->shared |= DAG_SHARES_TRIS;
-        saved += nt * (sizeof *m->tris + 2);
+        saved += nt * (sizeof *m->tris + sizeof *m->tri_material);
     }
     if (starts_with(hm->colors, hv * sizeof *hm->colors, m->colors, nv * sizeof *m->colors)) {
         free(m->colors);

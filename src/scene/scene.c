@@ -502,11 +502,14 @@ int scene_load(const char *path, struct scene *s, struct err *e)
     return scene_load_with(path, NULL, s, e);
 }
 
-/* the meshes share their hierarchies' arrays (dag_settle), and what they held goes back to
- * the system: glibc keeps freed heap pages (the viewer's 1M sphere under clusters: 258 MB
- * resident without the trim, 217 with it) */
+/* the build ended, the meshes share their hierarchies' arrays (dag_settle), and what they
+ * held goes back to the system: glibc keeps freed heap pages (the viewer's 1M sphere under
+ * clusters: 258 MB resident without the trim, 217 with it) */
 static void settle_meshes(struct scene *s)
 {
+    lod_finish(s->lod_job, false); /* (waits for the builder, or joins the finished one:
+                                      nothing else reads the meshes then) */
+    s->lod_job = NULL;
     bool any = false;
     for (int i = 0; i < s->n_meshes; i++) {
         const struct mesh_dag *d = s->meshes[i].dag;
@@ -527,21 +530,15 @@ int scene_build_lod(struct scene *s, bool wait, bool clusters, struct err *e)
         return 0;
     if (lod_start(s->meshes, s->n_meshes, clusters, &s->lod_job, e))
         return -1;
-    if (wait) {
-        lod_finish(s->lod_job, false);
-        s->lod_job = NULL;
+    if (wait)
         settle_meshes(s);
-    }
     return 0;
 }
 
 void scene_lod_settle(struct scene *s)
 {
-    if (!s->lod_job || !lod_done(s->lod_job))
-        return;
-    lod_finish(s->lod_job, false); /* (joins the finished builder: nothing reads the meshes) */
-    s->lod_job = NULL;
-    settle_meshes(s);
+    if (s->lod_job && lod_done(s->lod_job))
+        settle_meshes(s);
 }
 
 int scene_build_clusters(struct scene *s, struct err *e)
