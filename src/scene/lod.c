@@ -164,7 +164,9 @@ static bool eligible(const struct mesh *m)
 
 uint64_t lod_chain_key(const struct mesh *m)
 {
-    const double rules[] = {LOD_MAX_LEVELS, LOD_MIN_TRIS, LOD_MAX_ERROR};
+    /* (and the shading error's weighting by material, lod_shade_weight: 2) */
+    const double rules[] = {LOD_MAX_LEVELS, LOD_MIN_TRIS, LOD_MAX_ERROR, LOD_CALM,
+                            LOD_CALM_SHARE, LOD_CALM_KEEP, 2};
     return lod_cache_key(m, rules, (int)(sizeof rules / sizeof *rules));
 }
 
@@ -308,6 +310,45 @@ static int tiled_level(struct mesh *m, struct mesh_lod *l, struct mesh_tiles *ti
     return rc;
 }
 
+/* The calm level (lod.h): m's calm triangles (those whose material's lod_shade_weight is
+ * under LOD_CALM) simplified to LOD_CALM_KEEP of their number into idx, their border with
+ * the others locked (there they meet other materials: a seam, which the simplifier would
+ * slide along), then every other triangle as it is; *rel the simplifier's error. The
+ * indices written, or 0: no calm level (calm triangles under LOD_CALM_SHARE of m's, none
+ * other, or they cannot lose a quarter). scratch: room for m's corners. */
+static size_t calm_level(const struct mesh *m, uint32_t *idx, uint32_t *scratch, float budget,
+                         float *rel)
+{
+    uint8_t *calm = malloc(m->n_materials ? m->n_materials : 1);
+    if (!calm)
+        return 0; /* (out of memory: no calm level, the chain goes on without it) */
+    for (uint32_t q = 0; q < m->n_materials; q++)
+        calm[q] = lod_shade_weight(m, q) < LOD_CALM;
+    size_t nc = 0;
+    for (uint32_t t = 0; t < m->n_tris; t++)
+        nc += calm[m->tri_material[t]];
+    size_t got = 0;
+    if (nc >= m->n_tris * LOD_CALM_SHARE && nc < m->n_tris) {
+        /* the calm ones first in scratch, the others after them, each in their order */
+        uint32_t *rest = scratch + 3 * nc;
+        size_t c = 0, r = 0;
+        for (uint32_t t = 0; t < m->n_tris; t++)
+            memcpy(calm[m->tri_material[t]] ? scratch + 3 * c++ : rest + 3 * r++, m->tris[t],
+                   3 * sizeof *scratch);
+        got = meshopt_simplify(idx, scratch, nc * 3, m->verts[0].pos, m->n_verts,
+                               sizeof *m->verts, (size_t)(nc * LOD_CALM_KEEP) * 3, budget,
+                               meshopt_SimplifyLockBorder, rel);
+        if (got / 3 > nc * 3 / 4)
+            got = 0;
+        else {
+            memcpy(idx + got, rest, r * 3 * sizeof *idx);
+            got += r * 3;
+        }
+    }
+    free(calm);
+    return got;
+}
+
 /* Level after level, each from the one before, until a stop rule of lod.h says no (or, for
  * a large mesh, from the cache: lod_cache.h). */
 static int build_chain(struct mesh *m, struct mesh_lod *l, const atomic_bool *cancel)
@@ -349,10 +390,18 @@ static int build_chain(struct mesh *m, struct mesh_lod *l, const atomic_bool *ca
         if (target < LOD_MIN_TRIS || !(budget > 0))
             break;
         float rel = 0;
-        size_t n = meshopt_simplify(idx, &src->tris[0][0], (size_t)src->n_tris * 3,
-                                    src->verts[0].pos, src->n_verts, sizeof *src->verts,
-                                    target * 3, (float)budget, 0, &rel);
-        if (n / 3 > (size_t)src->n_tris * 3 / 4 || n / 3 < LOD_MIN_TRIS)
+        size_t n = 0, most = (size_t)src->n_tris * 3 / 4; /* (triangles a level may keep) */
+        if (k == 0 && !m->features) { /* (a tiled chain's materials are all its own) */
+            uint32_t *scratch = malloc((size_t)m->n_tris * 3 * sizeof *scratch);
+            n = scratch ? calm_level(m, idx, scratch, (float)budget, &rel) : 0;
+            free(scratch);
+            most = n ? (size_t)m->n_tris * 7 / 8 : most;
+        }
+        if (!n)
+            n = meshopt_simplify(idx, &src->tris[0][0], (size_t)src->n_tris * 3,
+                                 src->verts[0].pos, src->n_verts, sizeof *src->verts,
+                                 target * 3, (float)budget, 0, &rel);
+        if (n / 3 > most || n / 3 < LOD_MIN_TRIS)
             break; /* stalled: seams and borders everywhere, or the error budget is spent */
         if (make_level(m, src, idx, n, &l->levels[k], k ? l->root[k - 1] : NULL,
                        cached ? &l->root[k] : NULL, NULL)) {

@@ -1,6 +1,7 @@
 /* lod_shade.c: a level's shading error (lod.h's lod_shade_error) — how far the normals a
  * level interpolates turn from the source's, measured at a sample of the source's vertices
- * on the level's surface. */
+ * on the level's surface, each weighted by how far it moves its material's colour
+ * (lod_shade_weight). */
 #include "lod.h"
 
 #include <math.h>
@@ -182,6 +183,59 @@ static double nearest_cos(const struct grid *g, const struct mesh *l, const floa
     return best_cos;
 }
 
+/* light.h's LIGHT_DIFFUSE and LIGHT_DEFAULT_ALBEDO (the render layer's, which scene cannot
+ * include: tests/unit/test_lod.c checks they agree) */
+#define SHADE_DIFFUSE 0.9
+#define SHADE_ALBEDO 0.8
+
+/* Material mt's slope and range (lod_shade_weight): how far its lit colour moves per radian
+ * a normal turns, as a root mean square over the directions the normal may face (the
+ * diffuse term LIGHT_DIFFUSE kd sin: (LIGHT_DIFFUSE kd)^2 2/3; the highlight ks cos^ns: about
+ * ks^2 / 2 at any ns, a steep slope over a small cap), and the most it can move at all,
+ * LIGHT_DIFFUSE kd + ks (albedo and ks: their largest channel) */
+static void shade_terms(const struct mesh *m, uint32_t mt, double *slope, double *range)
+{
+    const struct material *a = &m->materials[mt];
+    double kd = 0, ks = 0;
+    for (int c = 0; c < 3; c++) {
+        kd = fmax(kd, a->implicit ? (a->texture >= 0 || m->colors ? 1 : SHADE_ALBEDO) : a->kd[c]);
+        ks = fmax(ks, a->ks[c]);
+    }
+    *slope = sqrt(SHADE_DIFFUSE * kd * SHADE_DIFFUSE * kd * (2.0 / 3) + ks * ks / 2);
+    *range = SHADE_DIFFUSE * kd + ks;
+}
+
+/* the slope of the material LOD_SHADE_BOUND was measured on (albedo 0.8, no highlight:
+ * test_lod.c's bumpy sphere) */
+static double ref_slope(void)
+{
+    return SHADE_DIFFUSE * SHADE_ALBEDO * sqrt(2.0 / 3);
+}
+
+double lod_shade_weight(const struct mesh *m, uint32_t mt)
+{
+    if (m->materials[mt].features)
+        return 1;
+    double slope, range;
+    shade_terms(m, mt, &slope, &range);
+    return fmin(1, slope / ref_slope());
+}
+
+/* An angle error a (radians) at a vertex of material mt, as the angle of the measured
+ * material that moves its colour as far: a itself for a material as lively as that one or
+ * more (counted as the bound was measured), else a x lod_shade_weight, but no more than the
+ * angle that moves that material's colour by all the duller one's can move (its range): the
+ * car's brake discs (weight 0.088) count 0.088 a up to 0.14 rad. */
+static double weighted_angle(const struct mesh *m, uint32_t mt, double a)
+{
+    const double w = lod_shade_weight(m, mt);
+    if (w >= 1)
+        return a;
+    double slope, range;
+    shade_terms(m, mt, &slope, &range);
+    return fmin(a * w, range / ref_slope());
+}
+
 double lod_shade_error(const struct mesh *src, const struct mesh *lvl)
 {
     if (!src->n_verts || !lvl->n_tris)
@@ -203,7 +257,8 @@ double lod_shade_error(const struct mesh *src, const struct mesh *lvl)
         double cs = nearest_cos(&g, lvl, src->verts[v].pos, src->verts[v].nrm);
         if (cs < -1.5)
             continue;
-        double a = acos(cs > 1 ? 1 : cs < -1 ? -1 : cs);
+        /* (the angle weighted by how far it moves this vertex's colour) */
+        double a = weighted_angle(src, src->vert_material[v], acos(cs > 1 ? 1 : cs < -1 ? -1 : cs));
         sum += a * a;
         used++;
     }

@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "dag.h"
+#include "light.h"
 #include "lod.h"
 #include "pipeline.h"
 #include "psnr.h"
@@ -477,8 +478,9 @@ TEST(lod_off_draws_the_same_bytes_and_every_level_culls_right)
 
 /* tests/bench/gensphere.c's displaced sphere, 4 rows (rows - 1) triangles (positions only,
  * generated normals at the PLY loader's crease), one grey material: bumps that only a dense
- * level resolves, which light and highlight show */
-static int bumpy_sphere(struct mesh *m, int rows)
+ * level resolves, which light and highlight show; with `dark`, the triangles whose first
+ * corner lies under the equator have a second material, dark and dull (a tyre's) */
+static int bumpy_sphere_toned(struct mesh *m, int rows, bool dark)
 {
     const int cols = 2 * rows, rings = rows - 1;
     const uint32_t n_pos = (uint32_t)(rings * cols + 2), n_tris = (uint32_t)(4 * rows * (rows - 1));
@@ -509,20 +511,32 @@ static int bumpy_sphere(struct mesh *m, int rows)
             }
         }
 #undef V
+    uint16_t *tm = dark ? malloc((size_t)t * sizeof *tm) : NULL;
+    for (uint32_t i = 0; tm && i < t; i++)
+        tm[i] = pos[3 * c[3 * i].pos + 1] < 0;
     struct mesh_source src = {.pos = pos, .n_pos = n_pos, .corners = c, .n_tris = t,
-                              .crease_set = true, .crease_deg = MESH_CREASE_DEFAULT};
+                              .tri_material = tm, .crease_set = true,
+                              .crease_deg = MESH_CREASE_DEFAULT};
     memset(m, 0, sizeof *m);
-    int rc = mesh_build(&src, m, NULL);
+    int rc = dark && !tm ? -1 : mesh_build(&src, m, NULL);
     free(pos);
     free(c);
-    if (rc || !(m->materials = calloc(1, sizeof *m->materials)))
+    free(tm);
+    if (rc || !(m->materials = calloc(2, sizeof *m->materials)))
         return -1;
-    m->n_materials = 1;
-    for (int i = 0; i < 3; i++)
+    m->n_materials = dark ? 2 : 1;
+    for (int i = 0; i < 3; i++) {
         m->materials[0].kd[i] = 0.8f;
-    m->materials[0].ns = 32;
-    m->materials[0].texture = -1;
+        m->materials[1].kd[i] = 0.02f, m->materials[1].ks[i] = 0.01f;
+    }
+    m->materials[0].ns = 32, m->materials[1].ns = 20;
+    m->materials[0].texture = m->materials[1].texture = -1;
     return 0;
+}
+
+static int bumpy_sphere(struct mesh *m, int rows)
+{
+    return bumpy_sphere_toned(m, rows, false);
 }
 
 /* Issue 24's bar for auto at its default bounds: at least 40 dB against --lod off, from
@@ -565,6 +579,76 @@ TEST(lod_auto_at_the_default_bounds_keeps_40_db_against_off_at_every_distance)
     CHECK(worst >= 40);
     CHECK(coarser > draws / 2); /* (it still pays: most draws take a coarser level) */
     CHECK(deepest >= 3);
+    pipeline_destroy(p);
+    fb_free(&a);
+    fb_free(&b);
+    lod_free(&m);
+    mesh_free(&m);
+}
+
+/* The calm level (lod.h): a sphere whose lower half is dark and dull (a tyre's material)
+ * gets a first level that simplifies only that half — every triangle of the grey half kept
+ * as it is, the dark ones down to a third — whose shading error, weighted by material
+ * (lod_shade_weight), is a small fraction of the halved level's after it; auto takes it in
+ * several draws and keeps 40 dB against --lod off from every side and distance. The
+ * weights follow light.h's constants. */
+TEST(lod_calm_level_simplifies_the_dull_material_first_and_keeps_40_db)
+{
+    struct mesh g;
+    REQUIRE(bumpy_sphere(&g, 8) == 0);
+    g.materials[0].kd[0] = g.materials[0].kd[1] = g.materials[0].kd[2] = LIGHT_DEFAULT_ALBEDO;
+    CHECK(lod_shade_weight(&g, 0) == 1); /* (the material the bound was measured on) */
+    g.materials[0].kd[0] = g.materials[0].kd[1] = g.materials[0].kd[2] = 0;
+    g.materials[0].ks[1] = 0.3f;
+    CHECK(fabs(lod_shade_weight(&g, 0) -
+               0.3f / sqrt(2) / (LIGHT_DIFFUSE * LIGHT_DEFAULT_ALBEDO * sqrt(2.0 / 3))) < 1e-6);
+    g.materials[0].implicit = true;
+    CHECK(lod_shade_weight(&g, 0) == 1); /* (the implicit material: 1.17, kept at 1) */
+    mesh_free(&g);
+
+    struct mesh m;
+    REQUIRE(bumpy_sphere_toned(&m, 159, true) == 0);
+    CHECK(lod_shade_weight(&m, 0) == 1 && lod_shade_weight(&m, 1) < 0.05);
+    uint32_t grey = 0;
+    for (uint32_t q = 0; q < m.n_tris; q++)
+        grey += m.tri_material[q] == 0;
+    REQUIRE(lod_build(&m, NULL) == 0);
+    REQUIRE(lod_level_count(&m) >= 3);
+    const struct mesh *l1 = lod_level(&m, 1);
+    uint32_t grey1 = 0;
+    for (uint32_t q = 0; q < l1->n_tris; q++)
+        grey1 += l1->tri_material[q] == 0;
+    CHECK(grey1 == grey); /* every grey triangle kept */
+    CHECK(l1->n_tris - grey1 <= (uint32_t)((m.n_tris - grey) * (LOD_CALM_KEEP + 0.01)));
+    CHECK(lod_level_shade_error(&m, 1) < 0.5 * lod_level_shade_error(&m, 2));
+    printf("    level 1: %u grey of %u, %u dark of %u; shading error %.4f (level 2 %.4f)\n",
+           grey1, grey, l1->n_tris - grey1, m.n_tris - grey, lod_level_shade_error(&m, 1),
+           lod_level_shade_error(&m, 2));
+    struct fb a, b;
+    REQUIRE(fb_init(&a, 160, 96, false, NULL) == 0 && fb_init(&b, 160, 96, false, NULL) == 0);
+    struct pipeline *p = pipeline_new();
+    REQUIRE(p);
+    struct draw_item it = {.mesh = &m, .model = m4_identity()};
+    const double eyes[4][3] = {{0.5, 0.364, 0.8}, {-1, -0.6, 1}, {0, -1, 0.01}, {1, -0.1, -0.3}};
+    double worst = INFINITY;
+    int calm = 0;
+    for (int v = 0; v < 4; v++)
+        for (double dist = 2.5; dist < 30; dist *= 1.12) {
+            struct camera cam;
+            camera_default(&cam);
+            cam.eye = v3_scale(v3_norm(v3(eyes[v][0], eyes[v][1], eyes[v][2])), dist);
+            struct render_opts o;
+            render_opts_default(&o);
+            struct frame_stats st;
+            REQUIRE(pipeline_draw(p, &it, 1, NULL, &cam, &o, &a, &st, NULL) == 0);
+            o.lod = LOD_AUTO;
+            REQUIRE(pipeline_draw(p, &it, 1, NULL, &cam, &o, &b, &st, NULL) == 0);
+            calm += st.lod_max == 1;
+            worst = fmin(worst, fb_psnr(&a, &b));
+        }
+    printf("    auto took the calm level in %d draws; worst PSNR %.1f dB\n", calm, worst);
+    CHECK(worst >= 40);
+    CHECK(calm >= 4);
     pipeline_destroy(p);
     fb_free(&a);
     fb_free(&b);
