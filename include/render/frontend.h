@@ -57,7 +57,27 @@
  * seen, and reading its box would cost what drawing it does). Which triangles are found
  * depends on when batches go out: frame_stats.tris_hidden counts them, and tris_drawn is
  * smaller by as many (lost_empire at 160x96: 11.9k hidden of the 23.8k triangles that
- * pass their box, the car 20.8k of 30.0k; README, "Hidden triangles").
+ * pass their box, the car 20.8k of 30.0k; README, "Hidden triangles"). *
+ * Occluders (--occluders, with --hidden-cull; on by default). The hidden test reads only
+ * what the file's order drew before, so a surface drawn late hides nothing. Each draw item
+ * keeps the triangles of its level it drew in the last frame (set up with a pixel centre,
+ * unclipped, not a cut-out: struct frontend_item's occ), and before it is walked they are
+ * drawn at this frame's view into a depth of the front end's own (occluders_draw): their
+ * corners positioned by the kernel's position_run (the vertex stage's snapped positions and
+ * depths), and at each pixel centre strictly inside one (every rasterizer covers those) the
+ * farthest of its corners' depths kept where nearer. Setup clamps a triangle's depth to its
+ * corners' range, so at such a centre the occluder, drawn again this frame, puts a depth
+ * there at most that; a cluster (its box's nearest corner) or a triangle (its nearest
+ * corner) strictly behind it at every centre of its box draws nothing that shows, in any
+ * order — and the occluder nearest at a centre can never itself be found behind, so it is
+ * drawn. Strictly: an equal depth is a tie, which the file's order decides. The buffer
+ * does not change while the frame is walked, so threads may read it (tiles and slices
+ * alike: a slice's occluders are what it drew). Not with face culling (an occluder facing
+ * away this frame is not drawn), a hierarchy's cut (its triangles change every frame),
+ * another depth method, the overdraw view, wireframe, or a rasterizer other than edge or
+ * tiled. The picture is the same bytes (tests/unit/test_hidden.c, along a moving camera);
+ * frame_stats.occluders counts them and tris_occluded, clusters_occluded what they hid (of
+ * tris_hidden, clusters_hidden). The first frame has none.
  *
  * Owns: per-item vertex outputs and the two batches, allocated once and reused across
  * frames, so a frame performs no allocation once the largest mesh has been seen. One per
@@ -110,6 +130,11 @@ struct frontend {
         struct edge_table edges;  /* wire outline: the level's edges (built when first drawn) */
         uint8_t *facing;          /* wire outline: per triangle, scratch */
         uint32_t facing_cap;
+        /* occluders (frontend.c's occluders_draw): the triangles of `level` the last frame
+         * drew (set up with a pixel centre, unclipped), and this frame's, being listed */
+        uint32_t *occ, n_occ, occ_cap;
+        const struct mesh *occ_level;
+        uint32_t *drew, n_drew, drew_cap;
     } *items;
     int n_items;
     /* set-up triangles: front end -> back end. With a pool, the pool draws one batch while
@@ -140,6 +165,17 @@ struct frontend {
     struct vertex_pos *pos;
     uint32_t *vslot;
     size_t pos_cap, vslot_cap;
+    /* the occluder depth of this frame (occluders_draw): per pixel, the farthest corner of
+     * the nearest last-frame triangle whose inside holds its centre (INFINITY: none); the
+     * item whose occluders the next frontend_triangles draws and whose triangles it lists
+     * (the plan sets it; NULL: none) */
+    float *occ;
+    size_t occ_cap;
+    bool occ_any;
+    struct frontend_item *occ_item;
+    float *occ_xyz;
+    struct vertex_pos *occ_pos;
+    size_t occ_xyz_cap;
 };
 
 /* Batches of batch_cap set-up triangles (tests: the picture must not depend on it). 0 or

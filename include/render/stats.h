@@ -36,6 +36,9 @@ struct frame_stats {
      * tris_rejected, tris_no_centre and tris_hidden. */
     uint64_t clusters_tested, clusters_frustum, clusters_facing, clusters_no_centre,
         clusters_hidden, clusters_drawn;
+    /* occluders (--occluders; frontend.h, "Occluders"): last frame's triangles drawn into
+     * the occluder depth, and of tris_hidden and clusters_hidden those found behind it */
+    uint64_t occluders, tris_occluded, clusters_occluded;
     /* the cluster hierarchy (scene/dag.h, --lod auto): clusters in the cut (drawn or culled),
      * their triangles, and a bit per level they come from */
     uint64_t dag_cut, dag_tris;

@@ -83,6 +83,7 @@ static const struct flag flags[] = {
     ENUM_FLAG("--cull", C_DRAW | C_BENCH, "face culling", render_cull_names, render.cull),
     ENUM_FLAG("--cluster-cull", C_DRAW | C_BENCH, "drop whole clusters of 64 triangles that cannot reach a pixel (outside the view, facing away when culled, between pixel centres, or with --hidden-cull behind the depth drawn so far) before their vertices are transformed; never changes a picture", render_cluster_cull_names, render.cluster_cull),
     ENUM_FLAG("--hidden-cull", C_DRAW | C_BENCH, "drop a triangle whose nearest corner is at or behind what the depth buffer already holds over its whole pixel box (the batches drawn so far, one thread at a time), before its vertices are lit or it is set up; never changes a picture", render_hidden_cull_names, render.hidden_cull),
+    ENUM_FLAG("--occluders", C_DRAW | C_BENCH, "draw each item's triangles of the last frame first, at this frame's view, into a depth of their own, and drop a cluster or triangle strictly behind them over its whole box before its vertices are made; never changes a picture", render_occluders_names, render.occluders),
     {"--hidden-lines", F_HIDDEN_LINES, ARG_NONE, C_DRAW, NULL, "wire: hide edges behind the model's surfaces", NULL, 0},
     ENUM_FLAG("--wire", C_DRAW | C_BENCH, "wire: which edges: all, outline (silhouettes, creases and borders) or auto (all while readable: outline when they would light over half of the model's area)", render_wire_names, render.wire),
     ENUM_FLAG("--view", C_DRAW, "what the picture shows", render_view_names, render.view),

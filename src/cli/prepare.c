@@ -210,6 +210,11 @@ void prepare_print_stats(const struct frame_stats *st)
                 (unsigned long long)st->clusters_frustum, (unsigned long long)st->clusters_facing,
                 (unsigned long long)st->clusters_no_centre,
                 (unsigned long long)st->clusters_hidden, (unsigned long long)st->clusters_drawn);
+    if (st->occluders)
+        fprintf(stderr, "occluders: %llu triangles of the last frame; behind them %llu "
+                        "clusters and %llu triangles (of those hidden)\n",
+                (unsigned long long)st->occluders, (unsigned long long)st->clusters_occluded,
+                (unsigned long long)st->tris_occluded);
     if (st->dag_cut) {
         int lo = __builtin_ctz(st->dag_levels), hi = 31 - __builtin_clz(st->dag_levels);
         fprintf(stderr, "lod: cluster hierarchy, a cut of %llu clusters of levels %d-%d, %llu "

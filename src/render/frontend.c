@@ -34,6 +34,8 @@ void frontend_free(struct frontend *fe)
     for (int i = 0; i < fe->n_items; i++) {
         free(fe->items[i].v);
         free(fe->items[i].facing);
+        free(fe->items[i].occ);
+        free(fe->items[i].drew);
         edge_table_free(&fe->items[i].edges);
     }
     free(fe->items);
@@ -45,6 +47,9 @@ void frontend_free(struct frontend *fe)
     free(fe->marks);
     free(fe->pos);
     free(fe->vslot);
+    free(fe->occ);
+    free(fe->occ_xyz);
+    free(fe->occ_pos);
     memset(fe, 0, sizeof *fe);
 }
 
@@ -55,6 +60,8 @@ void frontend_begin(struct frontend *fe, const struct frame *f, struct workers *
     fe->ctx = ctx;
     fe->n_ctx = n_ctx;
     fe->flush_at = fe->workers ? FRONTEND_FLUSH_THREADS : FRONTEND_FLUSH_ONE_THREAD;
+    fe->occ_any = false;
+    fe->occ_item = NULL;
     batch_reset(&fe->batch[fe->cur]);
     for (int k = 0; k < n_ctx; k++)
         ctx[k] = f->span;
@@ -253,6 +260,8 @@ struct tri_walk {
     uint32_t pos_done;        /* by position: positions 0 .. pos_done-1 projected */
     const float *hide;        /* the depth buffer hidden triangles are tested on, or NULL */
     uint64_t n_hidden;
+    const float *occ;         /* the occluder depth (struct frontend's occ), or NULL */
+    struct frontend_item *drew; /* the item whose drawn triangles are listed, or NULL */
 };
 
 /* The clip position of object-space point q: every kernel's vertex_run's doubles in its
@@ -379,6 +388,38 @@ static inline bool hidden_behind(const float *depth, int fb_w, const int64_t box
     return true;
 }
 
+/* Is a triangle (or a cluster) whose depth is at least z_lo everywhere behind the occluders
+ * over its pixel box: strictly behind the occluder depth at every pixel centre (an occluder
+ * is drawn this frame: its own fragments there are at that depth or nearer, so a fragment
+ * strictly behind it never shows, whatever the order; a tie could)? Boxes of more than
+ * max_px pixels are not tested. */
+static inline bool occluded(const float *occ, int fb_w, const int64_t box[4], float z_lo,
+                            int64_t max_px)
+{
+    if ((box[2] - box[0] + 1) * (box[3] - box[1] + 1) > max_px)
+        return false;
+    for (int64_t y = box[1]; y <= box[3]; y++) {
+        const float *row = occ + y * fb_w;
+        for (int64_t x = box[0]; x <= box[2]; x++)
+            if (!(z_lo > row[x]))
+                return false;
+    }
+    return true;
+}
+
+/* room for one more of item d's drawn triangles; false: out of memory (the list stops) */
+static bool drew_room(struct frontend_item *d)
+{
+    if (d->n_drew < d->drew_cap)
+        return true;
+    uint32_t cap = d->drew_cap ? 2 * d->drew_cap : 4096;
+    uint32_t *g = realloc(d->drew, (size_t)cap * sizeof *g);
+    if (!g)
+        return false;
+    d->drew = g, d->drew_cap = cap;
+    return true;
+}
+
 /* the triangles list[0 .. n) that passed filter (below): their vertices made (by position:
  * their positions projected), each one's box, hidden test, culling, setup, clipping and
  * shading (frontend.h) */
@@ -399,8 +440,9 @@ walk(struct frontend *fe, struct frame *f, struct tri_walk *w, const uint32_t *l
     struct batch *bt = &fe->batch[fe->cur];
     /* counted in locals, added once: through the stats pointer every count would be a
      * memory update the compiler must keep in order with the batch's stores */
-    uint64_t n_culled = 0, n_no_centre = 0, n_hidden = 0;
-    const float *hide = w->hide;
+    uint64_t n_culled = 0, n_no_centre = 0, n_hidden = 0, n_occluded = 0;
+    const float *hide = w->hide, *occ = w->occ;
+    struct frontend_item *drew = w->drew;
     const int fb_w = f->fb->w, fb_h = f->fb->h;
     const bool culls = !depth_only && (cull != CULL_NONE || by_material); /* (reads clip) */
     struct vertex_out snapped[3]; /* by position: a triangle's snapped corners for setup */
@@ -422,11 +464,16 @@ walk(struct frontend *fe, struct frame *f, struct tri_walk *w, const uint32_t *l
             unclipped = !(any & VERTEX_NEEDS_CLIP);
             if (unclipped)
                 setup_box_xy(p0->fx, p0->fy, p1->fx, p1->fy, p2->fx, p2->fy, fb_w, fb_h, box);
-            if (hide && unclipped &&
-                hidden_behind(hide, fb_w, box, min3f(p0->z, p1->z, p2->z),
-                              FRONTEND_HIDDEN_MAX_BOX)) {
-                n_hidden++;
-                continue;
+            if (unclipped && (hide || occ)) {
+                const float z_lo = min3f(p0->z, p1->z, p2->z);
+                if (hide && hidden_behind(hide, fb_w, box, z_lo, FRONTEND_HIDDEN_MAX_BOX)) {
+                    n_hidden++;
+                    continue;
+                }
+                if (occ && occluded(occ, fb_w, box, z_lo, FRONTEND_HIDDEN_MAX_BOX)) {
+                    n_hidden++, n_occluded++;
+                    continue;
+                }
             }
             if (unclipped && !culls) { /* setup reads the snapped corners alone: the
                                           records wait until it draws the triangle */
@@ -445,12 +492,17 @@ walk(struct frontend *fe, struct frame *f, struct tri_walk *w, const uint32_t *l
             unclipped = !(any & VERTEX_NEEDS_CLIP);
             if (unclipped)
                 setup_box(v[0], v[1], v[2], fb_w, fb_h, box);
-            if (hide && unclipped &&
-                hidden_behind(hide, fb_w, box,
-                              min3f(corner_depth(v[0]), corner_depth(v[1]), corner_depth(v[2])),
-                              FRONTEND_HIDDEN_MAX_BOX)) {
-                n_hidden++;
-                continue;
+            if (unclipped && (hide || occ)) {
+                const float z_lo =
+                    min3f(corner_depth(v[0]), corner_depth(v[1]), corner_depth(v[2]));
+                if (hide && hidden_behind(hide, fb_w, box, z_lo, FRONTEND_HIDDEN_MAX_BOX)) {
+                    n_hidden++;
+                    continue;
+                }
+                if (occ && occluded(occ, fb_w, box, z_lo, FRONTEND_HIDDEN_MAX_BOX)) {
+                    n_hidden++, n_occluded++;
+                    continue;
+                }
             }
         }
         /* culling: once per source triangle, never per clipped piece */
@@ -483,6 +535,9 @@ walk(struct frontend *fe, struct frame *f, struct tri_walk *w, const uint32_t *l
             t->rich = rich;
             bt->n_tris++;
             stats->tris_drawn++;
+            if (drew && m->materials[m->tri_material[i]].alpha_mode == MAT_OPAQUE &&
+                drew_room(drew)) /* (a cut-out's pixels may be discarded: no occluder) */
+                drew->drew[drew->n_drew++] = i;
             continue;
         }
         shade_vertices(fe, m, f, i, v, true); /* clipping interpolates the varyings */
@@ -493,6 +548,7 @@ walk(struct frontend *fe, struct frame *f, struct tri_walk *w, const uint32_t *l
     w->n_culled += n_culled;
     w->n_no_centre += n_no_centre;
     w->n_hidden += n_hidden;
+    stats->tris_occluded += n_occluded;
     return 0;
 }
 
@@ -723,12 +779,19 @@ static int cluster_verdict(struct frontend *fe, struct frame *f, const struct tr
                            enum cluster_verdict *out, struct err *e)
 {
     struct cluster_rect r;
-    *out = cluster_test(cv, c, w->hide ? &r : NULL);
-    if (*out != CLUSTER_DRAW || !w->hide || !r.valid)
+    *out = cluster_test(cv, c, w->hide || w->occ ? &r : NULL);
+    if (*out != CLUSTER_DRAW || !(w->hide || w->occ) || !r.valid)
+        return 0;
+    const int64_t box[4] = {r.x0, r.y0, r.x1, r.y1};
+    if (w->occ && occluded(w->occ, f->fb->w, box, r.z_lo, FRONTEND_HIDDEN_MAX_RECT)) {
+        *out = CLUSTER_HIDDEN;
+        f->stats->clusters_occluded++;
+        return 0;
+    }
+    if (!w->hide)
         return 0;
     if (fe->batch[fe->cur].n_tris >= FRONTEND_CLUSTER_FLUSH && flush(fe, f, e))
         return -1;
-    const int64_t box[4] = {r.x0, r.y0, r.x1, r.y1};
     if (hidden_behind(w->hide, f->fb->w, box, r.z_lo, FRONTEND_HIDDEN_MAX_RECT))
         *out = CLUSTER_HIDDEN;
     return 0;
@@ -1086,6 +1149,84 @@ static bool walks_by_heads(const struct mesh *m, int fb_w, int fb_h, int ratio)
     return ratio >= 0 && m->n_verts > (uint64_t)ratio * (uint64_t)fb_w * (uint64_t)fb_h;
 }
 
+/* The occluders of item d — the triangles of m it drew last frame, when m is the level it
+ * drew then — into fe->occ at this frame's view: their corners positioned as the vertex
+ * stage positions them (the kernel's position_run: the same snapped window positions and
+ * depths), and at each pixel centre strictly inside one (a rasterizer covers those, whatever
+ * its rule for edges) the farthest of its corners' depths kept where it is nearer than what
+ * is there: setup clamps every pixel's depth to its corners' range, so the triangle, drawn
+ * this frame, puts its own depth there at most that. One that needs clipping is left out.
+ * 0, or -1 out of memory (fe->occ as it was). */
+static int occluders_draw(struct frontend *fe, const struct frame *f, const struct mesh *m,
+                          const struct frontend_item *d)
+{
+    if (d->occ_level != m || !d->n_occ)
+        return 0;
+    const int fb_w = f->fb->w, fb_h = f->fb->h;
+    const size_t npx = (size_t)fb_w * (size_t)fb_h, nc = (size_t)d->n_occ * 3;
+    if (npx > fe->occ_cap) {
+        float *g = malloc(npx * sizeof *g);
+        if (!g)
+            return -1;
+        free(fe->occ);
+        fe->occ = g, fe->occ_cap = npx;
+        fe->occ_any = false;
+    }
+    if (nc > fe->occ_xyz_cap) {
+        float *x = malloc(nc * 3 * sizeof *x);
+        struct vertex_pos *q = malloc(nc * sizeof *q);
+        if (!x || !q) {
+            free(x), free(q);
+            return -1;
+        }
+        free(fe->occ_xyz), free(fe->occ_pos);
+        fe->occ_xyz = x, fe->occ_pos = q, fe->occ_xyz_cap = nc;
+    }
+    if (!fe->occ_any) {
+        for (size_t i = 0; i < npx; i++)
+            fe->occ[i] = INFINITY;
+        fe->occ_any = true;
+    }
+    for (size_t k = 0; k < nc; k++) { /* (a mesh freed and another made at its address: its
+                                           own triangles, drawn or not as any other) */
+        const uint32_t t = d->occ[k / 3] < m->n_opaque ? d->occ[k / 3] : 0;
+        memcpy(&fe->occ_xyz[3 * k], m->verts[m->tris[t][k % 3]].pos, 3 * sizeof *fe->occ_xyz);
+    }
+    f->k->position_run(fe->occ_xyz, 3 * sizeof *fe->occ_xyz, &f->u, fe->occ_pos, 0, (uint32_t)nc);
+    const int64_t one = VIEWPORT_SUBPIX_ONE, half = one / 2;
+    for (size_t t = 0; t < nc; t += 3) {
+        const struct vertex_pos *a = &fe->occ_pos[t], *b = a + 1, *c = a + 2;
+        const uint32_t i = d->occ[t / 3];
+        if ((a->outcode | b->outcode | c->outcode) & VERTEX_NEEDS_CLIP || i >= m->n_opaque ||
+            m->materials[m->tri_material[i]].alpha_mode != MAT_OPAQUE)
+            continue;
+        int64_t box[4];
+        if (!setup_box_xy(a->fx, a->fy, b->fx, b->fy, c->fx, c->fy, fb_w, fb_h, box))
+            continue;
+        const int64_t ax = a->fx, ay = a->fy, bx = b->fx, by = b->fy, cx = c->fx, cy = c->fy;
+        const int64_t area = (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
+        if (area == 0)
+            continue;
+        const int64_t sg = area > 0 ? 1 : -1;
+        float z = a->z > b->z ? a->z : b->z;
+        z = c->z > z ? c->z : z;
+        for (int64_t y = box[1]; y <= box[3]; y++) {
+            const int64_t py = y * one + half;
+            float *row = fe->occ + y * fb_w;
+            for (int64_t x = box[0]; x <= box[2]; x++) {
+                const int64_t px = x * one + half;
+                const int64_t e0 = ((bx - ax) * (py - ay) - (by - ay) * (px - ax)) * sg;
+                const int64_t e1 = ((cx - bx) * (py - by) - (cy - by) * (px - bx)) * sg;
+                const int64_t e2 = ((ax - cx) * (py - cy) - (ay - cy) * (px - cx)) * sg;
+                if (e0 > 0 && e1 > 0 && e2 > 0 && z < row[x])
+                    row[x] = z;
+            }
+        }
+        f->stats->occluders++;
+    }
+    return 0;
+}
+
 bool frontend_by_clusters(const struct mesh *m, const struct render_opts *o, bool wire)
 {
     return m->clusters && o->cluster_cull == CLUSTER_CULL_ON && !wire &&
@@ -1134,12 +1275,39 @@ int frontend_triangles(struct frontend *fe, struct frame *f, const struct draw_i
         f->fb->depth_mode == DEPTH_Z && !f->fb->overdraw && f->span.mode != SHADE_WIRE &&
         o->view != VIEW_WIRE_OVERLAY)
         w.hide = f->fb->depth;
+    /* occluders (occluders_draw): with the hidden test's conditions, a rasterizer whose
+     * coverage holds every strictly inside centre, and no culling (an occluder must be
+     * drawn: one facing away would not be); a mesh on the features path may discard its
+     * pixels, so it is no occluder (it is tested against them) */
+    struct frontend_item *d = fe->occ_item;
+    fe->occ_item = NULL;
+    const bool occ_ok = d && o->occluders == OCCLUDERS_ON &&
+                        o->hidden_cull == HIDDEN_CULL_ON && !depth_only && !cut &&
+                        f->fb->depth_mode == DEPTH_Z && !f->fb->overdraw &&
+                        f->span.mode != SHADE_WIRE && o->view != VIEW_WIRE_OVERLAY &&
+                        (o->raster == RASTER_EDGE || o->raster == RASTER_TILED);
+    if (occ_ok && w.cull == CULL_NONE && !w.by_material) {
+        if (occluders_draw(fe, f, m, d))
+            return err_set(e, "out of memory for occluders");
+        d->n_drew = 0;
+        w.drew = d;
+    } else if (d) {
+        d->n_occ = 0;
+    }
+    if (occ_ok && fe->occ_any)
+        w.occ = fe->occ;
     int rc = cut        ? walk_cut(fe, f, &w, i0, i1, by, e)
              : clusters ? walk_clusters(fe, f, &w, i0, i1, by, e)
              : by != BY_VERTEX ? walk_by_position(fe, f, &w, i0, i1, by, e)
                         : walk_range(fe, f, &w, i0, i1, &verts_from, BY_VERTEX, e);
     if (rc)
         return -1;
+    if (w.drew) { /* this frame's drawn triangles: the next frame's occluders */
+        uint32_t *t = d->occ, tc = d->occ_cap;
+        d->occ = d->drew, d->occ_cap = d->drew_cap, d->n_occ = d->n_drew;
+        d->drew = t, d->drew_cap = tc, d->n_drew = 0;
+        d->occ_level = m;
+    }
     shade_queued(fe, f);
     struct frame_stats *stats = f->stats;
     stats->tris_in += cut ? w.n_cut : i1 - i0;

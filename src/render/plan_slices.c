@@ -170,6 +170,8 @@ static void slice_main(void *arg, int k)
                 from = idx[i] < from ? idx[i] : from;
         }
         struct vertex_out *vo = frontend_item_verts(&sl->fe, it, m->n_verts, e);
+        if (vo) /* (the occluders: what this slice drew of the item last frame) */
+            sl->fe.occ_item = &sl->fe.items[it];
         if (!vo || frontend_triangles(&sl->fe, &f, &j->items[it], m, vo, false, i0, i1, from,
                                       e)) {
             sl->rc = -1;
@@ -265,6 +267,9 @@ int plan_slices_draw(struct plan_slices *s, struct workers *w, const struct kern
         stats->clusters_no_centre += st->clusters_no_centre;
         stats->clusters_hidden += st->clusters_hidden;
         stats->clusters_drawn += st->clusters_drawn;
+        stats->occluders += st->occluders;
+        stats->tris_occluded += st->tris_occluded;
+        stats->clusters_occluded += st->clusters_occluded;
         stats->dag_cut += st->dag_cut;
         stats->dag_tris += st->dag_tris;
         stats->dag_levels |= st->dag_levels;

@@ -94,6 +94,7 @@ int plan_tiles_draw(struct plan_tiles *t, struct workers *w, const struct kernel
             if (pass == 2 && !pass1)
                 frame_vertices(w, f->k, m, &f->u, vo);
             if (pass == 1) {
+                t->fe.occ_item = &t->fe.items[it];
                 if (frontend_triangles(&t->fe, f, item, m, vo, wire, 0, m->n_opaque, 0, e))
                     goto fail;
             } else {

@@ -15,6 +15,7 @@ static const char *const lod_names[] = {"off", "auto"}; /* LOD_RATIO is a number
 static const char *const split_names[] = {"auto", "tiles", "slices"};
 static const char *const cluster_cull_names[] = {"off", "on"};
 static const char *const hidden_cull_names[] = {"off", "on"};
+static const char *const occluders_names[] = {"off", "on"};
 static const char *const wire_names[] = {"auto", "all", "outline"};
 static const char *const kernel_names[] = {"auto", "ref", "sse2", "avx2", "avx2-4", "avx2-8"};
 #define COUNT(a) ((int)(sizeof a / sizeof *a))
@@ -31,6 +32,7 @@ _Static_assert(COUNT(split_names) == SPLIT_COUNT, "split names");
 _Static_assert(COUNT(kernel_names) == KERNEL_ISA_COUNT, "kernel names");
 _Static_assert(COUNT(cluster_cull_names) == CLUSTER_CULL_COUNT, "cluster cull names");
 _Static_assert(COUNT(hidden_cull_names) == HIDDEN_CULL_COUNT, "hidden cull names");
+_Static_assert(COUNT(occluders_names) == OCCLUDERS_COUNT, "occluders names");
 _Static_assert(COUNT(wire_names) == WIRE_COUNT && WIRE_AUTO == 0, "wire names");
 
 const struct render_enum render_shade_names = {shade_names, SHADE_COUNT};
@@ -46,6 +48,7 @@ const struct render_enum render_split_names = {split_names, SPLIT_COUNT};
 const struct render_enum render_kernel_names = {kernel_names, KERNEL_ISA_COUNT};
 const struct render_enum render_cluster_cull_names = {cluster_cull_names, CLUSTER_CULL_COUNT};
 const struct render_enum render_hidden_cull_names = {hidden_cull_names, HIDDEN_CULL_COUNT};
+const struct render_enum render_occluders_names = {occluders_names, OCCLUDERS_COUNT};
 const struct render_enum render_wire_names = {wire_names, WIRE_COUNT};
 
 void render_opts_default(struct render_opts *o)
@@ -63,6 +66,7 @@ void render_opts_default(struct render_opts *o)
     o->cull = CULL_AUTO;
     o->cluster_cull = CLUSTER_CULL_ON;
     o->hidden_cull = HIDDEN_CULL_ON;
+    o->occluders = OCCLUDERS_ON;
     o->heads_ratio = RENDER_HEADS_RATIO;
     o->view = VIEW_COLOR;
     o->textures = true;
