@@ -33,7 +33,7 @@
 # sphere's files are made once in build/bench/scale (never in the repository). Then the
 # memory each model's chain and hierarchy hold against its own geometry (render --stats's
 # "levels:" and "hierarchy:" lines, from the first screen's runs), and the level cache's
-# load times. Numbers, never verdicts.
+# load times, and what the occluders (--occluders) save. Numbers, never verdicts.
 set -u
 cd "$(dirname "$0")/.."
 BIN=${RASTTY_BIN:-./rastty}
@@ -177,6 +177,28 @@ for m in "${models[@]}"; do
     read -r db _ dx own <<<"${mem_dag[$name]:-- - - -}"
     printf '  %-20s %9s %8s %9s %8s %9s\n' "$name" "$cb" "$cx" "$db" "$dx" "${own:--}"
 done
+# occluders (--occluders, on by default; render/frontend.h, "Occluders"): each item's
+# triangles of the last frame hide what lies strictly behind them, from render --repeat's
+# second frame on: --lod auto with them off and on, one thread, the pictures compared
+if "$BIN" --help 2>&1 | grep -q -- --occluders; then
+    echo "-- occluders: --lod auto, one thread, median_ms with --occluders off / on; the triangles they hid"
+    printf '  %-20s %-8s %9s %9s %8s %6s %9s\n' model size noocc_ms occ_ms speedup bytes occluded
+    for m in "${models[@]}"; do
+        name=$(basename "$m"); name=${name%.*}
+        for size in $screens; do
+            o=$D/$name.$size.occ
+            cam=(--eye 0.5,0.364,0.8 --frame --size "$size" --threads 1 --repeat "$repeat" --stats --lod auto)
+            a=$("$BIN" render "$m" "${cam[@]}" --occluders off --out "$o.0.ppm" --depth-out "$o.0.pfm" 2>&1 | ms_of)
+            st=$("$BIN" render "$m" "${cam[@]}" --out "$o.1.ppm" --depth-out "$o.1.pfm" 2>&1)
+            b=$(ms_of <<<"$st")
+            hid=$(sed -n 's/^occluders: .* \([0-9]*\) triangles (of those hidden)$/\1/p' <<<"$st")
+            eq=same
+            cmp -s "$o.0.ppm" "$o.1.ppm" && cmp -s "$o.0.pfm" "$o.1.pfm" || eq=DIFFER
+            sp=$(awk -v a="$a" -v b="$b" 'BEGIN { if (b > 0) printf "%.2fx", a / b; else print "-" }')
+            printf '  %-20s %-8s %9s %9s %8s %6s %9s\n' "$name" "$size" "$a" "$b" "$sp" "$eq" "${hid:-0}"
+        done
+    done
+fi
 # the cache of chains (lod_cache.h): render's load_ms with --lod off, with --lod auto
 # building the chain (an empty cache folder), and with --lod auto reading the file the run
 # before wrote

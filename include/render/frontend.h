@@ -115,6 +115,14 @@
 #define FRONTEND_HIDDEN_MAX_BOX 1024
 /* a cluster's rectangle read for the hidden test, at most (pixels) */
 #define FRONTEND_HIDDEN_MAX_RECT 4096
+/* Occluders ("Occluders" above) pay when what they hide beyond the depth so far, in
+ * triangles walked (a cluster: CLUSTER_MAX_TRIS), is FRONTEND_OCC_PAYS times their number
+ * or more; an item whose occluders hid less in two frames running (the first list after a
+ * frame without them holds every triangle drawn, the overdrawn too) draws none for the next
+ * FRONTEND_OCC_REST frames (it still lists what it draws), then tries again
+ * (--occluders always: never rests) */
+#define FRONTEND_OCC_PAYS 1.5
+#define FRONTEND_OCC_REST 8
 /* before a cluster's hidden test, a batch of this many triangles or more is drawn first
  * (the car at 160x96, the fastest of 7 runs: 0 4.35 ms, 16 4.30, 64 4.27-4.35, 256 4.39,
  * only when full 4.47) */
@@ -135,6 +143,8 @@ struct frontend {
         uint32_t *occ, n_occ, occ_cap;
         const struct mesh *occ_level;
         uint32_t *drew, n_drew, drew_cap;
+        uint8_t occ_rest;    /* frames its occluders sit out (they hid too little) */
+        uint8_t occ_strikes; /* frames running its occluders hid too little */
     } *items;
     int n_items;
     /* set-up triangles: front end -> back end. With a pool, the pool draws one batch while

@@ -95,9 +95,10 @@ enum hidden_cull { HIDDEN_CULL_OFF, HIDDEN_CULL_ON, HIDDEN_CULL_COUNT };
 /* Occluders (--occluders; frontend.h, "Occluders"): the triangles each draw item drew in
  * the last frame, drawn first at this frame's view into a depth of their own; a cluster or
  * triangle strictly behind them over its whole box is dropped as hidden. Never changes a
- * picture. On by default (README, "Occluders": at 160x96 the sports car 3.54 -> 3.01 ms,
+ * picture. on: an item's occluders sit out a few frames when they hid too little for their
+ * cost (frontend.h's FRONTEND_OCC_PAYS); always: never (tests). On by default (README, "Occluders": at 160x96 the sports car 3.54 -> 3.01 ms,
  * lost_empire 6.72 -> 4.85, from the second frame on). */
-enum occluders { OCCLUDERS_OFF, OCCLUDERS_ON, OCCLUDERS_COUNT };
+enum occluders { OCCLUDERS_OFF, OCCLUDERS_ON, OCCLUDERS_ALWAYS, OCCLUDERS_COUNT };
 
 enum thread_split { SPLIT_AUTO, SPLIT_TILES, SPLIT_SLICES, SPLIT_COUNT };
 

@@ -783,17 +783,18 @@ static int cluster_verdict(struct frontend *fe, struct frame *f, const struct tr
     if (*out != CLUSTER_DRAW || !(w->hide || w->occ) || !r.valid)
         return 0;
     const int64_t box[4] = {r.x0, r.y0, r.x1, r.y1};
-    if (w->occ && occluded(w->occ, f->fb->w, box, r.z_lo, FRONTEND_HIDDEN_MAX_RECT)) {
-        *out = CLUSTER_HIDDEN;
-        f->stats->clusters_occluded++;
-        return 0;
+    if (w->hide) {
+        if (fe->batch[fe->cur].n_tris >= FRONTEND_CLUSTER_FLUSH && flush(fe, f, e))
+            return -1;
+        if (hidden_behind(w->hide, f->fb->w, box, r.z_lo, FRONTEND_HIDDEN_MAX_RECT)) {
+            *out = CLUSTER_HIDDEN;
+            return 0;
+        }
     }
-    if (!w->hide)
-        return 0;
-    if (fe->batch[fe->cur].n_tris >= FRONTEND_CLUSTER_FLUSH && flush(fe, f, e))
-        return -1;
-    if (hidden_behind(w->hide, f->fb->w, box, r.z_lo, FRONTEND_HIDDEN_MAX_RECT))
-        *out = CLUSTER_HIDDEN;
+    if (w->occ && occluded(w->occ, f->fb->w, box, r.z_lo, FRONTEND_HIDDEN_MAX_RECT)) {
+        *out = CLUSTER_HIDDEN; /* (what the depth so far did not find: the occluders' own) */
+        f->stats->clusters_occluded++;
+    }
     return 0;
 }
 
@@ -1157,6 +1158,7 @@ static bool walks_by_heads(const struct mesh *m, int fb_w, int fb_h, int ratio)
  * is there: setup clamps every pixel's depth to its corners' range, so the triangle, drawn
  * this frame, puts its own depth there at most that. One that needs clipping is left out.
  * 0, or -1 out of memory (fe->occ as it was). */
+#define OCC_NARROW 24 /* pixels: an occluder's box narrower is tested centre by centre */
 static int occluders_draw(struct frontend *fe, const struct frame *f, const struct mesh *m,
                           const struct frontend_item *d)
 {
@@ -1183,8 +1185,9 @@ static int occluders_draw(struct frontend *fe, const struct frame *f, const stru
         fe->occ_xyz = x, fe->occ_pos = q, fe->occ_xyz_cap = nc;
     }
     if (!fe->occ_any) {
+        float *occ = fe->occ; /* (a local: the stores may not alias fe) */
         for (size_t i = 0; i < npx; i++)
-            fe->occ[i] = INFINITY;
+            occ[i] = INFINITY;
         fe->occ_any = true;
     }
     for (size_t k = 0; k < nc; k++) { /* (a mesh freed and another made at its address: its
@@ -1210,17 +1213,45 @@ static int occluders_draw(struct frontend *fe, const struct frame *f, const stru
         const int64_t sg = area > 0 ? 1 : -1;
         float z = a->z > b->z ? a->z : b->z;
         z = c->z > z ? c->z : z;
-        for (int64_t y = box[1]; y <= box[3]; y++) {
-            const int64_t py = y * one + half;
-            float *row = fe->occ + y * fb_w;
-            for (int64_t x = box[0]; x <= box[2]; x++) {
-                const int64_t px = x * one + half;
-                const int64_t e0 = ((bx - ax) * (py - ay) - (by - ay) * (px - ax)) * sg;
-                const int64_t e1 = ((cx - bx) * (py - by) - (cy - by) * (px - bx)) * sg;
-                const int64_t e2 = ((ax - cx) * (py - cy) - (ay - cy) * (px - cx)) * sg;
-                if (e0 > 0 && e1 > 0 && e2 > 0 && z < row[x])
-                    row[x] = z;
+        /* the edge functions (exact: whole numbers of 1/256 px squared) at the box's first
+         * centre, stepped by rows and columns; a centre is inside where all three are
+         * positive: tested one by one in a narrow box, and in a wide one each row's run
+         * found from where each edge crosses zero */
+        int64_t e[3], sx[3], sy[3];
+        {
+            const int64_t px0 = box[0] * one + half, py0 = box[1] * one + half;
+            const int64_t ex[3][2] = {{bx - ax, by - ay}, {cx - bx, cy - by}, {ax - cx, ay - cy}};
+            const int64_t ox[3][2] = {{ax, ay}, {bx, by}, {cx, cy}};
+            for (int k = 0; k < 3; k++) {
+                e[k] = (ex[k][0] * (py0 - ox[k][1]) - ex[k][1] * (px0 - ox[k][0])) * sg;
+                sx[k] = -ex[k][1] * one * sg;
+                sy[k] = ex[k][0] * one * sg;
             }
+        }
+        const bool narrow = box[2] - box[0] < OCC_NARROW;
+        for (int64_t y = box[1]; y <= box[3]; y++, e[0] += sy[0], e[1] += sy[1], e[2] += sy[2]) {
+            float *row = fe->occ + y * fb_w;
+            if (narrow) {
+                int64_t e0 = e[0], e1 = e[1], e2 = e[2];
+                for (int64_t x = box[0]; x <= box[2]; x++, e0 += sx[0], e1 += sx[1], e2 += sx[2])
+                    if ((e0 > 0) & (e1 > 0) & (e2 > 0) & (z < row[x]))
+                        row[x] = z;
+                continue;
+            }
+            int64_t lo = box[0], hi = box[2];
+            for (int k = 0; k < 3 && lo <= hi; k++) { /* e = e[k] + sx[k] (x - box[0]) > 0 */
+                if (sx[k] > 0) { /* from x - box[0] = floor(-e / sx) + 1 on */
+                    const int64_t q = -e[k] >= 0 ? -e[k] / sx[k] : -((e[k] + sx[k] - 1) / sx[k]);
+                    lo = box[0] + q + 1 > lo ? box[0] + q + 1 : lo;
+                } else if (sx[k] < 0) { /* up to x - box[0] = ceil(e / -sx) - 1 */
+                    const int64_t q = e[k] >= 0 ? (e[k] - sx[k] - 1) / -sx[k] : -(-e[k] / -sx[k]);
+                    hi = box[0] + q - 1 < hi ? box[0] + q - 1 : hi;
+                } else if (e[k] <= 0) {
+                    hi = lo - 1;
+                }
+            }
+            for (int64_t x = lo; x <= hi; x++)
+                row[x] = z < row[x] ? z : row[x];
         }
         f->stats->occluders++;
     }
@@ -1281,14 +1312,21 @@ int frontend_triangles(struct frontend *fe, struct frame *f, const struct draw_i
      * pixels, so it is no occluder (it is tested against them) */
     struct frontend_item *d = fe->occ_item;
     fe->occ_item = NULL;
-    const bool occ_ok = d && o->occluders == OCCLUDERS_ON &&
+    const bool occ_ok = d && o->occluders != OCCLUDERS_OFF &&
                         o->hidden_cull == HIDDEN_CULL_ON && !depth_only && !cut &&
                         f->fb->depth_mode == DEPTH_Z && !f->fb->overdraw &&
                         f->span.mode != SHADE_WIRE && o->view != VIEW_WIRE_OVERLAY &&
                         (o->raster == RASTER_EDGE || o->raster == RASTER_TILED);
+    const uint64_t occ0 = f->stats->occluders, hid0 = f->stats->tris_occluded,
+                   cl0 = f->stats->clusters_occluded;
+    bool occ_drawn = false;
     if (occ_ok && w.cull == CULL_NONE && !w.by_material) {
-        if (occluders_draw(fe, f, m, d))
+        if (d->occ_rest)
+            d->occ_rest--;
+        else if (occluders_draw(fe, f, m, d))
             return err_set(e, "out of memory for occluders");
+        else
+            occ_drawn = true;
         d->n_drew = 0;
         w.drew = d;
     } else if (d) {
@@ -1302,6 +1340,16 @@ int frontend_triangles(struct frontend *fe, struct frame *f, const struct draw_i
                         : walk_range(fe, f, &w, i0, i1, &verts_from, BY_VERTEX, e);
     if (rc)
         return -1;
+    if (occ_drawn) { /* what they hid that the depth so far did not, in triangles walked:
+                        too little for their cost, and they sit out FRONTEND_OCC_REST frames */
+        const uint64_t n = f->stats->occluders - occ0,
+                       hid = (f->stats->clusters_occluded - cl0) * CLUSTER_MAX_TRIS +
+                             (f->stats->tris_occluded - hid0);
+        if ((double)hid >= FRONTEND_OCC_PAYS * (double)n || o->occluders == OCCLUDERS_ALWAYS)
+            d->occ_strikes = 0;
+        else if (++d->occ_strikes >= 2)
+            d->occ_rest = FRONTEND_OCC_REST, d->occ_strikes = 0;
+    }
     if (w.drew) { /* this frame's drawn triangles: the next frame's occluders */
         uint32_t *t = d->occ, tc = d->occ_cap;
         d->occ = d->drew, d->occ_cap = d->drew_cap, d->n_occ = d->n_drew;

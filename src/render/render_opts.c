@@ -15,7 +15,7 @@ static const char *const lod_names[] = {"off", "auto"}; /* LOD_RATIO is a number
 static const char *const split_names[] = {"auto", "tiles", "slices"};
 static const char *const cluster_cull_names[] = {"off", "on"};
 static const char *const hidden_cull_names[] = {"off", "on"};
-static const char *const occluders_names[] = {"off", "on"};
+static const char *const occluders_names[] = {"off", "on", "always"};
 static const char *const wire_names[] = {"auto", "all", "outline"};
 static const char *const kernel_names[] = {"auto", "ref", "sse2", "avx2", "avx2-4", "avx2-8"};
 #define COUNT(a) ((int)(sizeof a / sizeof *a))

@@ -237,6 +237,7 @@ TEST(occluders_of_the_last_frame_change_no_byte_as_the_camera_moves)
             REQUIRE(pipeline_draw(q, items, 3, NULL, &cam, &o, &a, &st_off, NULL) == 0);
             o.hidden_cull = HIDDEN_CULL_ON;
             o.cluster_cull = CLUSTER_CULL_ON;
+            o.occluders = OCCLUDERS_ALWAYS; /* (in every frame, paying or not) */
             REQUIRE(pipeline_draw(p, items, 3, NULL, &cam, &o, &b, &st, NULL) == 0);
             frames++;
             differ += memcmp(a.rgb, b.rgb, (size_t)a.w * a.h * 3) != 0 ||
