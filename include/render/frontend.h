@@ -77,7 +77,10 @@
  * another depth method, the overdraw view, wireframe, or a rasterizer other than edge or
  * tiled. The picture is the same bytes (tests/unit/test_hidden.c, along a moving camera);
  * frame_stats.occluders counts them and tris_occluded, clusters_occluded what they hid (of
- * tris_hidden, clusters_hidden). The first frame has none.
+ * tris_hidden, clusters_hidden). The first frame has none. They are tested after the depth
+ * so far (so clusters_occluded, tris_occluded are what that did not find), and where they
+ * find little — a convex model, whose far side the file's order already hides — they cost
+ * more than they save: FRONTEND_OCC_PAYS below rests them.
  *
  * Owns: per-item vertex outputs and the two batches, allocated once and reused across
  * frames, so a frame performs no allocation once the largest mesh has been seen. One per
