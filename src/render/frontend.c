@@ -1190,10 +1190,22 @@ static int occluders_draw(struct frontend *fe, const struct frame *f, const stru
             occ[i] = INFINITY;
         fe->occ_any = true;
     }
-    for (size_t k = 0; k < nc; k++) { /* (a mesh freed and another made at its address: its
-                                           own triangles, drawn or not as any other) */
-        const uint32_t t = d->occ[k / 3] < m->n_opaque ? d->occ[k / 3] : 0;
-        memcpy(&fe->occ_xyz[3 * k], m->verts[m->tris[t][k % 3]].pos, 3 * sizeof *fe->occ_xyz);
+    const uint32_t n_occ = d->n_occ;
+    for (uint32_t q = 0; q < n_occ; q++) { /* (a mesh freed and another made at its address:
+                                              its own triangles, drawn or not as any other) */
+        /* (the corners a few triangles on fetched now: they lie all over the mesh) */
+        if (q + 16 < n_occ && d->occ[q + 16] < m->n_opaque)
+            __builtin_prefetch(m->tris[d->occ[q + 16]]);
+        if (q + 8 < n_occ && d->occ[q + 8] < m->n_opaque) {
+            const uint32_t *c = m->tris[d->occ[q + 8]];
+            __builtin_prefetch(&m->verts[c[0]]);
+            __builtin_prefetch(&m->verts[c[1]]);
+            __builtin_prefetch(&m->verts[c[2]]);
+        }
+        const uint32_t *c = m->tris[d->occ[q] < m->n_opaque ? d->occ[q] : 0];
+        for (int k = 0; k < 3; k++)
+            memcpy(&fe->occ_xyz[9 * (size_t)q + 3 * (size_t)k], m->verts[c[k]].pos,
+                   3 * sizeof *fe->occ_xyz);
     }
     f->k->position_run(fe->occ_xyz, 3 * sizeof *fe->occ_xyz, &f->u, fe->occ_pos, 0, (uint32_t)nc);
     const int64_t one = VIEWPORT_SUBPIX_ONE, half = one / 2;
@@ -1233,9 +1245,10 @@ static int occluders_draw(struct frontend *fe, const struct frame *f, const stru
             float *row = fe->occ + y * fb_w;
             if (narrow) {
                 int64_t e0 = e[0], e1 = e[1], e2 = e[2];
-                for (int64_t x = box[0]; x <= box[2]; x++, e0 += sx[0], e1 += sx[1], e2 += sx[2])
-                    if ((e0 > 0) & (e1 > 0) & (e2 > 0) & (z < row[x]))
-                        row[x] = z;
+                for (int64_t x = box[0]; x <= box[2]; x++, e0 += sx[0], e1 += sx[1], e2 += sx[2]) {
+                    const float r = row[x]; /* (stored whatever it is: no branch to miss) */
+                    row[x] = (e0 > 0) & (e1 > 0) & (e2 > 0) & (z < r) ? z : r;
+                }
                 continue;
             }
             int64_t lo = box[0], hi = box[2];
