@@ -464,16 +464,16 @@ walk(struct frontend *fe, struct frame *f, struct tri_walk *w, const uint32_t *l
             unclipped = !(any & VERTEX_NEEDS_CLIP);
             if (unclipped)
                 setup_box_xy(p0->fx, p0->fy, p1->fx, p1->fy, p2->fx, p2->fy, fb_w, fb_h, box);
-            if (unclipped && (hide || occ)) {
-                const float z_lo = min3f(p0->z, p1->z, p2->z);
-                if (hide && hidden_behind(hide, fb_w, box, z_lo, FRONTEND_HIDDEN_MAX_BOX)) {
-                    n_hidden++;
-                    continue;
-                }
-                if (occ && occluded(occ, fb_w, box, z_lo, FRONTEND_HIDDEN_MAX_BOX)) {
-                    n_hidden++, n_occluded++;
-                    continue;
-                }
+            if (hide && unclipped &&
+                hidden_behind(hide, fb_w, box, min3f(p0->z, p1->z, p2->z),
+                              FRONTEND_HIDDEN_MAX_BOX)) {
+                n_hidden++;
+                continue;
+            }
+            if (occ && unclipped &&
+                occluded(occ, fb_w, box, min3f(p0->z, p1->z, p2->z), FRONTEND_HIDDEN_MAX_BOX)) {
+                n_hidden++, n_occluded++;
+                continue;
             }
             if (unclipped && !culls) { /* setup reads the snapped corners alone: the
                                           records wait until it draws the triangle */
@@ -492,17 +492,19 @@ walk(struct frontend *fe, struct frame *f, struct tri_walk *w, const uint32_t *l
             unclipped = !(any & VERTEX_NEEDS_CLIP);
             if (unclipped)
                 setup_box(v[0], v[1], v[2], fb_w, fb_h, box);
-            if (unclipped && (hide || occ)) {
-                const float z_lo =
-                    min3f(corner_depth(v[0]), corner_depth(v[1]), corner_depth(v[2]));
-                if (hide && hidden_behind(hide, fb_w, box, z_lo, FRONTEND_HIDDEN_MAX_BOX)) {
-                    n_hidden++;
-                    continue;
-                }
-                if (occ && occluded(occ, fb_w, box, z_lo, FRONTEND_HIDDEN_MAX_BOX)) {
-                    n_hidden++, n_occluded++;
-                    continue;
-                }
+            if (hide && unclipped &&
+                hidden_behind(hide, fb_w, box,
+                              min3f(corner_depth(v[0]), corner_depth(v[1]), corner_depth(v[2])),
+                              FRONTEND_HIDDEN_MAX_BOX)) {
+                n_hidden++;
+                continue;
+            }
+            if (occ && unclipped &&
+                occluded(occ, fb_w, box,
+                         min3f(corner_depth(v[0]), corner_depth(v[1]), corner_depth(v[2])),
+                         FRONTEND_HIDDEN_MAX_BOX)) {
+                n_hidden++, n_occluded++;
+                continue;
             }
         }
         /* culling: once per source triangle, never per clipped piece */
@@ -1341,7 +1343,7 @@ int frontend_triangles(struct frontend *fe, struct frame *f, const struct draw_i
         else
             occ_drawn = true;
         d->n_drew = 0;
-        w.drew = d;
+        w.drew = d->occ_rest ? NULL : d; /* (resting, it lists only for the frame after) */
     } else if (d) {
         d->n_occ = 0;
     }
