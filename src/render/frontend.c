@@ -372,36 +372,21 @@ static inline float min3f(float a, float b, float c)
 
 /* Is a triangle (or a cluster's triangles) whose depth is at least z_lo everywhere hidden
  * over its pixel box by what the depth buffer holds (test LESS: a fragment at z_lo or behind
- * fails where the buffer is at z_lo or nearer)? Boxes of more than max_px pixels are not
- * tested (a triangle's: FRONTEND_HIDDEN_MAX_BOX; a cluster's: FRONTEND_HIDDEN_MAX_RECT). */
+ * fails where the buffer is at z_lo or nearer)? strict: by the occluder depth (struct
+ * frontend's occ), where it must lie strictly behind at every pixel centre — an occluder is
+ * drawn this frame, its own fragments there at that depth or nearer, so a fragment strictly
+ * behind it never shows whatever the order, but at a tie the order decides. Boxes of more
+ * than max_px pixels are not tested (a triangle's: FRONTEND_HIDDEN_MAX_BOX; a cluster's:
+ * FRONTEND_HIDDEN_MAX_RECT). */
 static inline bool hidden_behind(const float *depth, int fb_w, const int64_t box[4], float z_lo,
-                                 int64_t max_px)
+                                 int64_t max_px, const bool strict)
 {
     if ((box[2] - box[0] + 1) * (box[3] - box[1] + 1) > max_px)
         return false;
     for (int64_t y = box[1]; y <= box[3]; y++) {
         const float *row = depth + y * fb_w;
         for (int64_t x = box[0]; x <= box[2]; x++)
-            if (z_lo < row[x])
-                return false;
-    }
-    return true;
-}
-
-/* Is a triangle (or a cluster) whose depth is at least z_lo everywhere behind the occluders
- * over its pixel box: strictly behind the occluder depth at every pixel centre (an occluder
- * is drawn this frame: its own fragments there are at that depth or nearer, so a fragment
- * strictly behind it never shows, whatever the order; a tie could)? Boxes of more than
- * max_px pixels are not tested. */
-static inline bool occluded(const float *occ, int fb_w, const int64_t box[4], float z_lo,
-                            int64_t max_px)
-{
-    if ((box[2] - box[0] + 1) * (box[3] - box[1] + 1) > max_px)
-        return false;
-    for (int64_t y = box[1]; y <= box[3]; y++) {
-        const float *row = occ + y * fb_w;
-        for (int64_t x = box[0]; x <= box[2]; x++)
-            if (!(z_lo > row[x]))
+            if (strict ? !(z_lo > row[x]) : z_lo < row[x])
                 return false;
     }
     return true;
@@ -466,12 +451,13 @@ walk(struct frontend *fe, struct frame *f, struct tri_walk *w, const uint32_t *l
                 setup_box_xy(p0->fx, p0->fy, p1->fx, p1->fy, p2->fx, p2->fy, fb_w, fb_h, box);
             if (hide && unclipped &&
                 hidden_behind(hide, fb_w, box, min3f(p0->z, p1->z, p2->z),
-                              FRONTEND_HIDDEN_MAX_BOX)) {
+                              FRONTEND_HIDDEN_MAX_BOX, false)) {
                 n_hidden++;
                 continue;
             }
             if (occ && unclipped &&
-                occluded(occ, fb_w, box, min3f(p0->z, p1->z, p2->z), FRONTEND_HIDDEN_MAX_BOX)) {
+                hidden_behind(occ, fb_w, box, min3f(p0->z, p1->z, p2->z),
+                              FRONTEND_HIDDEN_MAX_BOX, true)) {
                 n_hidden++, n_occluded++;
                 continue;
             }
@@ -495,14 +481,14 @@ walk(struct frontend *fe, struct frame *f, struct tri_walk *w, const uint32_t *l
             if (hide && unclipped &&
                 hidden_behind(hide, fb_w, box,
                               min3f(corner_depth(v[0]), corner_depth(v[1]), corner_depth(v[2])),
-                              FRONTEND_HIDDEN_MAX_BOX)) {
+                              FRONTEND_HIDDEN_MAX_BOX, false)) {
                 n_hidden++;
                 continue;
             }
             if (occ && unclipped &&
-                occluded(occ, fb_w, box,
-                         min3f(corner_depth(v[0]), corner_depth(v[1]), corner_depth(v[2])),
-                         FRONTEND_HIDDEN_MAX_BOX)) {
+                hidden_behind(occ, fb_w, box,
+                              min3f(corner_depth(v[0]), corner_depth(v[1]), corner_depth(v[2])),
+                              FRONTEND_HIDDEN_MAX_BOX, true)) {
                 n_hidden++, n_occluded++;
                 continue;
             }
@@ -788,12 +774,12 @@ static int cluster_verdict(struct frontend *fe, struct frame *f, const struct tr
     if (w->hide) {
         if (fe->batch[fe->cur].n_tris >= FRONTEND_CLUSTER_FLUSH && flush(fe, f, e))
             return -1;
-        if (hidden_behind(w->hide, f->fb->w, box, r.z_lo, FRONTEND_HIDDEN_MAX_RECT)) {
+        if (hidden_behind(w->hide, f->fb->w, box, r.z_lo, FRONTEND_HIDDEN_MAX_RECT, false)) {
             *out = CLUSTER_HIDDEN;
             return 0;
         }
     }
-    if (w->occ && occluded(w->occ, f->fb->w, box, r.z_lo, FRONTEND_HIDDEN_MAX_RECT)) {
+    if (w->occ && hidden_behind(w->occ, f->fb->w, box, r.z_lo, FRONTEND_HIDDEN_MAX_RECT, true)) {
         *out = CLUSTER_HIDDEN; /* (what the depth so far did not find: the occluders' own) */
         f->stats->clusters_occluded++;
     }
@@ -1321,10 +1307,10 @@ int frontend_triangles(struct frontend *fe, struct frame *f, const struct draw_i
         f->fb->depth_mode == DEPTH_Z && !f->fb->overdraw && f->span.mode != SHADE_WIRE &&
         o->view != VIEW_WIRE_OVERLAY)
         w.hide = f->fb->depth;
-    /* occluders (occluders_draw): with the hidden test's conditions, a rasterizer whose
-     * coverage holds every strictly inside centre, and no culling (an occluder must be
-     * drawn: one facing away would not be); a mesh on the features path may discard its
-     * pixels, so it is no occluder (it is tested against them) */
+    /* occluders (occluders_draw; frontend.h, "Occluders"): with --hidden-cull and where the
+     * depth buffer is ours to read in its measure (as the hidden test, but threads may read
+     * them), not a cut, a rasterizer whose coverage holds every strictly inside centre, and
+     * no culling (an occluder must be drawn: one facing away this frame would not be) */
     struct frontend_item *d = fe->occ_item;
     fe->occ_item = NULL;
     const bool occ_ok = d && o->occluders != OCCLUDERS_OFF &&
