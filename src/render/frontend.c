@@ -523,7 +523,7 @@ walk(struct frontend *fe, struct frame *f, struct tri_walk *w, const uint32_t *l
             t->rich = rich;
             bt->n_tris++;
             stats->tris_drawn++;
-            if (drew && m->materials[m->tri_material[i]].alpha_mode == MAT_OPAQUE &&
+            if (drew && (!m->features || m->materials[m->tri_material[i]].alpha_mode == MAT_OPAQUE) &&
                 drew_room(drew)) /* (a cut-out's pixels may be discarded: no occluder) */
                 drew->drew[drew->n_drew++] = i;
             continue;
@@ -1197,12 +1197,13 @@ static int occluders_draw(struct frontend *fe, const struct frame *f, const stru
     }
     f->k->position_run(fe->occ_xyz, 3 * sizeof *fe->occ_xyz, &f->u, fe->occ_pos, 0, (uint32_t)nc);
     const int64_t one = VIEWPORT_SUBPIX_ONE, half = one / 2;
+    uint64_t drawn = 0;
     for (size_t t = 0; t < nc; t += 3) {
         const struct vertex_pos *a = &fe->occ_pos[t], *b = a + 1, *c = a + 2;
         const uint32_t i = d->occ[t / 3];
         if ((a->outcode | b->outcode | c->outcode) & VERTEX_NEEDS_CLIP || i >= m->n_opaque ||
-            m->materials[m->tri_material[i]].alpha_mode != MAT_OPAQUE)
-            continue;
+            (m->features && m->materials[m->tri_material[i]].alpha_mode != MAT_OPAQUE))
+            continue; /* (a cut-out is a feature: mesh.h) */
         int64_t box[4];
         if (!setup_box_xy(a->fx, a->fy, b->fx, b->fy, c->fx, c->fy, fb_w, fb_h, box))
             continue;
@@ -1254,8 +1255,9 @@ static int occluders_draw(struct frontend *fe, const struct frame *f, const stru
             for (int64_t x = lo; x <= hi; x++)
                 row[x] = z < row[x] ? z : row[x];
         }
-        f->stats->occluders++;
+        drawn++;
     }
+    f->stats->occluders += drawn;
     return 0;
 }
 
