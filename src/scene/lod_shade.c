@@ -228,12 +228,12 @@ double lod_shade_weight(const struct mesh *m, uint32_t mt)
  * car's brake discs (weight 0.088) count 0.088 a up to 0.14 rad. */
 static double weighted_angle(const struct mesh *m, uint32_t mt, double a)
 {
-    const double w = lod_shade_weight(m, mt);
-    if (w >= 1)
+    if (m->materials[mt].features)
         return a;
     double slope, range;
     shade_terms(m, mt, &slope, &range);
-    return fmin(a * w, range / ref_slope());
+    const double w = slope / ref_slope(); /* (lod_shade_weight's, before its cap at 1) */
+    return w >= 1 ? a : fmin(a * w, range / ref_slope());
 }
 
 double lod_shade_error(const struct mesh *src, const struct mesh *lvl)
